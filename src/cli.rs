@@ -1,0 +1,310 @@
+//! The command line (CLI.md): options → render settings → files. No geometry
+//! here. Every output is computed before any is written, and each file is
+//! written to a temporary file beside its target and renamed into place, so
+//! a failed run leaves nothing half-written and never touches the model.
+
+use crate::error::{Error, Result, Source};
+use crate::render::{self, probe, Settings};
+use crate::stats::Stats;
+use crate::{dump, load_csg, Scene};
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::{IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The largest image side, in pixels.
+pub const MAX_SIDE: u32 = 32_768;
+/// The most pixels in one image (checked before anything is allocated).
+pub const MAX_PIXELS: u64 = 100_000_000;
+pub const MAX_SPP: u32 = 65_536;
+pub const MAX_DEPTH: u32 = 64;
+pub const MAX_THREADS: usize = 1024;
+
+/// csgrt renders CSG scenes exactly: OpenSCAD's `.csg` export plus camera,
+/// lights and materials.
+#[derive(Parser, Debug)]
+#[command(name = "csgrt", version, about, long_about = None)]
+pub struct Cli {
+    /// The scene to render (`.csg`).
+    pub model: PathBuf,
+    /// The image to write (PNG); default: MODEL with the extension `.png`.
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+    /// Image size in pixels.
+    #[arg(long, value_name = "WxH", default_value = "800x600", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Samples per pixel, stratified and jittered inside the pixel.
+    #[arg(long, value_name = "N", default_value_t = 1,
+          value_parser = clap::value_parser!(u32).range(1..=MAX_SPP as i64))]
+    pub spp: u32,
+    /// Depth of the ray tree (reflection + refraction).
+    #[arg(long, value_name = "N", default_value_t = 5,
+          value_parser = clap::value_parser!(u32).range(0..=MAX_DEPTH as i64))]
+    pub max_depth: u32,
+    /// Worker threads (default: all cores); the image is the same for any N.
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u16).range(1..=MAX_THREADS as i64))]
+    pub threads: Option<u16>,
+    /// Also write an 8-bit grey PNG: 255 where the pixel-centre ray hits.
+    #[arg(long, value_name = "FILE")]
+    pub mask: Option<PathBuf>,
+    /// Instead of an image: read rays `ox oy oz dx dy dz` from FILE (`-` =
+    /// stdin) and print `t nx ny nz` or `miss` for each.
+    #[arg(long, value_name = "FILE")]
+    pub trace_rays: Option<PathBuf>,
+    /// Write counters of the work done as one JSON object.
+    #[arg(long, value_name = "FILE")]
+    pub stats_json: Option<PathBuf>,
+    /// Write the resolved scene as JSON (camera, lights, materials, tree).
+    #[arg(long, value_name = "FILE")]
+    pub dump_scene: Option<PathBuf>,
+    /// No progress bar, no summary.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let bad = || format!("`{s}` is not a size: expected WxH, as in 800x600");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    if w == 0 || h == 0 {
+        return Err(format!("`{s}`: width and height must be at least 1"));
+    }
+    if w > MAX_SIDE || h > MAX_SIDE {
+        return Err(format!("`{s}`: each side may be at most {MAX_SIDE} pixels"));
+    }
+    if w as u64 * h as u64 > MAX_PIXELS {
+        return Err(format!("`{s}`: at most {MAX_PIXELS} pixels in all"));
+    }
+    Ok((w, h))
+}
+
+/// Runs csgrt with the process's arguments; returns the exit status.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return e.exit_code();
+        }
+    };
+    match run(&cli) {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("{e}");
+            e.exit_code()
+        }
+    }
+}
+
+/// Reads a model file into a named source.
+pub fn read_source(path: &Path) -> Result<Source> {
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| Error::Usage(format!("{}: the file is not UTF-8 text", path.display())))?;
+    Ok(Source::new(path.display().to_string(), text))
+}
+
+/// Loads a model by its extension.
+pub fn load(path: &Path) -> Result<Scene> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("csg") => load_csg(&read_source(path)?),
+        _ => Err(Error::Usage(format!(
+            "{}: unknown model format; expected a `.csg` file",
+            path.display()
+        ))),
+    }
+}
+
+pub fn run(cli: &Cli) -> Result<()> {
+    let scene = load(&cli.model)?;
+    for w in &scene.warnings {
+        eprintln!("{w}");
+    }
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(n) = cli.threads {
+        pool = pool.num_threads(n as usize);
+    }
+    let pool = pool
+        .build()
+        .map_err(|e| Error::Usage(format!("cannot start {:?} threads: {e}", cli.threads)))?;
+    pool.install(|| match &cli.trace_rays {
+        Some(input) => trace_rays(cli, &scene, input),
+        None => render_files(cli, &scene),
+    })
+}
+
+fn trace_rays(cli: &Cli, scene: &Scene, input: &Path) -> Result<()> {
+    let src = if input == Path::new("-") {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| Error::io("<stdin>", e))?;
+        Source::new("<stdin>", text)
+    } else {
+        read_source(input)?
+    };
+    let rays = probe::parse_rays(&src)?;
+    let start = Instant::now();
+    let mut stats = Stats::default();
+    let mut out = String::with_capacity(rays.len() * 64);
+    for ray in &rays {
+        out.push_str(&probe::trace_line(scene, ray, &mut stats));
+        out.push('\n');
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(p) = &cli.stats_json {
+        write_atomic(p, &cli.model, stats_json(&stats, seconds).as_bytes())?;
+    }
+    let mut stdout = std::io::stdout().lock();
+    match stdout
+        .write_all(out.as_bytes())
+        .and_then(|_| stdout.flush())
+    {
+        // A closed pipe (`| head`) is the reader's choice, not an error.
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::io("<stdout>", e)),
+        _ => Ok(()),
+    }
+}
+
+fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
+    let (width, height) = cli.size;
+    let settings = Settings {
+        width,
+        height,
+        spp: cli.spp,
+        max_depth: cli.max_depth,
+    };
+    let output = cli
+        .output
+        .clone()
+        .unwrap_or_else(|| cli.model.with_extension("png"));
+    for p in [
+        Some(&output),
+        cli.mask.as_ref(),
+        cli.stats_json.as_ref(),
+        cli.dump_scene.as_ref(),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        refuse_model(p, &cli.model)?;
+    }
+    let bar = (!cli.quiet && std::io::stderr().is_terminal()).then(|| {
+        let b = ProgressBar::new(height as u64);
+        b.set_style(
+            ProgressStyle::with_template(
+                "{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        b
+    });
+    let start = Instant::now();
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let image = render::render(scene, &settings, &tick);
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
+    // Everything is computed; now write.
+    write_atomic(
+        &output,
+        &cli.model,
+        &png(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?,
+    )?;
+    if let (Some(p), Some(m)) = (&cli.mask, &mask) {
+        write_atomic(
+            p,
+            &cli.model,
+            &png(m, width, height, image::ExtendedColorType::L8)?,
+        )?;
+    }
+    if let Some(p) = &cli.dump_scene {
+        let cam = scene.view(width, height);
+        let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
+            .expect("JSON of plain values");
+        write_atomic(p, &cli.model, json.as_bytes())?;
+    }
+    if let Some(p) = &cli.stats_json {
+        write_atomic(p, &cli.model, stats_json(&image.stats, seconds).as_bytes())?;
+    }
+    if !cli.quiet {
+        eprintln!(
+            "csgrt: wrote {} ({width}x{height}, {} spp) in {seconds:.3} s",
+            output.display(),
+            cli.spp
+        );
+    }
+    Ok(())
+}
+
+fn png(data: &[u8], w: u32, h: u32, color: image::ExtendedColorType) -> Result<Vec<u8>> {
+    let mut out = Vec::new();
+    let enc = image::codecs::png::PngEncoder::new(&mut out);
+    image::ImageEncoder::write_image(enc, data, w, h, color)
+        .map_err(|e| Error::io("<png>", std::io::Error::other(e)))?;
+    Ok(out)
+}
+
+/// Refuses an output path that names the model itself.
+fn refuse_model(out: &Path, model: &Path) -> Result<()> {
+    let same = match (out.canonicalize(), model.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => out == model,
+    };
+    if same {
+        return Err(Error::Usage(format!(
+            "{}: an output may not overwrite the model",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it.
+fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
+    refuse_model(path, model)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".csgrt-")
+        .tempfile_in(dir)
+        .map_err(|e| Error::io(path, e))?;
+    tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
+    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
+    Ok(())
+}
+
+/// The counters as one JSON object.
+pub fn stats_json(s: &Stats, seconds: f64) -> String {
+    let v = serde_json::json!({
+        "pixels": s.pixels,
+        "primary_rays": s.primary_rays,
+        "shadow_rays": s.shadow_rays,
+        "reflected_rays": s.reflected_rays,
+        "refracted_rays": s.refracted_rays,
+        "primitive_tests": s.primitive_tests,
+        "bound_tests": s.bound_tests,
+        "bound_culled": s.bound_culled,
+        "normals_computed": s.normals_computed,
+        "span_spills": s.span_spills,
+        "max_spans": s.max_spans,
+        "render_seconds": seconds,
+    });
+    serde_json::to_string_pretty(&v).expect("JSON of plain values") + "\n"
+}

@@ -1,0 +1,252 @@
+//! The CSG tree and the queries every node answers: its bounds, its spans
+//! along a ray, the first surface a ray hits, and point membership.
+//!
+//! As slides 38–40 of the seed lecture: leaves return their entry/exit
+//! lists, each node combines its children's lists from the leaves to the
+//! root, and a difference flips the normals of the surfaces it takes from
+//! its subtracted children. The normal and material are looked up only for
+//! the boundary that wins ([`Csg::surface`]).
+
+pub mod spans;
+
+use crate::geometry::{Aabb, Ray, Shape, Transform};
+use crate::stats::Stats;
+use glam::DVec3;
+use spans::{combine, Boundary, Op, Span, SpanList, INLINE_SPANS};
+
+/// A primitive placed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Primitive {
+    pub shape: Shape,
+    pub xf: Transform,
+    /// Index into the scene's materials.
+    pub material: u32,
+    /// World bounding box ([`Aabb::EVERYTHING`] if unbounded).
+    pub bounds: Aabb,
+}
+
+impl Primitive {
+    pub fn new(shape: Shape, xf: Transform, material: u32) -> Primitive {
+        let bounds = shape.world_bounds(&xf.to_world);
+        Primitive {
+            shape,
+            xf,
+            material,
+            bounds,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum NodeKind {
+    Leaf(u32),
+    Union(Vec<u32>),
+    Intersection(Vec<u32>),
+    /// The first child minus the rest.
+    Difference(Vec<u32>),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Node {
+    pub kind: NodeKind,
+    /// World box: the union of a union's children, the overlap of an
+    /// intersection's, a difference's first child's.
+    pub bounds: Aabb,
+}
+
+/// A CSG tree over its primitives. Node ids index `nodes`; children come
+/// before their parents.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Csg {
+    pub prims: Vec<Primitive>,
+    pub nodes: Vec<Node>,
+    pub root: Option<u32>,
+}
+
+/// A surface point found by a query, with its unit outward normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceHit {
+    pub t: f64,
+    pub point: DVec3,
+    pub normal: DVec3,
+    pub prim: u32,
+}
+
+impl Csg {
+    pub fn add_prim(&mut self, prim: Primitive) -> u32 {
+        let bounds = prim.bounds;
+        self.prims.push(prim);
+        let id = self.prims.len() as u32 - 1;
+        self.add_node(Node {
+            kind: NodeKind::Leaf(id),
+            bounds,
+        })
+    }
+
+    /// Adds an operation node over `children`, with its bounds derived.
+    pub fn add_op(&mut self, op: Op, children: Vec<u32>) -> u32 {
+        let b = |i: &u32| self.nodes[*i as usize].bounds;
+        let bounds = match op {
+            Op::Union => children.iter().map(b).fold(Aabb::EMPTY, |a, x| a.union(&x)),
+            Op::Intersection => children
+                .iter()
+                .map(b)
+                .fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
+            Op::Difference => b(&children[0]),
+        };
+        let kind = match op {
+            Op::Union => NodeKind::Union(children),
+            Op::Intersection => NodeKind::Intersection(children),
+            Op::Difference => NodeKind::Difference(children),
+        };
+        self.add_node(Node { kind, bounds })
+    }
+
+    fn add_node(&mut self, node: Node) -> u32 {
+        self.nodes.push(node);
+        self.nodes.len() as u32 - 1
+    }
+
+    /// The world box of everything (EMPTY for an empty tree).
+    pub fn bounds(&self) -> Aabb {
+        self.root
+            .map_or(Aabb::EMPTY, |r| self.nodes[r as usize].bounds)
+    }
+
+    /// The spans of `node` along `ray`. The list agrees with the true solid
+    /// on the open range (tmin, tmax); outside it, it may hold anything.
+    pub fn spans(&self, node: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> SpanList {
+        let n = &self.nodes[node as usize];
+        if n.bounds.is_bounded() {
+            st.bound_tests += 1;
+            if !n.bounds.hit(ray, tmin, tmax) {
+                st.bound_culled += 1;
+                return SpanList::new();
+            }
+        }
+        let out = match &n.kind {
+            NodeKind::Leaf(p) => self.prim_spans(*p, ray, st),
+            NodeKind::Union(ch) => {
+                let mut acc = SpanList::new();
+                for &c in ch {
+                    let s = self.spans(c, ray, tmin, tmax, st);
+                    acc = if acc.is_empty() {
+                        s
+                    } else if s.is_empty() {
+                        acc
+                    } else {
+                        combine(Op::Union, &acc, &s)
+                    };
+                }
+                acc
+            }
+            NodeKind::Intersection(ch) | NodeKind::Difference(ch) => {
+                let op = if matches!(n.kind, NodeKind::Intersection(_)) {
+                    Op::Intersection
+                } else {
+                    Op::Difference
+                };
+                let mut acc = self.spans(ch[0], ray, tmin, tmax, st);
+                for &c in &ch[1..] {
+                    if acc.is_empty() {
+                        break;
+                    }
+                    // Later children matter only where the result may be.
+                    let lo = tmin.max(acc[0].enter.t);
+                    let hi = tmax.min(acc[acc.len() - 1].exit.t);
+                    let s = self.spans(c, ray, lo, hi, st);
+                    if s.is_empty() && op == Op::Difference {
+                        continue;
+                    }
+                    acc = combine(op, &acc, &s);
+                }
+                acc
+            }
+        };
+        st.max_spans = st.max_spans.max(out.len() as u64);
+        if out.spilled() {
+            st.span_spills += 1;
+        }
+        out
+    }
+
+    fn prim_spans(&self, id: u32, ray: &Ray, st: &mut Stats) -> SpanList {
+        st.primitive_tests += 1;
+        let p = &self.prims[id as usize];
+        let (o, d) = p.xf.ray_to_object(ray);
+        let mut out = SpanList::new();
+        p.shape.spans(o, d, &mut |(t0, p0, t1, p1)| {
+            let b = |t, part| Boundary {
+                t,
+                prim: id,
+                part,
+                flip: false,
+            };
+            out.push(Span {
+                enter: b(t0, p0),
+                exit: b(t1, p1),
+            })
+        });
+        out
+    }
+
+    /// The first surface boundary with `tmin < t < tmax`, if any.
+    pub fn first_boundary(
+        &self,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+    ) -> Option<Boundary> {
+        let root = self.root?;
+        let list = self.spans(root, ray, tmin, tmax, st);
+        list.iter()
+            .flat_map(|s| [s.enter, s.exit])
+            .find(|b| b.t > tmin && b.is_surface())
+            .filter(|b| b.t < tmax)
+    }
+
+    /// The first surface the ray hits in (tmin, tmax), with its normal.
+    pub fn first_hit(&self, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> Option<SurfaceHit> {
+        let b = self.first_boundary(ray, tmin, tmax, st)?;
+        Some(self.surface(ray, &b, st))
+    }
+
+    /// Whether anything lies on the ray in (tmin, tmax).
+    pub fn occluded(&self, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> bool {
+        self.first_boundary(ray, tmin, tmax, st).is_some()
+    }
+
+    /// Point and unit outward normal of a boundary found along `ray`.
+    pub fn surface(&self, ray: &Ray, b: &Boundary, st: &mut Stats) -> SurfaceHit {
+        st.normals_computed += 1;
+        let p = &self.prims[b.prim as usize];
+        let (o, d) = p.xf.ray_to_object(ray);
+        let n_obj = p.shape.normal(o + b.t * d, b.part);
+        let n = p.xf.normal_to_world(n_obj);
+        SurfaceHit {
+            t: b.t,
+            point: ray.at(b.t),
+            normal: if b.flip { -n } else { n },
+            prim: b.prim,
+        }
+    }
+
+    /// Whether a world point is inside the solid (boundaries count as in).
+    pub fn contains(&self, node: u32, p: DVec3) -> bool {
+        match &self.nodes[node as usize].kind {
+            NodeKind::Leaf(i) => {
+                let prim = &self.prims[*i as usize];
+                prim.shape.contains(prim.xf.to_object.transform_point3(p))
+            }
+            NodeKind::Union(ch) => ch.iter().any(|&c| self.contains(c, p)),
+            NodeKind::Intersection(ch) => ch.iter().all(|&c| self.contains(c, p)),
+            NodeKind::Difference(ch) => {
+                self.contains(ch[0], p) && !ch[1..].iter().any(|&c| self.contains(c, p))
+            }
+        }
+    }
+}
+
+/// How many spans fit inline (re-exported for the notes and benchmarks).
+pub const SPAN_BUFFER: usize = INLINE_SPANS;

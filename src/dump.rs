@@ -1,0 +1,88 @@
+//! `--dump-scene`: the resolved scene as JSON — camera, lights, materials
+//! and the CSG tree with each primitive's world matrix — the input the
+//! oracle in `tools/` rebuilds the same solid from.
+
+use crate::csg::{Csg, NodeKind};
+use crate::geometry::Shape;
+use crate::scene::{CameraSpec, Light, Scene};
+use glam::{DAffine3, DVec3};
+use serde_json::{json, Value};
+
+fn v3(v: DVec3) -> Value {
+    json!([v.x, v.y, v.z])
+}
+
+/// Row-major 4×4.
+fn matrix(m: &DAffine3) -> Value {
+    let c = |j: usize| m.matrix3.col(j);
+    let t = m.translation;
+    json!([
+        [c(0).x, c(1).x, c(2).x, t.x],
+        [c(0).y, c(1).y, c(2).y, t.y],
+        [c(0).z, c(1).z, c(2).z, t.z],
+        [0.0, 0.0, 0.0, 1.0]
+    ])
+}
+
+fn node(csg: &Csg, id: u32) -> Value {
+    let n = &csg.nodes[id as usize];
+    let kids = |ch: &Vec<u32>| Value::Array(ch.iter().map(|&c| node(csg, c)).collect());
+    match &n.kind {
+        NodeKind::Union(ch) => json!({"op": "union", "children": kids(ch)}),
+        NodeKind::Intersection(ch) => json!({"op": "intersection", "children": kids(ch)}),
+        NodeKind::Difference(ch) => json!({"op": "difference", "children": kids(ch)}),
+        NodeKind::Leaf(p) => {
+            let prim = &csg.prims[*p as usize];
+            let mut v = json!({
+                "primitive": prim.shape.name(),
+                "id": p,
+                "matrix": matrix(&prim.xf.to_world),
+                "material": prim.material,
+            });
+            match prim.shape {
+                Shape::Cone { r0, r1 } => {
+                    v["r0"] = json!(r0);
+                    v["r1"] = json!(r1);
+                }
+                Shape::Torus { minor } => {
+                    v["major"] = json!(1.0);
+                    v["minor"] = json!(minor);
+                }
+                _ => {}
+            }
+            v
+        }
+    }
+}
+
+pub fn scene_json(scene: &Scene, cam: &CameraSpec, width: u32, height: u32) -> Value {
+    let lights: Vec<Value> = scene
+        .lights
+        .iter()
+        .map(|l| match *l {
+            Light::Ambient { color } => json!({"type": "ambient", "color": v3(color)}),
+            Light::Directional { color, direction } => {
+                json!({"type": "directional", "color": v3(color), "direction": v3(direction)})
+            }
+            Light::Point { color, position } => {
+                json!({"type": "point", "color": v3(color), "position": v3(position)})
+            }
+        })
+        .collect();
+    let materials: Vec<Value> = scene
+        .materials
+        .iter()
+        .map(|m| {
+            json!({"color": v3(m.color), "ka": m.ka, "kd": m.kd, "ks": m.ks, "ns": m.ns,
+                   "kr": m.kr, "kt": m.kt, "ior": m.ior})
+        })
+        .collect();
+    json!({
+        "camera": {"eye": v3(cam.eye), "lookat": v3(cam.lookat), "up": v3(cam.up),
+                   "fov": cam.fov, "width": width, "height": height},
+        "background": v3(scene.background),
+        "lights": lights,
+        "materials": materials,
+        "root": scene.csg.root.map_or(Value::Null, |r| node(&scene.csg, r)),
+    })
+}

@@ -1,0 +1,220 @@
+//! One error type for the whole crate.
+//!
+//! Problems in a scene file are [`Diagnostic`]s: they carry the file name, the
+//! 1-based line and column, the source line and a caret under the offending
+//! text, and they print like a compiler message:
+//!
+//! ```text
+//! error: unknown argument `sise` for `cube`
+//!  --> part.csg:3:6
+//!   |
+//! 3 | cube(sise = 2);
+//!   |      ^^^^ expected one of `size`, `center`
+//! ```
+
+use std::fmt;
+use std::path::PathBuf;
+
+/// A byte range in a source text.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Span {
+    pub start: usize,
+    pub end: usize,
+}
+
+impl Span {
+    pub fn new(start: usize, end: usize) -> Span {
+        Span { start, end }
+    }
+}
+
+impl From<pest::Span<'_>> for Span {
+    fn from(s: pest::Span<'_>) -> Span {
+        Span::new(s.start(), s.end())
+    }
+}
+
+/// How serious a diagnostic is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Severity {
+    Error,
+    Warning,
+}
+
+/// A message tied to a place in a source file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub severity: Severity,
+    pub message: String,
+    pub file: String,
+    pub line: usize,
+    pub col: usize,
+    pub source_line: String,
+    pub caret_len: usize,
+    /// Printed after the caret: usually what was expected.
+    pub label: String,
+}
+
+impl fmt::Display for Diagnostic {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let kind = match self.severity {
+            Severity::Error => "error",
+            Severity::Warning => "warning",
+        };
+        let num = self.line.to_string();
+        let pad = " ".repeat(num.len());
+        writeln!(f, "{kind}: {}", self.message)?;
+        writeln!(f, "{pad}--> {}:{}:{}", self.file, self.line, self.col)?;
+        writeln!(f, "{pad} |")?;
+        writeln!(f, "{num} | {}", self.source_line)?;
+        // Tabs in the source line are echoed under the caret so it lines up.
+        let lead: String = self
+            .source_line
+            .chars()
+            .take(self.col - 1)
+            .map(|c| if c == '\t' { '\t' } else { ' ' })
+            .collect();
+        let carets = "^".repeat(self.caret_len.max(1));
+        if self.label.is_empty() {
+            write!(f, "{pad} | {lead}{carets}")
+        } else {
+            write!(f, "{pad} | {lead}{carets} {}", self.label)
+        }
+    }
+}
+
+/// A named source text, able to turn byte spans into diagnostics.
+#[derive(Clone, Debug)]
+pub struct Source {
+    pub name: String,
+    pub text: String,
+}
+
+impl Source {
+    pub fn new(name: impl Into<String>, text: impl Into<String>) -> Source {
+        Source {
+            name: name.into(),
+            text: text.into(),
+        }
+    }
+
+    /// 1-based line and column (in characters) of a byte offset.
+    pub fn line_col(&self, offset: usize) -> (usize, usize) {
+        let offset = floor_char_boundary(&self.text, offset.min(self.text.len()));
+        let before = &self.text[..offset];
+        let line = before.matches('\n').count() + 1;
+        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+        let col = self.text[line_start..offset].chars().count() + 1;
+        (line, col)
+    }
+
+    /// A diagnostic of the given severity pointing at `span`.
+    pub fn diagnostic(
+        &self,
+        severity: Severity,
+        span: Span,
+        message: impl Into<String>,
+        label: impl Into<String>,
+    ) -> Diagnostic {
+        let start = floor_char_boundary(&self.text, span.start.min(self.text.len()));
+        let (line, col) = self.line_col(start);
+        let line_start = self.text[..start].rfind('\n').map_or(0, |i| i + 1);
+        let line_end = self.text[start..]
+            .find('\n')
+            .map_or(self.text.len(), |i| start + i);
+        let source_line = self.text[line_start..line_end].trim_end_matches('\r');
+        let end = floor_char_boundary(&self.text, span.end.clamp(start, line_end));
+        let caret_len = self.text[start..end].chars().count().max(1);
+        Diagnostic {
+            severity,
+            message: message.into(),
+            file: self.name.clone(),
+            line,
+            col,
+            source_line: source_line.to_string(),
+            caret_len,
+            label: label.into(),
+        }
+    }
+
+    /// An error pointing at `span`.
+    pub fn error(&self, span: Span, message: impl Into<String>, label: impl Into<String>) -> Error {
+        Error::Scene(Box::new(self.diagnostic(
+            Severity::Error,
+            span,
+            message,
+            label,
+        )))
+    }
+}
+
+fn floor_char_boundary(s: &str, mut i: usize) -> usize {
+    while i > 0 && !s.is_char_boundary(i) {
+        i -= 1;
+    }
+    i
+}
+
+/// Everything that can go wrong in csgrt.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A problem in a scene or ray file, at a place in it.
+    #[error("{0}")]
+    Scene(Box<Diagnostic>),
+    /// Bad command-line use that clap cannot see (a bad `--size`, say).
+    #[error("error: {0}")]
+    Usage(String),
+    /// Reading or writing a file failed.
+    #[error("error: {path}: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// The process exit status for this error: 2 for bad input, 1 for I/O.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Scene(_) | Error::Usage(_) => 2,
+            Error::Io { .. } => 1,
+        }
+    }
+
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Error {
+        Error::Io {
+            path: path.into(),
+            source,
+        }
+    }
+}
+
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn diagnostic_points_at_the_span_with_a_caret() {
+        let src = Source::new("a.csg", "sphere(1);\ncube(sise = 2);\n");
+        let d = src.diagnostic(
+            Severity::Error,
+            Span::new(16, 20),
+            "unknown argument `sise` for `cube`",
+            "expected one of `size`, `center`",
+        );
+        assert_eq!(
+            d.to_string(),
+            "error: unknown argument `sise` for `cube`\n --> a.csg:2:6\n  |\n2 | cube(sise = 2);\n  |      ^^^^ expected one of `size`, `center`"
+        );
+    }
+
+    #[test]
+    fn line_col_counts_characters_not_bytes() {
+        let src = Source::new("u.csg", "// é\nx");
+        assert_eq!(src.line_col(6), (2, 1));
+        assert_eq!(src.line_col(5), (1, 5));
+    }
+}

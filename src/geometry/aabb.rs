@@ -1,0 +1,67 @@
+//! Axis-aligned bounding boxes and the slab test.
+
+use super::robust::GAMMA3;
+use super::Ray;
+use glam::DVec3;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    pub const EMPTY: Aabb = Aabb {
+        min: DVec3::splat(f64::INFINITY),
+        max: DVec3::splat(f64::NEG_INFINITY),
+    };
+    pub const EVERYTHING: Aabb = Aabb {
+        min: DVec3::splat(f64::NEG_INFINITY),
+        max: DVec3::splat(f64::INFINITY),
+    };
+
+    pub fn new(min: DVec3, max: DVec3) -> Aabb {
+        Aabb { min, max }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.cmpgt(self.max).any()
+    }
+
+    /// Whether the box is finite on every side.
+    pub fn is_bounded(&self) -> bool {
+        self.min.is_finite() && self.max.is_finite()
+    }
+
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb::new(self.min.min(o.min), self.max.max(o.max))
+    }
+
+    pub fn intersect(&self, o: &Aabb) -> Aabb {
+        Aabb::new(self.min.max(o.min), self.max.min(o.max))
+    }
+
+    pub fn include(&self, p: DVec3) -> Aabb {
+        Aabb::new(self.min.min(p), self.max.max(p))
+    }
+
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    /// Whether the ray meets the box for some `t` in `[tmin, tmax]`.
+    ///
+    /// NaN-safe: a zero direction component gives ±∞ slab distances, and a
+    /// `0·∞` NaN (origin exactly on a slab plane) is ignored by `min`/`max`,
+    /// which keep the other operand. The far distance is widened by
+    /// `1 + 2γ₃` so that rounding never culls a box the ray grazes.
+    pub fn hit(&self, ray: &Ray, tmin: f64, tmax: f64) -> bool {
+        let t0 = (self.min - ray.origin) * ray.inv_dir;
+        let t1 = (self.max - ray.origin) * ray.inv_dir;
+        let near = t0.min(t1);
+        let far = t0.max(t1) * (1.0 + 2.0 * GAMMA3);
+        let lo = tmin.max(near.x).max(near.y).max(near.z);
+        let hi = tmax.min(far.x).min(far.y).min(far.z);
+        lo <= hi
+    }
+}

@@ -1,0 +1,109 @@
+//! Cylinders and cone frusta: z in [0, 1], radius `r0` at z = 0 and `r1` at
+//! z = 1 (the larger being 1), an apex where a radius is 0.
+//! `cylinder(h, r1, r2, center)` is this solid scaled by (r, r, h).
+//!
+//! The solid is convex, so the line meets it in one interval: the part of
+//! {x² + y² ≤ r(z)²} (one or two pieces of the line, found with a stable
+//! quadratic) that lies in the slab 0 ≤ z ≤ 1. Inside the slab r(z) ≥ 0, so
+//! the other nappe of the double cone never leaks in. Parts: 0 = side,
+//! 1 = bottom cap, 2 = top cap.
+
+use super::shape::RawSpan;
+use super::Part;
+use glam::DVec3;
+
+const SIDE: Part = 0;
+const BOTTOM: Part = 1;
+const TOP: Part = 2;
+
+pub fn spans(r0: f64, r1: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+    // The slab 0 ≤ z ≤ 1.
+    let (z0, zp0, z1, zp1) = if d.z == 0.0 {
+        if o.z <= 0.0 || o.z >= 1.0 {
+            return;
+        }
+        (f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP)
+    } else {
+        let tb = -o.z / d.z;
+        let tt = (1.0 - o.z) / d.z;
+        if tb < tt {
+            (tb, BOTTOM, tt, TOP)
+        } else {
+            (tt, TOP, tb, BOTTOM)
+        }
+    };
+    // The side: f(t) = A t² + 2B t + C ≤ 0.
+    let k = r1 - r0;
+    let r_o = r0 + k * o.z;
+    let a = d.x * d.x + d.y * d.y - k * k * d.z * d.z;
+    let b = o.x * d.x + o.y * d.y - k * d.z * r_o;
+    let c = o.x * o.x + o.y * o.y - r_o * r_o;
+    let clip = |s0: f64, s1: f64, emit: &mut dyn FnMut(RawSpan)| {
+        let (t0, p0) = if s0 > z0 { (s0, SIDE) } else { (z0, zp0) };
+        let (t1, p1) = if s1 < z1 { (s1, SIDE) } else { (z1, zp1) };
+        if t0 < t1 {
+            emit((t0, p0, t1, p1));
+        }
+    };
+    let mut emit = |s: RawSpan| emit(s);
+    if a == 0.0 {
+        if b > 0.0 {
+            clip(f64::NEG_INFINITY, -c / (2.0 * b), &mut emit);
+        } else if b < 0.0 {
+            clip(-c / (2.0 * b), f64::INFINITY, &mut emit);
+        } else if c < 0.0 {
+            clip(f64::NEG_INFINITY, f64::INFINITY, &mut emit);
+        }
+        return;
+    }
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        if a < 0.0 {
+            clip(f64::NEG_INFINITY, f64::INFINITY, &mut emit);
+        }
+        return;
+    }
+    let q = -(b + disc.sqrt().copysign(b));
+    let (mut lo, mut hi) = (q / a, c / q);
+    if q == 0.0 {
+        (lo, hi) = (0.0, 0.0);
+    }
+    if lo > hi {
+        std::mem::swap(&mut lo, &mut hi);
+    }
+    if a > 0.0 {
+        clip(lo, hi, &mut emit);
+    } else {
+        // Two pieces, one on each nappe; only one can meet the slab, but
+        // near an apex rounding may let both: keep their hull then.
+        let mut got: Option<RawSpan> = None;
+        let mut keep = |s: RawSpan| {
+            got = Some(match got {
+                None => s,
+                Some(g) => (g.0, g.1, s.2, s.3),
+            })
+        };
+        clip(f64::NEG_INFINITY, lo, &mut keep);
+        clip(hi, f64::INFINITY, &mut keep);
+        if let Some(s) = got {
+            emit(s);
+        }
+    }
+}
+
+pub fn normal(r0: f64, r1: f64, p: DVec3, part: Part) -> DVec3 {
+    match part {
+        BOTTOM => DVec3::NEG_Z,
+        TOP => DVec3::Z,
+        _ => {
+            let k = r1 - r0;
+            let n = DVec3::new(p.x, p.y, -(r0 + k * p.z) * k);
+            if n == DVec3::ZERO {
+                // The apex itself: the axis is as good a normal as any.
+                DVec3::new(0.0, 0.0, -k.signum())
+            } else {
+                n
+            }
+        }
+    }
+}

@@ -1,0 +1,51 @@
+//! Geometry: rays, bounding boxes, affine transforms and the primitives.
+//!
+//! Every primitive is a generic solid in its own object space (the unit
+//! sphere, the cube [-1, 1]³, …). A [`Transform`] maps it into the world; rays
+//! are mapped into object space with the inverse, *without* renormalising the
+//! direction, so the ray parameter `t` is the same in both spaces.
+
+pub mod aabb;
+pub mod cone;
+pub mod cuboid;
+pub mod halfspace;
+pub mod poly;
+pub mod robust;
+pub mod shape;
+pub mod sphere;
+pub mod torus;
+pub mod transform;
+
+pub use aabb::Aabb;
+pub use shape::Shape;
+pub use transform::Transform;
+
+use glam::DVec3;
+
+/// A ray `origin + t·dir`. World rays have a unit direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    pub origin: DVec3,
+    pub dir: DVec3,
+    /// Componentwise `1 / dir` (±∞ for zero components), for slab tests.
+    pub inv_dir: DVec3,
+}
+
+impl Ray {
+    pub fn new(origin: DVec3, dir: DVec3) -> Ray {
+        Ray {
+            origin,
+            dir,
+            inv_dir: DVec3::ONE / dir,
+        }
+    }
+
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + t * self.dir
+    }
+}
+
+/// Which part of a primitive's surface a crossing lies on (a cube face, a
+/// cylinder cap, …); [`NO_PART`] marks the open end of an unbounded span.
+pub type Part = u8;
+pub const NO_PART: Part = u8::MAX;

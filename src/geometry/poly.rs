@@ -1,0 +1,146 @@
+//! Real roots of polynomials of degree ≤ 4 inside an interval.
+//!
+//! No closed forms: the roots of a polynomial's derivative split the interval
+//! into pieces where it is monotonic, and each piece with a sign change holds
+//! exactly one root, found by Newton steps safeguarded by bisection. The
+//! derivative's roots are found the same way, down to a linear polynomial.
+//! This is slower than Ferrari's formula but loses no roots to cancellation.
+
+/// Coefficients, lowest degree first: `c[0] + c[1]·x + …`.
+pub type Poly = [f64; 5];
+
+pub fn eval(c: &Poly, degree: usize, x: f64) -> f64 {
+    let mut v = c[degree];
+    for i in (0..degree).rev() {
+        v = v * x + c[i];
+    }
+    v
+}
+
+fn derivative(c: &Poly, degree: usize) -> Poly {
+    let mut d = [0.0; 5];
+    for i in 1..=degree {
+        d[i - 1] = c[i] * i as f64;
+    }
+    d
+}
+
+/// The simple real roots of `c` (of the given degree) in `(lo, hi)`, sorted,
+/// written to `out`; returns how many. Roots of even multiplicity (tangent
+/// touches) do not change sign and are not reported.
+pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -> usize {
+    let mut degree = degree;
+    while degree > 0 && c[degree] == 0.0 {
+        degree -= 1;
+    }
+    if degree == 0 {
+        return 0;
+    }
+    if degree == 1 {
+        let x = -c[0] / c[1];
+        if x > lo && x < hi {
+            out[0] = x;
+            return 1;
+        }
+        return 0;
+    }
+    // Split (lo, hi) at the critical points.
+    let d = derivative(c, degree);
+    let mut crit = [0.0; 4];
+    let nc = roots_in(&d, degree - 1, lo, hi, &mut crit);
+    let mut n = 0;
+    let mut a = lo;
+    let mut fa = eval(c, degree, a);
+    for (i, &b) in crit[..nc].iter().chain(std::iter::once(&hi)).enumerate() {
+        let fb = eval(c, degree, b);
+        if fa == 0.0 && i > 0 {
+            // A root exactly on a critical point is a multiple root: skip it.
+        } else if (fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < 4 {
+            out[n] = refine(c, degree, &d, a, b, fa);
+            n += 1;
+        }
+        a = b;
+        fa = fb;
+    }
+    n
+}
+
+/// The one root in `[a, b]`, where the polynomial is monotonic and changes
+/// sign: Newton steps, falling back to bisection when a step leaves the
+/// bracket or does not shrink it fast enough.
+fn refine(c: &Poly, degree: usize, d: &Poly, mut a: f64, mut b: f64, fa: f64) -> f64 {
+    let rising = fa < 0.0;
+    let mut x = 0.5 * (a + b);
+    for _ in 0..200 {
+        let f = eval(c, degree, x);
+        if f == 0.0 {
+            return x;
+        }
+        if (f < 0.0) == rising {
+            a = x;
+        } else {
+            b = x;
+        }
+        let df = eval(d, degree - 1, x);
+        let newton = x - f / df;
+        let next = if newton > a && newton < b && df != 0.0 {
+            newton
+        } else {
+            0.5 * (a + b)
+        };
+        if next == x || b - a <= f64::EPSILON * a.abs().max(b.abs()) {
+            return next;
+        }
+        x = next;
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn from_roots(r: &[f64]) -> Poly {
+        let mut c = [0.0; 5];
+        c[0] = 1.0;
+        for (deg, &x) in r.iter().enumerate() {
+            // multiply by (t - x)
+            let mut n = [0.0; 5];
+            for i in 0..=deg {
+                n[i + 1] += c[i];
+                n[i] -= x * c[i];
+            }
+            c = n;
+        }
+        c
+    }
+
+    #[test]
+    fn finds_four_close_roots_of_a_quartic() {
+        let r = [0.1, 0.1001, 3.0, 7.5];
+        let c = from_roots(&r);
+        let mut out = [0.0; 4];
+        let n = roots_in(&c, 4, 0.0, 10.0, &mut out);
+        assert_eq!(n, 4);
+        for i in 0..4 {
+            assert!((out[i] - r[i]).abs() < 1e-12, "{out:?}");
+        }
+    }
+
+    #[test]
+    fn a_double_root_is_a_touch_not_a_crossing() {
+        let c = from_roots(&[1.0, 1.0, 4.0, 5.0]);
+        let mut out = [0.0; 4];
+        let n = roots_in(&c, 4, 0.0, 10.0, &mut out);
+        assert_eq!(n, 2, "{out:?}");
+        assert!((out[0] - 4.0).abs() < 1e-12 && (out[1] - 5.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn roots_outside_the_interval_are_not_reported() {
+        let c = from_roots(&[-1.0, 2.0, 30.0]);
+        let mut out = [0.0; 4];
+        assert_eq!(roots_in(&c, 3, 0.0, 10.0, &mut out), 1);
+        assert!((out[0] - 2.0).abs() < 1e-14);
+    }
+}

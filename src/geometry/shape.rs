@@ -1,0 +1,127 @@
+//! The closed set of primitive shapes, matched rather than boxed.
+//!
+//! Each shape answers, in object space: the spans (entry, exit) of the whole
+//! line `o + t·d` inside it, sorted; the outward normal at a surface point;
+//! whether a point is inside; and its bounding box.
+
+use super::{cone, cuboid, halfspace, sphere, torus, Aabb, Part};
+use glam::{DAffine3, DVec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Shape {
+    /// The unit sphere at the origin.
+    Sphere,
+    /// The cube [-1, 1]³.
+    Cuboid,
+    /// A cone frustum: z in [0, 1], radius `r0` at z = 0 and `r1` at z = 1,
+    /// the larger of the two being 1. A cylinder has both 1.
+    Cone { r0: f64, r1: f64 },
+    /// A torus around the z axis, major radius 1, tube radius `minor` < 1.
+    Torus { minor: f64 },
+    /// The half-space z ≤ 0.
+    Halfspace,
+}
+
+/// Where the line enters and leaves a solid: `(t_in, part_in, t_out, part_out)`.
+pub type RawSpan = (f64, Part, f64, Part);
+
+impl Shape {
+    pub const fn name(&self) -> &'static str {
+        match self {
+            Shape::Sphere => "sphere",
+            Shape::Cuboid => "cube",
+            Shape::Cone { .. } => "cylinder",
+            Shape::Torus { .. } => "torus",
+            Shape::Halfspace => "halfspace",
+        }
+    }
+
+    /// Calls `emit` for each span of the line `o + t·d` inside the solid, in
+    /// increasing `t`. Spans are never empty (`t_in < t_out`); unbounded
+    /// ends are ±∞ with part [`super::NO_PART`].
+    #[inline]
+    pub fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+        match *self {
+            Shape::Sphere => sphere::spans(o, d, emit),
+            Shape::Cuboid => cuboid::spans(o, d, emit),
+            Shape::Cone { r0, r1 } => cone::spans(r0, r1, o, d, emit),
+            Shape::Torus { minor } => torus::spans(minor, o, d, emit),
+            Shape::Halfspace => halfspace::spans(o, d, emit),
+        }
+    }
+
+    /// The outward (not unit) normal at object-space point `p` on `part`.
+    pub fn normal(&self, p: DVec3, part: Part) -> DVec3 {
+        match *self {
+            Shape::Sphere => p,
+            Shape::Cuboid => cuboid::normal(part),
+            Shape::Cone { r0, r1 } => cone::normal(r0, r1, p, part),
+            Shape::Torus { .. } => torus::normal(p),
+            Shape::Halfspace => DVec3::Z,
+        }
+    }
+
+    /// Whether object-space point `p` is inside (boundary counts as inside).
+    pub fn contains(&self, p: DVec3) -> bool {
+        match *self {
+            Shape::Sphere => p.length_squared() <= 1.0,
+            Shape::Cuboid => p.abs().max_element() <= 1.0,
+            Shape::Cone { r0, r1 } => {
+                (0.0..=1.0).contains(&p.z) && p.truncate().length() <= r0 + (r1 - r0) * p.z
+            }
+            Shape::Torus { minor } => {
+                let q = p.truncate().length() - 1.0;
+                q * q + p.z * p.z <= minor * minor
+            }
+            Shape::Halfspace => p.z <= 0.0,
+        }
+    }
+
+    /// A box around the solid in object space.
+    pub fn object_bounds(&self) -> Aabb {
+        match *self {
+            Shape::Sphere | Shape::Cuboid => Aabb::new(DVec3::NEG_ONE, DVec3::ONE),
+            Shape::Cone { .. } => Aabb::new(DVec3::new(-1.0, -1.0, 0.0), DVec3::ONE),
+            Shape::Torus { minor } => {
+                let e = DVec3::new(1.0 + minor, 1.0 + minor, minor);
+                Aabb::new(-e, e)
+            }
+            Shape::Halfspace => Aabb::EVERYTHING,
+        }
+    }
+
+    /// A tight world box of the solid under `m`: exact for spheres
+    /// (ellipsoids) and cone frusta (the hull of two elliptic discs), the
+    /// transformed object box otherwise.
+    pub fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        let col = |i: usize| m.matrix3.col(i);
+        match *self {
+            Shape::Sphere => {
+                let (a, b, c) = (col(0), col(1), col(2));
+                let e = (a * a + b * b + c * c).powf(0.5);
+                Aabb::new(m.translation - e, m.translation + e)
+            }
+            Shape::Cone { r0, r1 } => {
+                let (u, v) = (col(0), col(1));
+                let e = (u * u + v * v).powf(0.5);
+                let c0 = m.translation;
+                let c1 = m.transform_point3(DVec3::Z);
+                Aabb::new(c0 - e * r0, c0 + e * r0).union(&Aabb::new(c1 - e * r1, c1 + e * r1))
+            }
+            Shape::Halfspace => Aabb::EVERYTHING,
+            _ => {
+                let b = self.object_bounds();
+                let mut out = Aabb::EMPTY;
+                for i in 0..8 {
+                    let p = DVec3::new(
+                        if i & 1 == 0 { b.min.x } else { b.max.x },
+                        if i & 2 == 0 { b.min.y } else { b.max.y },
+                        if i & 4 == 0 { b.min.z } else { b.max.z },
+                    );
+                    out = out.include(m.transform_point3(p));
+                }
+                out
+            }
+        }
+    }
+}

@@ -1,0 +1,81 @@
+//! The torus around the z axis with major radius 1 and tube radius `minor`:
+//! `torus(R, r)` is this solid scaled by R, with minor = r/R.
+//!
+//! (|p|² + 1 − r²)² − 4(x² + y²) = 0 is a quartic in t. As POV-Ray does, the
+//! ray origin is first moved to where the line enters the torus's box and
+//! the direction made unit, which keeps the coefficients small; the roots
+//! are then isolated and polished by [`super::poly::roots_in`], never by a
+//! closed form.
+
+use super::poly::{eval, roots_in, Poly};
+use super::shape::RawSpan;
+use glam::DVec3;
+
+pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+    // Clip the line to the box [-(1+r), 1+r]² × [-r, r].
+    let e = DVec3::new(1.0 + minor, 1.0 + minor, minor);
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for i in 0..3 {
+        if d[i] == 0.0 {
+            if o[i].abs() >= e[i] {
+                return;
+            }
+        } else {
+            let a = (-e[i] - o[i]) / d[i];
+            let b = (e[i] - o[i]) / d[i];
+            lo = lo.max(a.min(b));
+            hi = hi.min(a.max(b));
+        }
+    }
+    if lo >= hi {
+        return;
+    }
+    // Local unit-speed parameter s = (t − lo)·|d| from the box entry.
+    let len = d.length();
+    let u = d / len;
+    let p = o + lo * d;
+    let span = (hi - lo) * len;
+    let k = 1.0 - minor * minor;
+    let b = p.dot(u);
+    let c = p.length_squared() + k;
+    let bxy = p.x * u.x + p.y * u.y;
+    let axy = u.x * u.x + u.y * u.y;
+    let cxy = p.x * p.x + p.y * p.y;
+    // (s² + 2b s + c)² − 4(axy s² + 2 bxy s + cxy), |u| = 1.
+    let poly: Poly = [
+        c * c - 4.0 * cxy,
+        4.0 * b * c - 8.0 * bxy,
+        4.0 * b * b + 2.0 * c - 4.0 * axy,
+        4.0 * b,
+        1.0,
+    ];
+    let mut roots = [0.0; 4];
+    let n = roots_in(&poly, 4, 0.0, span, &mut roots);
+    // The box ends are outside the torus; spans are where the quartic < 0.
+    let mut prev = 0.0;
+    let mut inside_from = None;
+    for &r in roots[..n].iter().chain(std::iter::once(&span)) {
+        let inside = eval(&poly, 4, 0.5 * (prev + r)) < 0.0;
+        match (inside, inside_from) {
+            (true, None) => inside_from = Some(prev),
+            (false, Some(s0)) => {
+                emit((lo + s0 / len, 0, lo + prev / len, 0));
+                inside_from = None;
+            }
+            _ => {}
+        }
+        prev = r;
+    }
+    if let Some(s0) = inside_from {
+        emit((lo + s0 / len, 0, hi, 0));
+    }
+}
+
+pub fn normal(p: DVec3) -> DVec3 {
+    let rho = p.truncate().length();
+    if rho == 0.0 {
+        return DVec3::new(0.0, 0.0, p.z.signum());
+    }
+    // From the nearest point of the core circle to p.
+    p - DVec3::new(p.x / rho, p.y / rho, 0.0)
+}

@@ -1,0 +1,74 @@
+//! The resolved scene: camera, lights, materials and the CSG tree, with
+//! every default applied. Built from the syntax tree by [`resolve`].
+
+mod args;
+pub mod defaults;
+mod resolve;
+
+pub use resolve::resolve;
+
+use crate::csg::Csg;
+use crate::error::Diagnostic;
+use glam::DVec3;
+
+/// The seed's Surface model (slide 24).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    pub color: DVec3,
+    /// Ambient, diffuse and specular coefficients.
+    pub ka: f64,
+    pub kd: f64,
+    pub ks: f64,
+    /// Phong exponent.
+    pub ns: f64,
+    /// Reflectance and transmission.
+    pub kr: f64,
+    pub kt: f64,
+    /// Index of refraction.
+    pub ior: f64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    Ambient {
+        color: DVec3,
+    },
+    /// `direction` is the unit direction the light travels in.
+    Directional {
+        color: DVec3,
+        direction: DVec3,
+    },
+    Point {
+        color: DVec3,
+        position: DVec3,
+    },
+}
+
+/// The seed's pinhole camera (slide 6); `fov` is the horizontal angle in
+/// degrees.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraSpec {
+    pub eye: DVec3,
+    pub lookat: DVec3,
+    pub up: DVec3,
+    pub fov: f64,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// The camera the file asked for; `None` frames the scene's bounds.
+    pub camera: Option<CameraSpec>,
+    pub background: DVec3,
+    pub lights: Vec<Light>,
+    pub materials: Vec<Material>,
+    pub csg: Csg,
+    pub warnings: Vec<Diagnostic>,
+}
+
+impl Scene {
+    /// The camera to render with at `width`×`height`.
+    pub fn view(&self, width: u32, height: u32) -> CameraSpec {
+        self.camera
+            .unwrap_or_else(|| defaults::framing_camera(&self.csg.bounds(), width, height))
+    }
+}

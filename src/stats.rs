@@ -1,0 +1,38 @@
+//! Counters of the work a render did, reported by `--stats-json`.
+
+/// Every counter is incremented where the work happens, never estimated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    pub pixels: u64,
+    pub primary_rays: u64,
+    pub shadow_rays: u64,
+    pub reflected_rays: u64,
+    pub refracted_rays: u64,
+    /// Ray–primitive intersection calls.
+    pub primitive_tests: u64,
+    /// Ray–bounding-box tests of CSG nodes.
+    pub bound_tests: u64,
+    /// Subtrees skipped because the ray missed their box.
+    pub bound_culled: u64,
+    pub normals_computed: u64,
+    /// Span lists that outgrew their inline buffer and went to the heap.
+    pub span_spills: u64,
+    /// The longest span list any node produced.
+    pub max_spans: u64,
+}
+
+impl Stats {
+    pub fn add(&mut self, o: &Stats) {
+        self.pixels += o.pixels;
+        self.primary_rays += o.primary_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.reflected_rays += o.reflected_rays;
+        self.refracted_rays += o.refracted_rays;
+        self.primitive_tests += o.primitive_tests;
+        self.bound_tests += o.bound_tests;
+        self.bound_culled += o.bound_culled;
+        self.normals_computed += o.normals_computed;
+        self.span_spills += o.span_spills;
+        self.max_spans = self.max_spans.max(o.max_spans);
+    }
+}
