@@ -216,14 +216,10 @@ fn syntax_error(src: &Source, e: pest::error::Error<Rule>) -> Error {
     let found = describe_found(&src.text[pos.min(src.text.len())..]);
     let (message, span_len) = match &e.variant {
         ErrorVariant::ParsingError { positives, .. } if !positives.is_empty() => {
+            // Sorted, so that messages do not depend on the grammar's order.
             let mut names: Vec<&str> = positives.iter().map(|r| rule_name(*r)).collect();
+            names.sort_unstable();
             names.dedup();
-            let mut seen = Vec::new();
-            names.retain(|n| {
-                let fresh = !seen.contains(n);
-                seen.push(n);
-                fresh
-            });
             (
                 format!("expected {}, found {}", one_of(&names), found.0),
                 found.1,
@@ -318,7 +314,7 @@ mod tests {
     fn a_missing_semicolon_names_what_was_expected() {
         assert_eq!(
             err("cube(1)\n"),
-            "error: expected a statement, `;` or `{`, found the end of the file\n --> t.csg:2:1\n  |\n2 | \n  | ^"
+            "error: expected `;`, `{` or a statement, found the end of the file\n --> t.csg:2:1\n  |\n2 | \n  | ^"
         );
     }
 

@@ -1,0 +1,300 @@
+//! The command line: outputs, counters, determinism and whole error messages.
+
+mod common;
+use common::{csgrt, csgrt_stdin, files, scene, stats};
+
+const SPHERE: &str = "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nsphere(1);\n";
+
+#[test]
+fn renders_a_png_beside_the_model_by_default() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    let r = csgrt(dir.path(), &["ball.csg", "--size", "40x30", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(r.stderr, "");
+    let img = image::open(dir.path().join("ball.png")).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (40, 30));
+    // The centre shows the sphere, a corner the background.
+    assert_ne!(img.get_pixel(20, 15), img.get_pixel(0, 0));
+}
+
+#[test]
+fn a_mask_marks_exactly_the_pixels_whose_centre_ray_hits() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    let r = csgrt(
+        dir.path(),
+        &["ball.csg", "--size", "64x64", "--mask", "m.png", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let m = image::open(dir.path().join("m.png")).unwrap().to_luma8();
+    // Camera at distance 6, fov 30°: the sphere's angular radius is
+    // asin(1/6); a pixel centre hits iff its ray is within that angle.
+    let fl = 64.0 / (2.0 * (15f64).to_radians().tan());
+    let mut hits = 0;
+    for (x, y, p) in m.enumerate_pixels() {
+        let (dx, dy) = (x as f64 + 0.5 - 32.0, y as f64 + 0.5 - 32.0);
+        let angle = ((dx * dx + dy * dy).sqrt() / fl).atan();
+        let want = angle < (1.0f64 / 6.0).asin();
+        assert_eq!(p.0[0] == 255, want, "pixel {x},{y}");
+        assert!(p.0[0] == 0 || p.0[0] == 255);
+        hits += want as u32;
+    }
+    assert!(hits > 100);
+}
+
+#[test]
+fn counters_show_no_secondary_rays_without_kr_or_kt() {
+    let (dir, _) = scene(
+        "s.csg",
+        "camera(eye = [0, -6, 2], lookat = [0, 0, 0]);\ndirectional_light([1, 1, 1], [0, 1, -1]);\nmaterial(kr = 0, kt = 0) { sphere(1); cube(3, center = true); }\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "32x24", "--stats-json", "st.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let s = stats(dir.path(), "st.json");
+    assert_eq!(s["pixels"], 32 * 24);
+    assert_eq!(s["primary_rays"], 32 * 24);
+    assert_eq!(s["reflected_rays"], 0);
+    assert_eq!(s["refracted_rays"], 0);
+    assert!(s["shadow_rays"].as_u64().unwrap() > 0);
+    assert!(s["primitive_tests"].as_u64().unwrap() > 0);
+    assert!(s["render_seconds"].as_f64().unwrap() >= 0.0);
+    for key in ["bound_tests", "bound_culled", "normals_computed"] {
+        assert!(s[key].is_u64(), "{key}");
+    }
+}
+
+#[test]
+fn counters_count_reflected_and_refracted_rays_when_asked_for() {
+    let (dir, _) = scene(
+        "s.csg",
+        "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nmaterial(kr = 0.5, kt = 0.5) sphere(1);\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "32x24", "--stats-json", "st.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let s = stats(dir.path(), "st.json");
+    assert!(s["reflected_rays"].as_u64().unwrap() > 0);
+    assert!(s["refracted_rays"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn only_ambient_light_casts_no_shadow_rays() {
+    let (dir, _) = scene(
+        "s.csg",
+        "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nambient_light([1, 1, 1]);\nsphere(1);\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "32x24", "--stats-json", "st.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let s = stats(dir.path(), "st.json");
+    assert_eq!(s["shadow_rays"], 0);
+    assert!(s["normals_computed"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn the_image_is_identical_for_any_thread_count() {
+    let (dir, _) = scene(
+        "s.csg",
+        "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\nmaterial(kr = 0.3) difference() { cube(2, center = true); sphere(1.3); }\nmaterial(kt = 0.6) translate([0, -2, 0]) sphere(0.5);\n",
+    );
+    for (t, out) in [("1", "a.png"), ("3", "b.png"), ("2", "c.png")] {
+        let r = csgrt(
+            dir.path(),
+            &[
+                "s.csg",
+                "--size",
+                "48x36",
+                "--spp",
+                "5",
+                "--threads",
+                t,
+                "-o",
+                out,
+                "-q",
+            ],
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+    }
+    let a = std::fs::read(dir.path().join("a.png")).unwrap();
+    assert_eq!(a, std::fs::read(dir.path().join("b.png")).unwrap());
+    assert_eq!(a, std::fs::read(dir.path().join("c.png")).unwrap());
+}
+
+#[test]
+fn trace_rays_prints_distance_and_outward_normal_or_miss() {
+    let (dir, _) = scene("s.csg", "sphere(1);\n");
+    let r = csgrt_stdin(
+        dir.path(),
+        &["s.csg", "--trace-rays", "-"],
+        Some("0 0 -5 0 0 1\n# a comment\n\n0 0 0 0 0 2\n5 5 5 1 0 0\n"),
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(r.stdout, "4 0 0 -1\n1 0 0 1\nmiss\n");
+    assert_eq!(files(dir.path()), ["s.csg"]);
+}
+
+#[test]
+fn a_bad_ray_line_is_an_error_with_its_place_and_no_output() {
+    let (dir, _) = scene("s.csg", "sphere(1);\n");
+    let r = csgrt_stdin(
+        dir.path(),
+        &["s.csg", "--trace-rays", "-"],
+        Some("0 0 -5 0 0 1\n0 0 x 0 0 1\n"),
+    );
+    assert_eq!(r.status, 2);
+    assert_eq!(r.stdout, "");
+    assert_eq!(
+        r.stderr,
+        "error: `x` is not a finite number\n --> <stdin>:2:5\n  |\n2 | 0 0 x 0 0 1\n  |     ^ expected `ox oy oz dx dy dz`\n"
+    );
+}
+
+#[test]
+fn dump_scene_gives_camera_lights_materials_and_world_matrices() {
+    let (dir, _) = scene(
+        "s.csg",
+        "translate([1, 2, 3]) color([1, 0, 0]) sphere(2);\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "8x6", "--dump-scene", "d.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let d = stats(dir.path(), "d.json");
+    assert_eq!(d["camera"]["width"], 8);
+    assert_eq!(d["root"]["primitive"], "sphere");
+    assert_eq!(
+        d["root"]["matrix"],
+        serde_json::json!([
+            [2.0, 0.0, 0.0, 1.0],
+            [0.0, 2.0, 0.0, 2.0],
+            [0.0, 0.0, 2.0, 3.0],
+            [0.0, 0.0, 0.0, 1.0]
+        ])
+    );
+    assert_eq!(
+        d["materials"][0]["color"],
+        serde_json::json!([1.0, 0.0, 0.0])
+    );
+    assert_eq!(d["lights"].as_array().unwrap().len(), 3);
+}
+
+/// Runs a bad scene and returns stderr, checking exit 2 and no output file.
+fn fails(text: &str) -> String {
+    let (dir, _) = scene("bad.csg", text);
+    let r = csgrt(dir.path(), &["bad.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert_eq!(files(dir.path()), ["bad.csg"], "no output may be left");
+    r.stderr
+}
+
+#[test]
+fn an_unknown_argument_lists_the_known_ones() {
+    assert_eq!(
+        fails("union() {\n  cube(sise = 2);\n}\n"),
+        "error: unknown argument `sise` for `cube`\n --> bad.csg:2:8\n  |\n2 |   cube(sise = 2);\n  |        ^^^^ expected `size` or `center`\n"
+    );
+}
+
+#[test]
+fn an_unknown_statement_is_named() {
+    assert_eq!(
+        fails("sphere(1);\nspehre(2);\n"),
+        "error: unknown statement `spehre`\n --> bad.csg:2:1\n  |\n2 | spehre(2);\n  | ^^^^^^ expected a solid, a transform, a CSG operation, color, material or a scene statement\n"
+    );
+}
+
+#[test]
+fn a_syntax_error_says_what_was_expected() {
+    assert_eq!(
+        fails("translate([1, 2 3]) cube();\n"),
+        "error: expected `,` or `]`, found `3`\n --> bad.csg:1:17\n  |\n1 | translate([1, 2 3]) cube();\n  |                 ^\n"
+    );
+}
+
+#[test]
+fn a_value_of_the_wrong_type_is_pointed_at() {
+    assert_eq!(
+        fails("sphere(r = \"big\");\n"),
+        "error: `r` of `sphere` must be a number\n --> bad.csg:1:12\n  |\n1 | sphere(r = \"big\");\n  |            ^^^^^ expected a number, found a string\n"
+    );
+}
+
+#[test]
+fn a_light_without_a_direction_is_an_error() {
+    assert_eq!(
+        fails("directional_light([1, 1, 1]);\nsphere();\n"),
+        "error: `directional_light` needs the argument `direction`\n --> bad.csg:1:18\n  |\n1 | directional_light([1, 1, 1]);\n  |                  ^^^^^^^^^^^ expected `direction = …`\n"
+    );
+}
+
+#[test]
+fn a_degenerate_camera_is_an_error() {
+    assert_eq!(
+        fails("camera(eye = [0, 0, 5], lookat = [0, 0, 0]);\nsphere();\n"),
+        "error: the camera's `up` is parallel to its view direction\n --> bad.csg:1:7\n  |\n1 | camera(eye = [0, 0, 5], lookat = [0, 0, 0]);\n  |       ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^ expected an `up` that is not along `lookat - eye`\n"
+    );
+}
+
+#[test]
+fn an_unsupported_openscad_node_is_an_error_not_skipped() {
+    assert_eq!(
+        fails("group() {\n\tlinear_extrude(height = 10, center = false) square(1);\n}\n"),
+        "error: `linear_extrude` is not supported yet\n --> bad.csg:2:2\n  |\n2 | \tlinear_extrude(height = 10, center = false) square(1);\n  | \t^^^^^^^^^^^^^^ csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace\n"
+    );
+}
+
+#[test]
+fn a_bad_size_is_a_usage_error() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(dir.path(), &["s.csg", "--size", "800by600"]);
+    assert_eq!(r.status, 2);
+    assert!(
+        r.stderr.contains("invalid value '800by600' for '--size <WxH>': `800by600` is not a size: expected WxH, as in 800x600"),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(files(dir.path()), ["s.csg"]);
+}
+
+#[test]
+fn the_output_may_not_be_the_model() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(dir.path(), &["s.csg", "-o", "s.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    assert_eq!(
+        r.stderr,
+        "error: s.csg: an output may not overwrite the model\n"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("s.csg")).unwrap(),
+        SPHERE
+    );
+}
+
+#[test]
+fn a_missing_model_is_an_io_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = csgrt(dir.path(), &["nope.csg"]);
+    assert_eq!(r.status, 1);
+    assert!(r.stderr.starts_with("error: nope.csg: "), "{}", r.stderr);
+}
+
+#[test]
+fn an_empty_scene_warns_and_renders_the_background() {
+    let (dir, _) = scene("e.csg", "background([0, 0, 1]);\n");
+    let r = csgrt(dir.path(), &["e.csg", "--size", "4x3", "-q"]);
+    assert_eq!(r.status, 0);
+    assert_eq!(
+        r.stderr,
+        "warning: the scene has no solids\n --> e.csg:1:1\n  |\n1 | background([0, 0, 1]);\n  | ^^^^^^^^^^^^^^^^^^^^^^ only the background will show\n"
+    );
+    let img = image::open(dir.path().join("e.png")).unwrap().to_rgb8();
+    assert!(img.pixels().all(|p| p.0 == [0, 0, 255]));
+}

@@ -1,0 +1,152 @@
+//! For random CSG trees of random transformed primitives, the spans along
+//! random rays agree with a point-in-solid classification of points sampled
+//! between the reported boundaries.
+
+use csgrt::csg::spans::{contains, Op};
+use csgrt::csg::{Csg, Primitive};
+use csgrt::geometry::{Ray, Shape, Transform};
+use csgrt::stats::Stats;
+use glam::{DAffine3, DQuat, DVec3};
+use proptest::prelude::*;
+
+fn arb_shape() -> impl Strategy<Value = Shape> {
+    prop_oneof![
+        Just(Shape::Sphere),
+        Just(Shape::Cuboid),
+        (0.0..=1.0f64, any::<bool>()).prop_map(|(r, top)| if top {
+            Shape::Cone { r0: 1.0, r1: r }
+        } else {
+            Shape::Cone { r0: r, r1: 1.0 }
+        }),
+        Just(Shape::Cone { r0: 1.0, r1: 1.0 }),
+        (0.1..0.7f64).prop_map(|minor| Shape::Torus { minor }),
+        Just(Shape::Halfspace),
+    ]
+}
+
+/// Rotation, non-uniform scale (sometimes mirrored) and translation.
+fn arb_transform() -> impl Strategy<Value = DAffine3> {
+    (
+        prop::array::uniform3(-1.0..1.0f64),
+        0.0..std::f64::consts::TAU,
+        prop::array::uniform3(0.3..2.0f64),
+        prop::array::uniform3(any::<bool>()),
+        prop::array::uniform3(-1.5..1.5f64),
+    )
+        .prop_map(|(axis, angle, scale, mirror, t)| {
+            let axis = DVec3::from(axis);
+            let axis = if axis.length() < 1e-3 {
+                DVec3::Z
+            } else {
+                axis.normalize()
+            };
+            let s = DVec3::new(
+                if mirror[0] { -scale[0] } else { scale[0] },
+                if mirror[1] { -scale[1] } else { scale[1] },
+                scale[2],
+            );
+            DAffine3::from_scale_rotation_translation(
+                s,
+                DQuat::from_axis_angle(axis, angle),
+                t.into(),
+            )
+        })
+}
+
+#[derive(Clone, Debug)]
+enum Tree {
+    Leaf(Shape, DAffine3),
+    Node(Op, Vec<Tree>),
+}
+
+fn arb_tree() -> impl Strategy<Value = Tree> {
+    let leaf = (arb_shape(), arb_transform()).prop_map(|(s, m)| Tree::Leaf(s, m));
+    leaf.prop_recursive(4, 24, 4, |inner| {
+        (
+            prop_oneof![
+                Just(Op::Union),
+                Just(Op::Intersection),
+                Just(Op::Difference)
+            ],
+            prop::collection::vec(inner, 2..4),
+        )
+            .prop_map(|(op, kids)| Tree::Node(op, kids))
+    })
+}
+
+fn build(csg: &mut Csg, t: &Tree) -> u32 {
+    match t {
+        Tree::Leaf(s, m) => {
+            let id = csg.prims.len() as u32;
+            csg.add_prim(Primitive::new(*s, Transform::new(*m).unwrap(), id))
+        }
+        Tree::Node(op, kids) => {
+            let ids = kids.iter().map(|k| build(csg, k)).collect();
+            csg.add_op(*op, ids)
+        }
+    }
+}
+
+fn arb_ray() -> impl Strategy<Value = Ray> {
+    (
+        prop::array::uniform3(-4.0..4.0f64),
+        prop::array::uniform3(-1.0..1.0f64),
+    )
+        .prop_filter("a direction", |(_, d)| DVec3::from(*d).length() > 1e-3)
+        .prop_map(|(o, d)| Ray::new(o.into(), DVec3::from(d).normalize()))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn spans_agree_with_point_classification(tree in arb_tree(), rays in prop::collection::vec(arb_ray(), 8)) {
+        let mut csg = Csg::default();
+        let root = build(&mut csg, &tree);
+        csg.root = Some(root);
+        for ray in rays {
+            let mut st = Stats::default();
+            let list = csg.spans(root, &ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
+            // Sorted and disjoint, no empty spans.
+            for s in &list {
+                prop_assert!(s.enter.t < s.exit.t);
+            }
+            for w in list.windows(2) {
+                prop_assert!(w[0].exit.t < w[1].enter.t);
+            }
+            // Sample between consecutive boundaries (and beyond both ends),
+            // keeping clear of the boundaries themselves.
+            let mut ts: Vec<f64> = list.iter().flat_map(|s| [s.enter.t, s.exit.t])
+                .filter(|t| t.is_finite()).collect();
+            ts.insert(0, -20.0);
+            ts.push(20.0);
+            for w in ts.windows(2) {
+                if w[1] - w[0] < 1e-6 {
+                    continue;
+                }
+                for f in [0.5, 0.25, 0.75] {
+                    let t = w[0] + f * (w[1] - w[0]);
+                    let want = csg.contains(root, ray.at(t));
+                    prop_assert_eq!(contains(&list, t), want, "t = {} on {:?}", t, ray);
+                }
+            }
+        }
+    }
+
+    /// A range-restricted query agrees with the full-line one inside the range.
+    #[test]
+    fn range_restricted_spans_agree_inside_the_range(tree in arb_tree(), ray in arb_ray(), lo in -5.0..5.0f64, len in 0.0..6.0f64) {
+        let mut csg = Csg::default();
+        let root = build(&mut csg, &tree);
+        let mut st = Stats::default();
+        let full = csg.spans(root, &ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
+        let part = csg.spans(root, &ray, lo, lo + len, &mut st);
+        for k in 1..64 {
+            let t = lo + len * k as f64 / 64.0;
+            let near = full.iter().any(|s| (s.enter.t - t).abs() < 1e-9 || (s.exit.t - t).abs() < 1e-9);
+            if !near {
+                prop_assert_eq!(contains(&full, t), contains(&part, t));
+            }
+        }
+    }
+}

@@ -1,0 +1,77 @@
+//! A ray that leaves a surface does not hit that surface again: secondary
+//! rays start from the hit point offset by its error bound
+//! (`geometry::robust`), at every scale and distance from the origin.
+
+use csgrt::csg::{Csg, Primitive};
+use csgrt::geometry::robust::{offset_origin, point_error};
+use csgrt::geometry::{Ray, Shape, Transform};
+use csgrt::stats::Stats;
+use glam::{DAffine3, DQuat, DVec3};
+use proptest::prelude::*;
+
+fn convex_shape() -> impl Strategy<Value = Shape> {
+    prop_oneof![
+        Just(Shape::Sphere),
+        Just(Shape::Cuboid),
+        Just(Shape::Cone { r0: 1.0, r1: 1.0 }),
+        (0.0..=1.0f64).prop_map(|r| Shape::Cone { r0: 1.0, r1: r }),
+    ]
+}
+
+fn unit(v: [f64; 3]) -> Option<DVec3> {
+    let v = DVec3::from(v);
+    (v.length() > 1e-3).then(|| v.normalize())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn leaving_a_convex_surface_never_hits_it_again(
+        shape in convex_shape(),
+        scale_exp in -3i32..=3,
+        offset_exp in 0i32..=6,
+        stretch in prop::array::uniform3(0.5..2.0f64),
+        axis in prop::array::uniform3(-1.0..1.0f64),
+        angle in 0.0..6.3f64,
+        from in prop::array::uniform3(-1.0..1.0f64),
+        bounce in prop::array::uniform3(-1.0..1.0f64),
+    ) {
+        let (Some(axis), Some(from), Some(bounce)) = (unit(axis), unit(from), unit(bounce)) else {
+            return Ok(());
+        };
+        let size = 10f64.powi(scale_exp);
+        let center = DVec3::new(1.0, -0.7, 0.4) * 10f64.powi(offset_exp);
+        let m = DAffine3::from_scale_rotation_translation(
+            DVec3::from(stretch) * size, DQuat::from_axis_angle(axis, angle), center);
+        let mut csg = Csg::default();
+        let root = csg.add_prim(Primitive::new(shape, Transform::new(m).unwrap(), 0));
+        csg.root = Some(root);
+        let mut st = Stats::default();
+        // A ray from outside towards the solid.
+        let eye = center - from * 10.0 * size;
+        let look = Ray::new(eye, from);
+        let Some(hit) = csg.first_hit(&look, 0.0, f64::INFINITY, &mut st) else {
+            return Ok(());
+        };
+        let n = hit.normal;
+        let err = point_error(hit.point, look.origin, hit.t * look.dir);
+        // Leaving: any direction into the outer hemisphere.
+        let out = if bounce.dot(n) > 0.0 { bounce } else { -bounce };
+        if out.dot(n) > 1e-6 {
+            let r = Ray::new(offset_origin(hit.point, n, err, out), out);
+            let again = csg.first_hit(&r, 0.0, f64::INFINITY, &mut st);
+            prop_assert!(again.is_none(), "hit again at {:?} (size {}, offset {})", again, size, center);
+        }
+        // Entering: the next hit is the far side, not the same point.
+        let inward = -out;
+        if inward.dot(n) < -1e-3 {
+            let r = Ray::new(offset_origin(hit.point, n, err, inward), inward);
+            let next = csg.first_hit(&r, 0.0, f64::INFINITY, &mut st);
+            prop_assert!(next.is_some(), "an entering ray must leave the solid");
+            let next = next.unwrap();
+            prop_assert!(next.normal.dot(inward) > 0.0, "it must leave, not enter");
+            prop_assert!(next.t > 1e-9 * size, "re-hit at t = {} (size {})", next.t, size);
+        }
+    }
+}
