@@ -281,8 +281,12 @@ fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".csgrt-")
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".csgrt-");
+    // An image is an ordinary file: readable by all, like one `create`d.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let mut tmp = builder
         .tempfile_in(dir)
         .map_err(|e| Error::io(path, e))?;
     tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;

@@ -9,6 +9,7 @@ pub use resolve::resolve;
 
 use crate::csg::Csg;
 use crate::error::Diagnostic;
+use crate::geometry::Aabb;
 use glam::DVec3;
 
 /// The seed's Surface model (slide 24).
@@ -69,6 +70,21 @@ impl Scene {
     /// The camera to render with at `width`×`height`.
     pub fn view(&self, width: u32, height: u32) -> CameraSpec {
         self.camera
-            .unwrap_or_else(|| defaults::framing_camera(&self.csg.bounds(), width, height))
+            .unwrap_or_else(|| defaults::framing_camera(&self.framing_bounds(), width, height))
+    }
+
+    /// What the default camera frames: the tree's box if it is bounded,
+    /// else the box of its bounded primitives (a halfspace floor is drawn
+    /// but not framed).
+    pub fn framing_bounds(&self) -> Aabb {
+        let b = self.csg.bounds();
+        if b.is_bounded() || b.is_empty() {
+            return b;
+        }
+        self.csg
+            .prims
+            .iter()
+            .filter(|p| p.bounds.is_bounded())
+            .fold(Aabb::EMPTY, |a, p| a.union(&p.bounds))
     }
 }
