@@ -26,7 +26,7 @@ pub const MAX_THREADS: usize = 1024;
 #[derive(Parser, Debug)]
 #[command(name = "csgrt", version, about, long_about = None)]
 pub struct Cli {
-    /// The scene to render (`.csg`).
+    /// The scene to render: `.csg`, or the seed's `.ray` display list.
     pub model: PathBuf,
     /// The image to write (PNG); default: MODEL with the extension `.png`.
     #[arg(short, long, value_name = "FILE")]
@@ -115,8 +115,9 @@ pub fn load(path: &Path) -> Result<Scene> {
         .map(|e| e.to_ascii_lowercase());
     match ext.as_deref() {
         Some("csg") => load_csg(&read_source(path)?),
+        Some("ray") => crate::syntax::ray::load_ray(&read_source(path)?),
         _ => Err(Error::Usage(format!(
-            "{}: unknown model format; expected a `.csg` file",
+            "{}: unknown model format; expected a `.csg` scene or a `.ray` display list",
             path.display()
         ))),
     }
@@ -286,9 +287,7 @@ fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
     // An image is an ordinary file: readable by all, like one `create`d.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut tmp = builder
-        .tempfile_in(dir)
-        .map_err(|e| Error::io(path, e))?;
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| Error::io(path, e))?;
     tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
     tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
     Ok(())

@@ -18,12 +18,7 @@ material(color = [0.9, 0.4, 0.2], ka = 0.5, kd = 0.7, ks = 0.6, ns = 25)
 
 /// The expected colour of the ray through image point (x, y).
 fn expected(x: f64, y: f64, w: f64, h: f64) -> DVec3 {
-    let (eye, lookat, up, fov) = (
-        DVec3::new(0.3, -5.0, 1.0),
-        DVec3::ZERO,
-        DVec3::Z,
-        35.0f64,
-    );
+    let (eye, lookat, up, fov) = (DVec3::new(0.3, -5.0, 1.0), DVec3::ZERO, DVec3::Z, 35.0f64);
     // Slide 6.
     let look = lookat - eye;
     let du = look.cross(up).normalize();
@@ -49,8 +44,14 @@ fn expected(x: f64, y: f64, w: f64, h: f64) -> DVec3 {
     let (ka, kd, ks, ns) = (0.5, 0.7, 0.6, 25.0);
     let mut out = ka * DVec3::splat(0.3) * color;
     let lights = [
-        (-DVec3::new(-1.0, 2.0, -1.5).normalize(), DVec3::new(0.8, 0.7, 0.6)),
-        ((DVec3::new(3.0, -4.0, 4.0) - p).normalize(), DVec3::new(0.5, 0.5, 0.9)),
+        (
+            -DVec3::new(-1.0, 2.0, -1.5).normalize(),
+            DVec3::new(0.8, 0.7, 0.6),
+        ),
+        (
+            (DVec3::new(3.0, -4.0, 4.0) - p).normalize(),
+            DVec3::new(0.5, 0.5, 0.9),
+        ),
     ];
     for (l, il) in lights {
         let lambert = n.dot(l);
@@ -72,7 +73,9 @@ fn a_sphere_matches_the_seed_model_on_every_pixel() {
     let (w, h) = (160u32, 120u32);
     let r = csgrt(dir.path(), &["sphere.csg", "--size", "160x120", "-q"]);
     assert_eq!(r.status, 0, "{}", r.stderr);
-    let img = image::open(dir.path().join("sphere.png")).unwrap().to_rgb8();
+    let img = image::open(dir.path().join("sphere.png"))
+        .unwrap()
+        .to_rgb8();
     let mut worst = 0;
     let mut lit = 0;
     for (x, y, px) in img.enumerate_pixels() {
@@ -81,7 +84,11 @@ fn a_sphere_matches_the_seed_model_on_every_pixel() {
         for ch in 0..3 {
             let diff = (px.0[ch] as i32 - want[ch]).abs();
             worst = worst.max(diff);
-            assert!(diff <= 2, "pixel {x},{y} channel {ch}: got {:?}, expected {want:?}", px.0);
+            assert!(
+                diff <= 2,
+                "pixel {x},{y} channel {ch}: got {:?}, expected {want:?}",
+                px.0
+            );
         }
         lit += (want != [26, 51, 77]) as u32;
     }

@@ -5,6 +5,7 @@
 //! [`Diagnostic`](crate::error::Diagnostic)s, naming what was expected in words.
 
 pub mod ast;
+pub mod ray;
 
 use crate::error::{Error, Result, Source, Span};
 use ast::{Arg, Modifiers, Statement, Value, ValueKind};
