@@ -298,3 +298,31 @@ fn an_empty_scene_warns_and_renders_the_background() {
     let img = image::open(dir.path().join("e.png")).unwrap().to_rgb8();
     assert!(img.pixels().all(|p| p.0 == [0, 0, 255]));
 }
+
+#[test]
+fn root_modifier_renders_only_its_subtree_without_its_parents_transform() {
+    let (dir, _) = scene(
+        "r.csg",
+        "cube(10);\ntranslate([15, 0, 0]) !sphere(5);\n%cylinder(h = 3);\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["r.csg", "--size", "8x6", "--dump-scene", "d.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let d = stats(dir.path(), "d.json");
+    assert_eq!(d["root"]["primitive"], "sphere");
+    assert_eq!(d["root"]["matrix"][0][3], 0.0);
+}
+
+#[test]
+fn disabled_and_background_statements_are_left_out() {
+    let (dir, _) = scene("m.csg", "#cube(1);\n%sphere(5);\n*cylinder(h = 3);\n");
+    let r = csgrt(
+        dir.path(),
+        &["m.csg", "--size", "8x6", "--dump-scene", "d.json", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let d = stats(dir.path(), "d.json");
+    assert_eq!(d["root"]["primitive"], "cube");
+}

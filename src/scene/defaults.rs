@@ -44,8 +44,13 @@ pub fn view_direction() -> DVec3 {
 
 pub const FOV: f64 = 30.0;
 
-/// A camera that frames `bounds` (its bounded part) with a margin, z up,
-/// from OpenSCAD's default direction. An empty scene gets a unit view.
+/// How much of the frame the framed box may fill, per side.
+const FILL: f64 = 0.9;
+
+/// A camera that frames `bounds` from OpenSCAD's default direction, z up:
+/// the eye is pulled back just far enough that all eight corners of the
+/// box fall inside the central 90 % of the frame. An empty or unbounded
+/// box gets the view of the cube [-1, 1]³.
 pub fn framing_camera(bounds: &Aabb, width: u32, height: u32) -> CameraSpec {
     let b = if bounds.is_empty() || !bounds.is_bounded() {
         Aabb::new(DVec3::NEG_ONE, DVec3::ONE)
@@ -53,13 +58,30 @@ pub fn framing_camera(bounds: &Aabb, width: u32, height: u32) -> CameraSpec {
         *bounds
     };
     let center = b.center();
-    let radius = (0.5 * (b.max - b.min).length()).max(1e-9);
-    let half_h = (FOV.to_radians() * 0.5).tan();
-    let half_v = half_h * height as f64 / width as f64;
-    let half = half_h.min(half_v).atan();
-    let dist = radius * 1.1 / half.sin();
+    let back = view_direction();
+    let forward = -back;
+    let right = forward.cross(DVec3::Z).normalize();
+    let up = right.cross(forward);
+    let tan_h = (FOV.to_radians() * 0.5).tan() * FILL;
+    let tan_v = tan_h * height as f64 / width as f64;
+    let radius = 0.5 * (b.max - b.min).length();
+    // The eye stays outside the box's bounding sphere.
+    let mut dist: f64 = radius * 1.01;
+    for i in 0..8 {
+        let corner = DVec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        let o = corner - center;
+        let depth = o.dot(forward);
+        dist = dist
+            .max(o.dot(right).abs() / tan_h - depth)
+            .max(o.dot(up).abs() / tan_v - depth);
+    }
+    let dist = dist.max(1e-9);
     CameraSpec {
-        eye: center + view_direction() * dist,
+        eye: center + back * dist,
         lookat: center,
         up: DVec3::Z,
         fov: FOV,

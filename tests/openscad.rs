@@ -1,0 +1,191 @@
+//! Real OpenSCAD exports render with no edits; nodes csgrt cannot render
+//! yet stop the run with a message at their place.
+//!
+//! `tests/openscad/*.scad` were exported to the `.csg` beside them by
+//! OpenSCAD 2021.01 (Debian 12's `openscad` package):
+//! `openscad -o X.csg X.scad`. `current_format.csg` follows current
+//! OpenSCAD's node text, which Debian does not package.
+
+mod common;
+use common::{csgrt, files, stats};
+use std::path::{Path, PathBuf};
+
+fn fixtures() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/openscad")
+}
+
+/// Renders a fixture with the default view; returns (mask coverage, dump).
+fn render(name: &str) -> (f64, serde_json::Value) {
+    let dir = tempfile::tempdir().unwrap();
+    let model = fixtures().join(name);
+    let r = csgrt(
+        dir.path(),
+        &[
+            model.to_str().unwrap(),
+            "-o",
+            "out.png",
+            "--size",
+            "160x120",
+            "--mask",
+            "mask.png",
+            "--dump-scene",
+            "scene.json",
+            "-q",
+        ],
+    );
+    assert_eq!(r.status, 0, "{name}: {}", r.stderr);
+    assert_eq!(r.stderr, "", "{name} renders without warnings");
+    let mask = image::open(dir.path().join("mask.png")).unwrap().to_luma8();
+    let hits = mask.pixels().filter(|p| p.0[0] == 255).count();
+    (
+        hits as f64 / (160.0 * 120.0),
+        stats(dir.path(), "scene.json"),
+    )
+}
+
+fn primitives(node: &serde_json::Value, out: &mut Vec<String>) {
+    if let Some(p) = node["primitive"].as_str() {
+        out.push(p.to_string());
+    }
+    if let Some(ch) = node["children"].as_array() {
+        for c in ch {
+            primitives(c, out);
+        }
+    }
+}
+
+fn prims_of(dump: &serde_json::Value) -> Vec<String> {
+    let mut v = Vec::new();
+    primitives(&dump["root"], &mut v);
+    v
+}
+
+#[test]
+fn every_exported_fixture_renders_and_fills_a_sensible_share_of_the_view() {
+    let expected = [
+        ("primitives.csg", 8),
+        ("transforms.csg", 9),
+        ("booleans.csg", 1 + 15 + 2 + 2 + 4),
+        ("colors.csg", 7),
+        ("modifiers.csg", 4),
+        ("root.csg", 1),
+        ("numbers.csg", 4),
+        ("current_format.csg", 4),
+    ];
+    for (name, count) in expected {
+        let (coverage, dump) = render(name);
+        assert_eq!(prims_of(&dump).len(), count, "{name}: primitives");
+        assert!(
+            (0.04..0.85).contains(&coverage),
+            "{name}: the solid covers {:.1} % of the default view",
+            coverage * 100.0
+        );
+    }
+}
+
+#[test]
+fn background_and_disabled_subtrees_are_left_out_and_root_wins() {
+    let (_, dump) = render("modifiers.csg");
+    assert_eq!(prims_of(&dump), ["cube", "sphere", "cube", "sphere"]);
+    let (_, dump) = render("root.csg");
+    assert_eq!(prims_of(&dump), ["sphere"]);
+}
+
+#[test]
+fn colours_become_materials_and_no_colour_inherits() {
+    let (_, dump) = render("colors.csg");
+    let colors: Vec<serde_json::Value> = dump["materials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["color"].clone())
+        .collect();
+    let red = serde_json::json!([1.0, 0.0, 0.0]);
+    assert!(colors.contains(&red), "{colors:?}");
+    // color("nosuchcolour") was exported as [-1, -1, -1, 1]: the default.
+    let default = serde_json::json!([249.0 / 255.0, 215.0 / 255.0, 44.0 / 255.0]);
+    assert!(colors.contains(&default), "{colors:?}");
+    // color("green", 0.5) transmits half the light.
+    let green = dump["materials"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| {
+            m["color"][1].as_f64().unwrap() > 0.4 && m["color"][0] == 0.0 && m["color"][2] == 0.0
+        })
+        .expect("a green material");
+    assert_eq!(green["kt"], 0.5);
+}
+
+/// Runs an exported unsupported node and returns its whole message.
+fn unsupported(node: &str) -> String {
+    let dir = tempfile::tempdir().unwrap();
+    let src = fixtures().join(format!("unsupported/{node}.csg"));
+    std::fs::copy(&src, dir.path().join("x.csg")).unwrap();
+    let r = csgrt(dir.path(), &["x.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{node}: {}", r.stderr);
+    assert_eq!(files(dir.path()), ["x.csg"], "{node}: nothing written");
+    r.stderr
+}
+
+fn message(node: &str, line: usize, col: usize, source: &str) -> String {
+    let caret = " ".repeat(col - 1) + &"^".repeat(node.len());
+    let lead: String = source
+        .chars()
+        .take(col - 1)
+        .filter(|c| *c == '\t')
+        .collect();
+    let caret = if lead.is_empty() {
+        caret
+    } else {
+        lead + &caret[col - 1..]
+    };
+    format!(
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {source}\n  | {caret} csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace\n"
+    )
+}
+
+#[test]
+fn each_unsupported_node_stops_the_run_with_its_place() {
+    for node in [
+        "linear_extrude",
+        "rotate_extrude",
+        "square",
+        "circle",
+        "polygon",
+        "text",
+        "import",
+        "surface",
+        "projection",
+        "offset",
+        "hull",
+        "minkowski",
+        "resize",
+        "polyhedron",
+    ] {
+        let text =
+            std::fs::read_to_string(fixtures().join(format!("unsupported/{node}.csg"))).unwrap();
+        let first = text.lines().next().unwrap();
+        assert_eq!(unsupported(node), message(node, 1, 1, first), "{node}");
+    }
+}
+
+#[test]
+fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
+    // OpenSCAD writes the square inside the extrusion on line 2, after a tab;
+    // the extrusion itself is reported first.
+    let text = std::fs::read_to_string(fixtures().join("unsupported/linear_extrude.csg")).unwrap();
+    let wrapped = format!(
+        "group() {{\n{}}}\n",
+        text.replace('\n', "\n\t").trim_end_matches('\t')
+    );
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("x.csg"), &wrapped).unwrap();
+    let r = csgrt(dir.path(), &["x.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    let line2 = wrapped.lines().nth(1).unwrap();
+    assert_eq!(
+        r.stderr,
+        message("linear_extrude", 2, 1, line2).replace(" --> x.csg:2:1", " --> x.csg:2:1")
+    );
+}

@@ -1,0 +1,1 @@
+hull() { cube(2); translate([5, 0, 0]) sphere(1); }

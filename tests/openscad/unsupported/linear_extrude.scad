@@ -1,0 +1,1 @@
+linear_extrude(height = 5) square(3);

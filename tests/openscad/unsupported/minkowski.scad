@@ -1,0 +1,1 @@
+minkowski() { cube(4); sphere(1); }

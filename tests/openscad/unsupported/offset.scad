@@ -1,0 +1,1 @@
+offset(r = 1) square(4);

@@ -1,0 +1,1 @@
+projection(cut = true) sphere(5);

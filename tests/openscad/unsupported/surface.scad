@@ -1,0 +1,1 @@
+surface(file = "heights.dat", center = true);
