@@ -176,7 +176,7 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
     // the extrusion itself is reported first.
     let text = std::fs::read_to_string(fixtures().join("unsupported/linear_extrude.csg")).unwrap();
     let wrapped = format!(
-        "group() {{\n{}}}\n",
+        "group() {{\n\t{}}}\n",
         text.replace('\n', "\n\t").trim_end_matches('\t')
     );
     let dir = tempfile::tempdir().unwrap();
@@ -184,8 +184,6 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
     let r = csgrt(dir.path(), &["x.csg", "-q"]);
     assert_eq!(r.status, 2);
     let line2 = wrapped.lines().nth(1).unwrap();
-    assert_eq!(
-        r.stderr,
-        message("linear_extrude", 2, 1, line2).replace(" --> x.csg:2:1", " --> x.csg:2:1")
-    );
+    assert!(line2.starts_with("\tlinear_extrude("));
+    assert_eq!(r.stderr, message("linear_extrude", 2, 2, line2));
 }
