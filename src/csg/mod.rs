@@ -237,7 +237,7 @@ impl Csg {
         match &self.nodes[node as usize].kind {
             NodeKind::Leaf(i) => {
                 let prim = &self.prims[*i as usize];
-                prim.shape.contains(prim.xf.to_object.transform_point3(p))
+                prim.shape.contains(prim.xf.point_to_object(p))
             }
             NodeKind::Union(ch) => ch.iter().any(|&c| self.contains(c, p)),
             NodeKind::Intersection(ch) => ch.iter().all(|&c| self.contains(c, p)),

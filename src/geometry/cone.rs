@@ -17,6 +17,12 @@ const BOTTOM: Part = 1;
 const TOP: Part = 2;
 
 pub fn spans(r0: f64, r1: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+    // Solve from the line's closest approach to the solid's centre, so that
+    // a far origin does not make the coefficients huge and cancel; the
+    // shift is added back to every t.
+    let shift = -(o - DVec3::new(0.0, 0.0, 0.5)).dot(d) / d.length_squared();
+    let o = o + shift * d;
+    let emit = &mut |(t0, p0, t1, p1): RawSpan| emit((t0 + shift, p0, t1 + shift, p1));
     // The slab 0 ≤ z ≤ 1.
     let (z0, zp0, z1, zp1) = if d.z == 0.0 {
         if o.z <= 0.0 || o.z >= 1.0 {

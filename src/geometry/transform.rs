@@ -39,11 +39,19 @@ impl Transform {
     }
 
     /// The ray in object space; `t` keeps its meaning.
+    ///
+    /// The origin is taken relative to the object's own origin in world
+    /// space first, `M⁻¹·(o − c)`, not as `M⁻¹·o − M⁻¹·c`: for a small part
+    /// far from the world origin the two terms of the latter are huge and
+    /// cancel, while `o − c` is exact or nearly so for a ray near the part.
     pub fn ray_to_object(&self, ray: &Ray) -> (DVec3, DVec3) {
-        (
-            self.to_object.transform_point3(ray.origin),
-            self.to_object.transform_vector3(ray.dir),
-        )
+        let m = self.to_object.matrix3;
+        (m * (ray.origin - self.to_world.translation), m * ray.dir)
+    }
+
+    /// A world point in object space, computed the same careful way.
+    pub fn point_to_object(&self, p: DVec3) -> DVec3 {
+        self.to_object.matrix3 * (p - self.to_world.translation)
     }
 
     /// A unit world normal from an object-space normal.
