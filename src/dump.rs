@@ -40,9 +40,11 @@ fn node(csg: &Csg, id: u32) -> Value {
                 "material": prim.material,
             });
             match prim.shape {
-                Shape::Cone { r0, r1 } => {
+                Shape::Cuboid { centered } => v["centered"] = json!(centered),
+                Shape::Cone { r0, r1, centered } => {
                     v["r0"] = json!(r0);
                     v["r1"] = json!(r1);
+                    v["centered"] = json!(centered);
                 }
                 Shape::Torus { minor } => {
                     v["major"] = json!(1.0);

@@ -12,13 +12,25 @@ use proptest::prelude::*;
 fn arb_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
         Just(Shape::Sphere),
-        Just(Shape::Cuboid),
-        (0.0..=1.0f64, any::<bool>()).prop_map(|(r, top)| if top {
-            Shape::Cone { r0: 1.0, r1: r }
+        any::<bool>().prop_map(|centered| Shape::Cuboid { centered }),
+        (0.0..=1.0f64, any::<bool>(), any::<bool>()).prop_map(|(r, top, centered)| if top {
+            Shape::Cone {
+                r0: 1.0,
+                r1: r,
+                centered,
+            }
         } else {
-            Shape::Cone { r0: r, r1: 1.0 }
+            Shape::Cone {
+                r0: r,
+                r1: 1.0,
+                centered,
+            }
         }),
-        Just(Shape::Cone { r0: 1.0, r1: 1.0 }),
+        any::<bool>().prop_map(|centered| Shape::Cone {
+            r0: 1.0,
+            r1: 1.0,
+            centered
+        }),
         (0.1..0.7f64).prop_map(|minor| Shape::Torus { minor }),
         Just(Shape::Halfspace),
     ]

@@ -12,9 +12,17 @@ use proptest::prelude::*;
 fn convex_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
         Just(Shape::Sphere),
-        Just(Shape::Cuboid),
-        Just(Shape::Cone { r0: 1.0, r1: 1.0 }),
-        (0.0..=1.0f64).prop_map(|r| Shape::Cone { r0: 1.0, r1: r }),
+        any::<bool>().prop_map(|centered| Shape::Cuboid { centered }),
+        any::<bool>().prop_map(|centered| Shape::Cone {
+            r0: 1.0,
+            r1: 1.0,
+            centered
+        }),
+        (0.0..=1.0f64, any::<bool>()).prop_map(|(r, centered)| Shape::Cone {
+            r0: 1.0,
+            r1: r,
+            centered
+        }),
     ]
 }
 
@@ -48,8 +56,9 @@ proptest! {
         let root = csg.add_prim(Primitive::new(shape, Transform::new(m).unwrap(), 0));
         csg.root = Some(root);
         let mut st = Stats::default();
-        // A ray from outside towards the solid.
-        let eye = center - from * 10.0 * size;
+        // A ray from outside towards the middle of the solid.
+        let middle = m.transform_point3(shape.object_bounds().center());
+        let eye = middle - from * 10.0 * size;
         let look = Ray::new(eye, from);
         let Some(hit) = csg.first_hit(&look, 0.0, f64::INFINITY, &mut st) else {
             return Ok(());

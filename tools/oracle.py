@@ -114,7 +114,10 @@ def bounded_box(d):
             continue
         m = matrix(p)
         if p["primitive"] == "cylinder":
-            obox = [(-1, -1, 0), (1, 1, 1)]
+            z0 = -0.5 if p["centered"] else 0.0
+            obox = [(-1, -1, z0), (1, 1, z0 + 1)]
+        elif p["primitive"] == "cube" and not p["centered"]:
+            obox = [(0, 0, 0), (1, 1, 1)]
         elif p["primitive"] == "torus":
             e = 1 + p["minor"]
             obox = [(-e, -e, -p["minor"]), (e, e, p["minor"])]
@@ -195,9 +198,10 @@ def mesh(node, n, big):
         if kind == "sphere":
             m = mf.Manifold.sphere(1.0, n)
         elif kind == "cube":
-            m = mf.Manifold.cube([2.0, 2.0, 2.0], True)
+            c = node["centered"]
+            m = mf.Manifold.cube([2.0, 2.0, 2.0], True) if c else mf.Manifold.cube([1.0, 1.0, 1.0])
         elif kind == "cylinder":
-            m = mf.Manifold.cylinder(1.0, node["r0"], node["r1"], n)
+            m = mf.Manifold.cylinder(1.0, node["r0"], node["r1"], n, node["centered"])
         elif kind == "torus":
             m = mf.CrossSection.circle(node["minor"], n).translate([1.0, 0.0]).revolve(n)
         elif kind == "halfspace":

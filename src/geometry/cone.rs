@@ -1,5 +1,6 @@
-//! Cylinders and cone frusta: z in [0, 1], radius `r0` at z = 0 and `r1` at
-//! z = 1 (the larger being 1), an apex where a radius is 0.
+//! Cylinders and cone frusta: z from `z0` to `z0 + 1` (z0 = −½ when
+//! centred, else 0), radius `r0` at the bottom and `r1` at the top (the
+//! larger being 1), an apex where a radius is 0.
 //! `cylinder(h, r1, r2, center)` is this solid scaled by (r, r, h).
 //!
 //! The solid is convex, so the line meets it in one interval: the part of
@@ -16,12 +17,21 @@ const SIDE: Part = 0;
 const BOTTOM: Part = 1;
 const TOP: Part = 2;
 
-pub fn spans(r0: f64, r1: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+/// The z of the bottom cap.
+pub fn bottom(centered: bool) -> f64 {
+    if centered {
+        -0.5
+    } else {
+        0.0
+    }
+}
+
+pub fn spans(r0: f64, r1: f64, z0: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     // Solve from the line's closest approach to the solid's centre, so that
     // a far origin does not make the coefficients huge and cancel; the
-    // shift is added back to every t.
-    let shift = -(o - DVec3::new(0.0, 0.0, 0.5)).dot(d) / d.length_squared();
-    let o = o + shift * d;
+    // shift is added back to every t. Heights are measured from the bottom.
+    let shift = -(o - DVec3::new(0.0, 0.0, z0 + 0.5)).dot(d) / d.length_squared();
+    let o = o + shift * d - DVec3::new(0.0, 0.0, z0);
     let emit = &mut |(t0, p0, t1, p1): RawSpan| emit((t0 + shift, p0, t1 + shift, p1));
     // The slab 0 ≤ z ≤ 1.
     let (z0, zp0, z1, zp1) = if d.z == 0.0 {
@@ -97,13 +107,13 @@ pub fn spans(r0: f64, r1: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan
     }
 }
 
-pub fn normal(r0: f64, r1: f64, p: DVec3, part: Part) -> DVec3 {
+pub fn normal(r0: f64, r1: f64, z0: f64, p: DVec3, part: Part) -> DVec3 {
     match part {
         BOTTOM => DVec3::NEG_Z,
         TOP => DVec3::Z,
         _ => {
             let k = r1 - r0;
-            let n = DVec3::new(p.x, p.y, -(r0 + k * p.z) * k);
+            let n = DVec3::new(p.x, p.y, -(r0 + k * (p.z - z0)) * k);
             if n == DVec3::ZERO {
                 // The apex itself: the axis is as good a normal as any.
                 DVec3::new(0.0, 0.0, -k.signum())

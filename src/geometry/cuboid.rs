@@ -1,5 +1,6 @@
-//! The cube [-1, 1]³: `cube(size = s | [x, y, z], center = false)` is this
-//! cube scaled by size/2 and, unless centred, moved to span [0, size].
+//! The cube [lo, 1]³, lo = −1 when centred, else 0:
+//! `cube(size = s | [x, y, z], center = true)` is [-1, 1]³ scaled by size/2,
+//! `center = false` is [0, 1]³ scaled by size.
 //!
 //! The slab test; a zero direction component keeps the ray inside a slab
 //! only strictly between its planes. Parts: 0/1 = −x/+x, 2/3 = −y/+y,
@@ -9,19 +10,29 @@ use super::shape::RawSpan;
 use super::Part;
 use glam::DVec3;
 
-pub fn spans(o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+/// The low corner coordinate of the cube.
+pub fn low(centered: bool) -> f64 {
+    if centered {
+        -1.0
+    } else {
+        0.0
+    }
+}
+
+pub fn spans(lo: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
     let (mut p0, mut p1) = (0, 0);
     for axis in 0..3 {
         let (oa, da) = (o[axis], d[axis]);
         if da == 0.0 {
-            if oa.abs() >= 1.0 {
+            if oa <= lo || oa >= 1.0 {
                 return;
             }
             continue;
         }
-        let near = (-da.signum() - oa) / da;
-        let far = (da.signum() - oa) / da;
+        let (first, last) = if da > 0.0 { (lo, 1.0) } else { (1.0, lo) };
+        let near = (first - oa) / da;
+        let far = (last - oa) / da;
         let face = 2 * axis as Part;
         let (pn, pf) = if da > 0.0 {
             (face, face + 1)

@@ -11,11 +11,17 @@ use glam::{DAffine3, DVec3};
 pub enum Shape {
     /// The unit sphere at the origin.
     Sphere,
-    /// The cube [-1, 1]³.
-    Cuboid,
-    /// A cone frustum: z in [0, 1], radius `r0` at z = 0 and `r1` at z = 1,
-    /// the larger of the two being 1. A cylinder has both 1.
-    Cone { r0: f64, r1: f64 },
+    /// The cube [-1, 1]³ when centred, else [0, 1]³.
+    ///
+    /// Centring lives in the object space, not in the transform, so that a
+    /// part's world translation is exactly the one the file gives: a
+    /// `cube(0.001)` at 1e6 would otherwise sit at 1e6 + 0.0005, rounded to
+    /// an ulp of 1e6, which is 6e-8 of its size.
+    Cuboid { centered: bool },
+    /// A cone frustum: z in [0, 1] (or [-½, ½] when centred), radius `r0`
+    /// at the bottom and `r1` at the top, the larger of the two being 1. A
+    /// cylinder has both 1.
+    Cone { r0: f64, r1: f64, centered: bool },
     /// A torus around the z axis, major radius 1, tube radius `minor` < 1.
     Torus { minor: f64 },
     /// The half-space z ≤ 0.
@@ -29,7 +35,7 @@ impl Shape {
     pub const fn name(&self) -> &'static str {
         match self {
             Shape::Sphere => "sphere",
-            Shape::Cuboid => "cube",
+            Shape::Cuboid { .. } => "cube",
             Shape::Cone { .. } => "cylinder",
             Shape::Torus { .. } => "torus",
             Shape::Halfspace => "halfspace",
@@ -43,8 +49,10 @@ impl Shape {
     pub fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
         match *self {
             Shape::Sphere => sphere::spans(o, d, emit),
-            Shape::Cuboid => cuboid::spans(o, d, emit),
-            Shape::Cone { r0, r1 } => cone::spans(r0, r1, o, d, emit),
+            Shape::Cuboid { centered } => cuboid::spans(cuboid::low(centered), o, d, emit),
+            Shape::Cone { r0, r1, centered } => {
+                cone::spans(r0, r1, cone::bottom(centered), o, d, emit)
+            }
             Shape::Torus { minor } => torus::spans(minor, o, d, emit),
             Shape::Halfspace => halfspace::spans(o, d, emit),
         }
@@ -54,8 +62,10 @@ impl Shape {
     pub fn normal(&self, p: DVec3, part: Part) -> DVec3 {
         match *self {
             Shape::Sphere => p,
-            Shape::Cuboid => cuboid::normal(part),
-            Shape::Cone { r0, r1 } => cone::normal(r0, r1, p, part),
+            Shape::Cuboid { .. } => cuboid::normal(part),
+            Shape::Cone { r0, r1, centered } => {
+                cone::normal(r0, r1, cone::bottom(centered), p, part)
+            }
             Shape::Torus { .. } => torus::normal(p),
             Shape::Halfspace => DVec3::Z,
         }
@@ -65,9 +75,13 @@ impl Shape {
     pub fn contains(&self, p: DVec3) -> bool {
         match *self {
             Shape::Sphere => p.length_squared() <= 1.0,
-            Shape::Cuboid => p.abs().max_element() <= 1.0,
-            Shape::Cone { r0, r1 } => {
-                (0.0..=1.0).contains(&p.z) && p.truncate().length() <= r0 + (r1 - r0) * p.z
+            Shape::Cuboid { centered } => {
+                let lo = cuboid::low(centered);
+                p.min_element() >= lo && p.max_element() <= 1.0
+            }
+            Shape::Cone { r0, r1, centered } => {
+                let z = p.z - cone::bottom(centered);
+                (0.0..=1.0).contains(&z) && p.truncate().length() <= r0 + (r1 - r0) * z
             }
             Shape::Torus { minor } => {
                 let q = p.truncate().length() - 1.0;
@@ -80,8 +94,14 @@ impl Shape {
     /// A box around the solid in object space.
     pub fn object_bounds(&self) -> Aabb {
         match *self {
-            Shape::Sphere | Shape::Cuboid => Aabb::new(DVec3::NEG_ONE, DVec3::ONE),
-            Shape::Cone { .. } => Aabb::new(DVec3::new(-1.0, -1.0, 0.0), DVec3::ONE),
+            Shape::Sphere => Aabb::new(DVec3::NEG_ONE, DVec3::ONE),
+            Shape::Cuboid { centered } => {
+                Aabb::new(DVec3::splat(cuboid::low(centered)), DVec3::ONE)
+            }
+            Shape::Cone { centered, .. } => {
+                let z0 = cone::bottom(centered);
+                Aabb::new(DVec3::new(-1.0, -1.0, z0), DVec3::new(1.0, 1.0, z0 + 1.0))
+            }
             Shape::Torus { minor } => {
                 let e = DVec3::new(1.0 + minor, 1.0 + minor, minor);
                 Aabb::new(-e, e)
@@ -101,11 +121,12 @@ impl Shape {
                 let e = (a * a + b * b + c * c).powf(0.5);
                 Aabb::new(m.translation - e, m.translation + e)
             }
-            Shape::Cone { r0, r1 } => {
+            Shape::Cone { r0, r1, centered } => {
                 let (u, v) = (col(0), col(1));
                 let e = (u * u + v * v).powf(0.5);
-                let c0 = m.translation;
-                let c1 = m.transform_point3(DVec3::Z);
+                let z0 = cone::bottom(centered);
+                let c0 = m.transform_point3(DVec3::new(0.0, 0.0, z0));
+                let c1 = m.transform_point3(DVec3::new(0.0, 0.0, z0 + 1.0));
                 Aabb::new(c0 - e * r0, c0 + e * r0).union(&Aabb::new(c1 - e * r1, c1 + e * r1))
             }
             Shape::Halfspace => Aabb::EVERYTHING,

@@ -316,11 +316,10 @@ impl Resolver<'_> {
                 if size.min_element() <= 0.0 {
                     return self.empty(s, "a size is zero or negative");
                 }
-                let half = 0.5 * size;
-                let offset = if center { DVec3::ZERO } else { half };
-                let local =
-                    DAffine3::from_scale_rotation_translation(half, Default::default(), offset);
-                Ok(self.leaf(s, Shape::Cuboid, xf * local, mat))
+                // Centring is the shape's, so the translation stays exact.
+                let scale = if center { 0.5 * size } else { size };
+                let shape = Shape::Cuboid { centered: center };
+                Ok(self.leaf(s, shape, xf * DAffine3::from_scale(scale), mat))
             }
             "sphere" => {
                 let a = Args::bind(self.src, s, &["r", "d"])?;
@@ -364,13 +363,9 @@ impl Resolver<'_> {
                 let shape = Shape::Cone {
                     r0: r1 / rmax,
                     r1: r2 / rmax,
+                    centered: center,
                 };
-                let z0 = if center { -h / 2.0 } else { 0.0 };
-                let local = DAffine3::from_scale_rotation_translation(
-                    DVec3::new(rmax, rmax, h),
-                    Default::default(),
-                    DVec3::new(0.0, 0.0, z0),
-                );
+                let local = DAffine3::from_scale(DVec3::new(rmax, rmax, h));
                 Ok(self.leaf(s, shape, xf * local, mat))
             }
             "torus" => {
