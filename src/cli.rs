@@ -307,6 +307,7 @@ pub fn stats_json(s: &Stats, seconds: f64) -> String {
         "normals_computed": s.normals_computed,
         "span_spills": s.span_spills,
         "max_spans": s.max_spans,
+        "nonfinite_samples": s.nonfinite_samples,
         "render_seconds": seconds,
     });
     serde_json::to_string_pretty(&v).expect("JSON of plain values") + "\n"

@@ -19,6 +19,9 @@ pub struct Stats {
     pub span_spills: u64,
     /// The longest span list any node produced.
     pub max_spans: u64,
+    /// Samples whose colour was NaN or infinite (drawn black); always 0
+    /// unless something is wrong.
+    pub nonfinite_samples: u64,
 }
 
 impl Stats {
@@ -34,5 +37,6 @@ impl Stats {
         self.normals_computed += o.normals_computed;
         self.span_spills += o.span_spills;
         self.max_spans = self.max_spans.max(o.max_spans);
+        self.nonfinite_samples += o.nonfinite_samples;
     }
 }

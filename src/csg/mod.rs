@@ -135,7 +135,7 @@ impl Csg {
                     } else if s.is_empty() {
                         acc
                     } else {
-                        combine(Op::Union, &acc, &s)
+                        combine(Op::Union, &acc, &s, ray.origin.abs().max_element())
                     };
                 }
                 acc
@@ -158,7 +158,7 @@ impl Csg {
                     if s.is_empty() && op == Op::Difference {
                         continue;
                     }
-                    acc = combine(op, &acc, &s);
+                    acc = combine(op, &acc, &s, ray.origin.abs().max_element());
                 }
                 acc
             }

@@ -32,6 +32,28 @@ pub const GAMMA3: f64 = gamma(3);
 /// final `o + t·d` each add a few.
 pub const ERROR_ULPS: f64 = 256.0;
 
+/// How many ulps of the ray's scale two boundaries of different operands
+/// may differ by and still be the same surface (see [`coincidence`]).
+pub const COINCIDENT_ULPS: f64 = 256.0;
+
+/// The distance along a ray below which two computed boundaries are one.
+///
+/// Two primitives that share a face (a cube minus a cube flush with its top)
+/// reach it through different transforms, so their computed `t` differ by a
+/// few ulps of the ray's coordinates. Left apart, a difference would keep a
+/// sliver that thin and show the shared face as speckles. The bound scales
+/// with |t| and with the ray origin's coordinates (`origin_scale`, its
+/// largest absolute component; directions are unit), the two sources of
+/// the rounding in `t`. Features thinner than this are below what f64 can
+/// place at those coordinates anyway.
+pub fn coincidence(t: f64, origin_scale: f64) -> f64 {
+    if !t.is_finite() {
+        // The open end of an unbounded span is exactly where it is.
+        return 0.0;
+    }
+    COINCIDENT_ULPS * f64::EPSILON * (t.abs() + origin_scale)
+}
+
 /// A bound on the distance between a computed hit point and the surface.
 pub fn point_error(p: DVec3, origin: DVec3, t_dir: DVec3) -> f64 {
     let scale = p.abs().max_element() + origin.abs().max_element() + t_dir.abs().max_element();

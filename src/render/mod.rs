@@ -62,7 +62,12 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
                     let (ox, oy) = sampler::offset(x, y, k, s.spp);
                     let ray = cam.ray(x as f64 + ox, y as f64 + oy);
                     st.primary_rays += 1;
-                    sum += shader.trace(&ray, 0, 1.0, &mut st);
+                    let c = shader.trace(&ray, 0, 1.0, &mut st);
+                    if c.is_finite() {
+                        sum += c;
+                    } else {
+                        st.nonfinite_samples += 1;
+                    }
                 }
                 let c = sum / s.spp as f64;
                 row.extend([to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
