@@ -233,3 +233,76 @@ fn a_lit_sphere_torus_and_box_a_million_units_out_shade_as_at_the_origin() {
         "the picture is not blank"
     );
 }
+
+#[test]
+fn an_intersection_of_cubes_that_only_share_a_face_is_empty() {
+    let s = load(
+        "translate([1000, -2000, 500]) rotate([17, 33, 41]) intersection() {\n  cube([4, 4, 4]);\n  translate([4, 0, 0]) cube([3, 4, 4]);\n}\n",
+    );
+    let f = frame();
+    let mut rng = Rng(3);
+    for _ in 0..3000 {
+        // Rays that cross the shared face x = 4 at random points and angles.
+        let p = f.transform_point3(DVec3::new(
+            4.0,
+            rng.range(0.01, 3.99),
+            rng.range(0.01, 3.99),
+        ));
+        let d = f.transform_vector3(DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        ));
+        assert!(
+            first(&s, p - 10.0 * d.normalize(), d).is_none(),
+            "a speckle on the shared face"
+        );
+    }
+}
+
+#[test]
+fn shells_down_to_a_millionth_of_the_radius_are_crossed_exactly() {
+    for (offset, thickness) in [(0.0, 1e-6), (1e3, 1e-6), (1e6, 1e-6), (0.0, 1e-3)] {
+        let c = DVec3::new(offset, -0.5 * offset, 0.25 * offset);
+        let inner = 1.0 - thickness;
+        let s = load(&format!(
+            "translate([{}, {}, {}]) difference() {{ sphere(1); sphere({inner:?}); }}",
+            c.x, c.y, c.z
+        ));
+        let mut rng = Rng(5);
+        for _ in 0..500 {
+            // A chord at distance b from the centre, well inside the shell.
+            let b = rng.range(0.0, 0.9);
+            let o = c + DVec3::new(b, 0.0, -3.0);
+            let hit = first(&s, o, DVec3::Z).expect("the outer sphere");
+            let want = 3.0 - (1.0 - b * b).sqrt();
+            assert!(
+                (hit.t - want).abs() < 1e-9,
+                "outer at {}, want {want}",
+                hit.t
+            );
+            // Entering the shell: the next surface is the inner sphere, the
+            // exact wall thickness along the chord away, not the same point.
+            let err = csgrt::geometry::robust::point_error(hit.point, o, hit.t * DVec3::Z);
+            let start =
+                csgrt::geometry::robust::offset_origin(hit.point, hit.normal, err, DVec3::Z);
+            let next = first(&s, start, DVec3::Z).expect("the inner sphere");
+            // The new ray starts a little off the old one (moved along the
+            // normal), so it meets the inner sphere at its own x.
+            let rel = start - c;
+            let exit_z = -(inner * inner - rel.x * rel.x - rel.y * rel.y).sqrt();
+            let got_z = rel.z + next.t;
+            assert!(
+                (got_z - exit_z).abs() < 1e-9,
+                "offset {offset}, thickness {thickness}: left at z {got_z}, the inner sphere is at {exit_z}"
+            );
+            let wall = (1.0 - b * b).sqrt() - (inner * inner - b * b).sqrt();
+            assert!(
+                next.t > 0.5 * wall,
+                "re-hit after {} of a {wall} wall",
+                next.t
+            );
+            assert!(next.normal.z > 0.0, "the inner sphere's wall faces the ray");
+        }
+    }
+}
