@@ -65,3 +65,48 @@ impl Aabb {
         lo <= hi
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_box() -> Aabb {
+        Aabb::new(DVec3::splat(-1.0), DVec3::splat(1.0))
+    }
+
+    #[test]
+    fn zero_direction_components_are_handled_without_nan() {
+        let b = unit_box();
+        // Parallel to x, inside the y and z slabs: hits.
+        assert!(b.hit(
+            &Ray::new(DVec3::new(-5.0, 0.5, 0.5), DVec3::X),
+            0.0,
+            f64::INFINITY
+        ));
+        // Parallel to x, outside the y slab: misses.
+        assert!(!b.hit(
+            &Ray::new(DVec3::new(-5.0, 1.5, 0.5), DVec3::X),
+            0.0,
+            f64::INFINITY
+        ));
+        // Origin exactly on a slab plane with a zero component: 0·∞ is NaN,
+        // which must neither hit everything nor poison the answer.
+        let on_plane = Ray::new(DVec3::new(-5.0, 1.0, 0.0), DVec3::X);
+        let r = b.hit(&on_plane, 0.0, f64::INFINITY);
+        assert_eq!(r, b.hit(&on_plane, 0.0, f64::INFINITY));
+        assert!(!b.hit(
+            &Ray::new(DVec3::new(-5.0, 1.0, 5.0), DVec3::X),
+            0.0,
+            f64::INFINITY
+        ));
+    }
+
+    #[test]
+    fn the_range_limits_the_test() {
+        let b = unit_box();
+        let r = Ray::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X);
+        assert!(b.hit(&r, 0.0, 4.5));
+        assert!(!b.hit(&r, 0.0, 3.9));
+        assert!(!b.hit(&r, 6.1, 10.0));
+    }
+}
