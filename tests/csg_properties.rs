@@ -162,3 +162,39 @@ proptest! {
         }
     }
 }
+
+fn arb_wide() -> impl Strategy<Value = Tree> {
+    let leaf = (arb_shape(), arb_transform()).prop_map(|(s, m)| Tree::Leaf(s, m));
+    (
+        prop_oneof![Just(Op::Union), Just(Op::Difference)],
+        prop::collection::vec(leaf, 9..24),
+    )
+        .prop_map(|(op, kids)| Tree::Node(op, kids))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// Wide unions and differences go through a bounding volume hierarchy;
+    /// they must classify points exactly as the plain tree does.
+    #[test]
+    fn wide_nodes_agree_with_point_classification(tree in arb_wide(), rays in prop::collection::vec(arb_ray(), 8)) {
+        let mut csg = Csg::default();
+        let root = build(&mut csg, &tree);
+        for ray in rays {
+            let mut st = Stats::default();
+            let list = csg.spans(root, &ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
+            let mut ts: Vec<f64> = list.iter().flat_map(|s| [s.enter.t, s.exit.t])
+                .filter(|t| t.is_finite()).collect();
+            ts.insert(0, -20.0);
+            ts.push(20.0);
+            for w in ts.windows(2) {
+                if w[1] - w[0] < 1e-6 {
+                    continue;
+                }
+                let t = 0.5 * (w[0] + w[1]);
+                prop_assert_eq!(contains(&list, t), csg.contains(root, ray.at(t)), "t = {}", t);
+            }
+        }
+    }
+}

@@ -7,11 +7,14 @@
 //! its subtracted children. The normal and material are looked up only for
 //! the boundary that wins ([`Csg::surface`]).
 
+pub mod bvh;
 pub mod spans;
 
 use crate::geometry::{Aabb, Ray, Shape, Transform};
 use crate::stats::Stats;
+use bvh::Bvh;
 use glam::DVec3;
+use smallvec::SmallVec;
 use spans::{combine, Boundary, Op, Span, SpanList, INLINE_SPANS};
 
 /// A primitive placed in the world.
@@ -52,6 +55,16 @@ pub struct Node {
     /// World box: the union of a union's children, the overlap of an
     /// intersection's, a difference's first child's.
     pub bounds: Aabb,
+    /// For a union of many children: a hierarchy over the bounded ones.
+    pub index: Option<Box<UnionIndex>>,
+}
+
+/// How a wide union finds the children a ray may meet.
+#[derive(Clone, Debug, PartialEq)]
+pub struct UnionIndex {
+    pub bvh: Bvh,
+    /// Children without a finite box (halfspaces), always looked at.
+    pub unbounded: Vec<u32>,
 }
 
 /// A CSG tree over its primitives. Node ids index `nodes`; children come
@@ -80,11 +93,19 @@ impl Csg {
         self.add_node(Node {
             kind: NodeKind::Leaf(id),
             bounds,
+            index: None,
         })
     }
 
-    /// Adds an operation node over `children`, with its bounds derived.
-    pub fn add_op(&mut self, op: Op, children: Vec<u32>) -> u32 {
+    /// Adds an operation node over `children`, with its bounds derived. A
+    /// difference of several subtracted children becomes the first minus
+    /// the union of the rest, so that a wide one is indexed like a union.
+    pub fn add_op(&mut self, op: Op, mut children: Vec<u32>) -> u32 {
+        if op == Op::Difference && children.len() > 2 {
+            let rest = children.split_off(1);
+            let u = self.add_op(Op::Union, rest);
+            children.push(u);
+        }
         let b = |i: &u32| self.nodes[*i as usize].bounds;
         let bounds = match op {
             Op::Union => children.iter().map(b).fold(Aabb::EMPTY, |a, x| a.union(&x)),
@@ -94,12 +115,40 @@ impl Csg {
                 .fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
             Op::Difference => b(&children[0]),
         };
+        let index = if op == Op::Union {
+            self.union_index(&children)
+        } else {
+            None
+        };
         let kind = match op {
             Op::Union => NodeKind::Union(children),
             Op::Intersection => NodeKind::Intersection(children),
             Op::Difference => NodeKind::Difference(children),
         };
-        self.add_node(Node { kind, bounds })
+        let mut node = Node {
+            kind,
+            bounds,
+            index: None,
+        };
+        node.index = index;
+        self.add_node(node)
+    }
+
+    fn union_index(&self, children: &[u32]) -> Option<Box<UnionIndex>> {
+        let (bounded, unbounded): (Vec<u32>, Vec<u32>) = children
+            .iter()
+            .partition(|&&c| self.nodes[c as usize].bounds.is_bounded());
+        if bounded.len() < bvh::MIN_CHILDREN {
+            return None;
+        }
+        let items: Vec<(u32, Aabb)> = bounded
+            .iter()
+            .map(|&c| (c, self.nodes[c as usize].bounds))
+            .collect();
+        Some(Box::new(UnionIndex {
+            bvh: Bvh::build(&items),
+            unbounded,
+        }))
     }
 
     fn add_node(&mut self, node: Node) -> u32 {
@@ -128,6 +177,15 @@ impl Csg {
             NodeKind::Leaf(p) => self.prim_spans(*p, ray, st),
             NodeKind::Union(ch) => {
                 let mut acc = SpanList::new();
+                let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
+                let ch: &[u32] = match &n.index {
+                    Some(ix) => {
+                        hit.extend_from_slice(&ix.unbounded);
+                        ix.bvh.visit(ray, tmin, tmax, st, |c| hit.push(c));
+                        &hit
+                    }
+                    None => ch,
+                };
                 for &c in ch {
                     let s = self.spans(c, ray, tmin, tmax, st);
                     acc = if acc.is_empty() {

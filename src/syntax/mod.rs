@@ -300,6 +300,13 @@ mod tests {
     }
 
     #[test]
+    fn empty_statements_are_allowed_as_in_openscad() {
+        let s = parse(";\ngroup() { cube(); ; };\n;").unwrap();
+        assert_eq!(s.len(), 1);
+        assert_eq!(s[0].children.len(), 1);
+    }
+
+    #[test]
     fn negative_zero_keeps_its_sign() {
         let s = parse("translate([-0, 0, 0]) cube();").unwrap();
         let ValueKind::Vector(v) = &s[0].args[0].value.kind else {
