@@ -59,6 +59,9 @@ pub struct Cli {
     /// Write the resolved scene as JSON (camera, lights, materials, tree).
     #[arg(long, value_name = "FILE")]
     pub dump_scene: Option<PathBuf>,
+    /// Write the resolved scene as POV-Ray 3.7 SDL, keeping the CSG tree.
+    #[arg(long, value_name = "FILE")]
+    pub export_pov: Option<PathBuf>,
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -191,6 +194,7 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
         cli.mask.as_ref(),
         cli.stats_json.as_ref(),
         cli.dump_scene.as_ref(),
+        cli.export_pov.as_ref(),
     ]
     .into_iter()
     .flatten()
@@ -238,6 +242,11 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
         let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
             .expect("JSON of plain values");
         write_atomic(p, &cli.model, json.as_bytes())?;
+    }
+    if let Some(p) = &cli.export_pov {
+        let cam = scene.view(width, height);
+        let sdl = crate::pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
+        write_atomic(p, &cli.model, sdl.as_bytes())?;
     }
     if let Some(p) = &cli.stats_json {
         write_atomic(p, &cli.model, stats_json(&image.stats, seconds).as_bytes())?;

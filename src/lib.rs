@@ -16,6 +16,7 @@ pub mod csg;
 pub mod dump;
 pub mod error;
 pub mod geometry;
+pub mod pov;
 pub mod render;
 pub mod scene;
 pub mod stats;

@@ -326,3 +326,31 @@ fn disabled_and_background_statements_are_left_out() {
     let d = stats(dir.path(), "d.json");
     assert_eq!(d["root"]["primitive"], "cube");
 }
+
+#[test]
+fn export_pov_keeps_the_csg_tree_and_a_right_handed_camera() {
+    let (dir, _) = scene(
+        "p.csg",
+        "camera(eye = [0, -6, 2], lookat = [0, 0, 0]);\ndirectional_light([1, 1, 1], [0, 1, -1]);\ndifference() { cube(2, center = true); material(kt = 0.5, ior = 1.4) sphere(1.3); torus(R = 2, r = 0.2); }\nhalfspace(offset = -1);\n",
+    );
+    let r = csgrt(
+        dir.path(),
+        &["p.csg", "--size", "40x30", "--export-pov", "p.pov", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let sdl = std::fs::read_to_string(dir.path().join("p.pov")).unwrap();
+    for needle in [
+        "#version 3.7;",
+        "right -x*1.3333333333333333",
+        "sky <0.0, 0.0, 1.0>",
+        "angle 30.0",
+        "difference {",
+        "box { <-1, -1, -1>, <1, 1, 1> matrix <1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0>",
+        "torus { 1, 0.1 rotate x*90",
+        "plane { z, 0",
+        "interior { ior 1.4 }",
+        "parallel point_at <0, 0, 0>",
+    ] {
+        assert!(sdl.contains(needle), "no `{needle}` in:\n{sdl}");
+    }
+}
