@@ -198,3 +198,39 @@ proptest! {
         }
     }
 }
+
+fn arb_very_wide() -> impl Strategy<Value = Tree> {
+    let leaf = (arb_shape(), arb_transform()).prop_map(|(s, m)| Tree::Leaf(s, m));
+    prop::collection::vec(leaf, 65..90).prop_map(|kids| Tree::Node(Op::Union, kids))
+}
+
+/// The first surface crossing after t = 0 of the full span list.
+fn full_first(csg: &Csg, root: u32, ray: &Ray) -> Option<f64> {
+    let mut st = Stats::default();
+    csg.spans(root, ray, 0.0, f64::INFINITY, &mut st)
+        .iter()
+        .flat_map(|s| [s.enter, s.exit])
+        .find(|b| b.t > 0.0 && b.is_surface())
+        .map(|b| b.t)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(150))]
+
+    /// The first-hit query stops early in unions; it must find the same
+    /// first surface as the full span list, from outside and from inside.
+    #[test]
+    fn first_hit_agrees_with_the_full_span_list(
+        tree in prop_oneof![arb_tree(), arb_wide(), arb_very_wide()],
+        rays in prop::collection::vec(arb_ray(), 12),
+    ) {
+        let mut csg = Csg::default();
+        let root = build(&mut csg, &tree);
+        csg.root = Some(root);
+        for ray in rays {
+            let mut st = Stats::default();
+            let got = csg.first_boundary(&ray, 0.0, f64::INFINITY, &mut st).map(|b| b.t);
+            prop_assert_eq!(got, full_first(&csg, root, &ray), "{:?}", ray);
+        }
+    }
+}

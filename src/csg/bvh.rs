@@ -8,6 +8,7 @@
 
 use crate::geometry::{Aabb, Ray};
 use crate::stats::Stats;
+use smallvec::SmallVec;
 
 /// A node gets a hierarchy from this many bounded children on.
 pub const MIN_CHILDREN: usize = 8;
@@ -28,6 +29,8 @@ pub struct Bvh {
     nodes: Vec<BvhNode>,
     /// Child node ids, in leaf order.
     items: Vec<u32>,
+    /// Their boxes, in the same order.
+    item_bounds: Vec<Aabb>,
 }
 
 impl Bvh {
@@ -37,6 +40,7 @@ impl Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * items.len() / LEAF + 1),
             items: Vec::with_capacity(items.len()),
+            item_bounds: Vec::with_capacity(items.len()),
         };
         bvh.nodes.push(BvhNode {
             bounds: Aabb::EMPTY,
@@ -54,6 +58,7 @@ impl Bvh {
             self.nodes[at].start = self.items.len() as u32;
             self.nodes[at].count = items.len() as u32;
             self.items.extend(items.iter().map(|(id, _)| *id));
+            self.item_bounds.extend(items.iter().map(|(_, b)| *b));
             return;
         }
         let centres = items
@@ -113,6 +118,135 @@ impl Bvh {
                 stack[top] = n.start + 1;
                 stack[top + 1] = n.start;
                 top += 2;
+            }
+        }
+    }
+}
+
+/// An entry of the best-first frontier: a box's entry distance and either a
+/// hierarchy node or a child (`item`), ordered by distance, then kind, then
+/// index, so the order never depends on anything but the ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Front {
+    entry: f64,
+    item: bool,
+    index: u32,
+}
+
+impl Front {
+    fn before(&self, o: &Front) -> bool {
+        (self.entry, self.item, self.index)
+            .partial_cmp(&(o.entry, o.item, o.index))
+            .is_some_and(|c| c.is_lt())
+    }
+}
+
+/// A binary min-heap on a small inline buffer (no allocation per ray in
+/// ordinary scenes).
+#[derive(Default)]
+struct Frontier(SmallVec<[Front; 64]>);
+
+impl Frontier {
+    fn push(&mut self, f: Front) {
+        self.0.push(f);
+        let mut i = self.0.len() - 1;
+        while i > 0 {
+            let p = (i - 1) / 2;
+            if !self.0[i].before(&self.0[p]) {
+                break;
+            }
+            self.0.swap(i, p);
+            i = p;
+        }
+    }
+
+    fn pop(&mut self) -> Option<Front> {
+        let last = self.0.pop()?;
+        if self.0.is_empty() {
+            return Some(last);
+        }
+        let top = std::mem::replace(&mut self.0[0], last);
+        let n = self.0.len();
+        let mut i = 0;
+        loop {
+            let (l, r) = (2 * i + 1, 2 * i + 2);
+            let mut m = i;
+            if l < n && self.0[l].before(&self.0[m]) {
+                m = l;
+            }
+            if r < n && self.0[r].before(&self.0[m]) {
+                m = r;
+            }
+            if m == i {
+                break;
+            }
+            self.0.swap(i, m);
+            i = m;
+        }
+        Some(top)
+    }
+}
+
+impl Bvh {
+    /// Visits the children whose boxes the ray meets in the order the ray
+    /// enters their boxes (best first over the hierarchy), and stops as
+    /// soon as the next box begins beyond the distance `visit` returns
+    /// (the caller's cut-off; ∞ for none).
+    pub fn visit_near_first(
+        &self,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        mut visit: impl FnMut(u32, &mut Stats) -> f64,
+    ) {
+        let mut cut = f64::INFINITY;
+        let mut front = Frontier::default();
+        let test = |b: &Aabb, st: &mut Stats, cut: f64| {
+            st.bound_tests += 1;
+            let e = b.entry(ray, tmin, tmax.min(cut));
+            if e.is_none() {
+                st.bound_culled += 1;
+            }
+            e
+        };
+        if let Some(entry) = test(&self.nodes[0].bounds, st, cut) {
+            front.push(Front {
+                entry,
+                item: false,
+                index: 0,
+            });
+        }
+        while let Some(f) = front.pop() {
+            if f.entry > cut {
+                st.bound_culled += 1 + front.0.len() as u64;
+                return;
+            }
+            if f.item {
+                cut = visit(self.items[f.index as usize], st);
+                continue;
+            }
+            let n = &self.nodes[f.index as usize];
+            if n.count > 0 {
+                for k in n.start..n.start + n.count {
+                    if let Some(entry) = test(&self.item_bounds[k as usize], st, cut) {
+                        front.push(Front {
+                            entry,
+                            item: true,
+                            index: k,
+                        });
+                    }
+                }
+            } else {
+                for c in [n.start, n.start + 1] {
+                    if let Some(entry) = test(&self.nodes[c as usize].bounds, st, cut) {
+                        front.push(Front {
+                            entry,
+                            item: false,
+                            index: c,
+                        });
+                    }
+                }
             }
         }
     }

