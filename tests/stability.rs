@@ -306,3 +306,31 @@ fn shells_down_to_a_millionth_of_the_radius_are_crossed_exactly() {
         }
     }
 }
+
+#[test]
+fn a_ray_from_under_the_floor_leaves_through_the_part_standing_on_it() {
+    // The halfspace's span ends exactly where the cube's begins: the union
+    // merges them, so the first surface is the cube's top, not the floor.
+    let mut text = String::from("halfspace();\ntranslate([-1, -1, 0]) cube(2);\n");
+    for i in 0..10 {
+        text += &format!("translate([{}, 5, 0]) sphere(0.5);\n", 2 * i);
+    }
+    let s = load(&text);
+    let mut rng = Rng(9);
+    for _ in 0..500 {
+        // Drifting at most 0.025 sideways: the ray leaves through the top.
+        let o = DVec3::new(
+            rng.range(-0.5, 0.5),
+            rng.range(-0.5, 0.5),
+            -rng.range(1.0, 20.0),
+        );
+        let d = DVec3::new(rng.range(-0.001, 0.001), rng.range(-0.001, 0.001), 1.0);
+        let hit = first(&s, o, d).expect("the cube's top");
+        let top = (2.0 - o.z) / d.normalize().z;
+        assert!(
+            (hit.t - top).abs() < 1e-9 * top,
+            "t = {}, the top is at {top}",
+            hit.t
+        );
+    }
+}

@@ -10,6 +10,7 @@
 pub mod bvh;
 pub mod spans;
 
+use crate::geometry::robust::coincidence;
 use crate::geometry::{Aabb, Ray, Shape, Transform};
 use crate::stats::Stats;
 use bvh::Bvh;
@@ -300,7 +301,12 @@ impl Csg {
                 combine(Op::Union, &acc, &s, scale)
             }
         };
-        let cut = |acc: &SpanList| first_surface(acc, tmin).map_or(f64::INFINITY, |b| b.t);
+        // A child whose box begins at the first boundary may touch it and
+        // merge it away (a part standing on a floor), and boundaries within
+        // the coincidence bound are one: only boxes beyond that are cut.
+        let cut = |acc: &SpanList| {
+            first_surface(acc, tmin).map_or(f64::INFINITY, |b| b.t + 2.0 * coincidence(b.t, scale))
+        };
         // Best first over the hierarchy pays only for wide unions: measured
         // at 640×480 with one thread, a 12-torus union renders in 0.61 s by
         // sorting and 0.82 s best first, a Menger sponge of 8000 cubes in
