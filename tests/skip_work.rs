@@ -1,0 +1,130 @@
+//! csgrt skips work a scene does not need; the counters of --stats-json
+//! show it.
+
+mod common;
+use common::{csgrt, scene, stats};
+use std::path::Path;
+
+fn counters(text: &str, size: &str) -> serde_json::Value {
+    let (dir, _) = scene("s.csg", text);
+    let r = csgrt(
+        dir.path(),
+        &[
+            "s.csg",
+            "--size",
+            size,
+            "--stats-json",
+            "st.json",
+            "--mask",
+            "m.png",
+            "-q",
+        ],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let mut s = stats(dir.path(), "st.json");
+    let mask = image::open(dir.path().join("m.png")).unwrap().to_luma8();
+    s["mask_hits"] = mask.pixels().filter(|p| p.0[0] == 255).count().into();
+    s
+}
+
+#[test]
+fn no_shadow_ray_where_the_light_is_behind_the_surface() {
+    // A floor seen from above, lit only from below.
+    let s = counters(
+        "camera(eye = [0, -5, 5], lookat = [0, 0, 0]);\ndirectional_light([1, 1, 1], [0, 0, 1]);\nhalfspace();\n",
+        "40x30",
+    );
+    assert!(s["mask_hits"].as_u64().unwrap() > 100);
+    assert_eq!(s["shadow_rays"], 0);
+}
+
+#[test]
+fn a_shadow_ray_stops_at_the_first_opaque_blocker() {
+    // Fifty spheres stacked beside the shadow rays' path: they cost box
+    // tests, not primitive tests.
+    let mut text = String::from(
+        "camera(eye = [0, 0, 30], lookat = [0, 0, 0], up = [0, 1, 0], fov = 3);\ndirectional_light([1, 1, 1], [0, 0, -1]);\nhalfspace();\n",
+    );
+    for i in 0..50 {
+        text += &format!("translate([30, 0, {}]) sphere(0.4);\n", 1 + i);
+    }
+    // The camera sees only floor: every pixel casts one shadow ray up.
+    let s = counters(&text, "20x20");
+    let shadow = s["shadow_rays"].as_u64().unwrap();
+    assert_eq!(shadow, 400, "one shadow ray a pixel");
+    let prims = s["primitive_tests"].as_u64().unwrap();
+    assert!(prims <= 2 * 400 + 2 * shadow, "{prims} primitive tests");
+    // Fifty opaque discs right over the floor the camera sees: a shadow
+    // ray stops at the first.
+    let mut text = String::from(
+        "camera(eye = [0, -1, 30], lookat = [0, 0, 0], fov = 3);\ndirectional_light([1, 1, 1], [0, 0, -1]);\nhalfspace();\n",
+    );
+    for i in 0..50 {
+        text += &format!("translate([0, 0, {}]) cylinder(h = 0.5, r = 3);\n", 40 + i);
+    }
+    let s = counters(&text, "20x20");
+    let shadow = s["shadow_rays"].as_u64().unwrap();
+    assert_eq!(shadow, 400);
+    let prims = s["primitive_tests"].as_u64().unwrap();
+    // Each blocked shadow ray needs the halfspace, the first blocker and
+    // at most a couple more: far fewer than the 50 discs in its way.
+    assert!(
+        prims <= 400 * 2 + shadow * 4,
+        "{prims} primitive tests for {shadow} shadow rays"
+    );
+}
+
+#[test]
+fn no_secondary_ray_below_the_weight_cutoff() {
+    let s = counters(
+        "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nmaterial(kr = 0.0019, kt = 0.0019) sphere(1);\n",
+        "32x24",
+    );
+    assert_eq!(s["reflected_rays"], 0);
+    assert_eq!(s["refracted_rays"], 0);
+    let s = counters(
+        "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nmaterial(kr = 0.002, kt = 0.002) sphere(1);\n",
+        "32x24",
+    );
+    assert!(
+        s["reflected_rays"].as_u64().unwrap() > 0,
+        "at 0.002 ≥ 1/512 they are cast"
+    );
+}
+
+#[test]
+fn one_normal_per_shaded_hit_and_none_for_misses() {
+    let s = counters(
+        "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\ndifference() { cube(2, center = true); sphere(1.3); }\ntranslate([0, 0, -1]) torus(R = 2, r = 0.3);\n",
+        "64x48",
+    );
+    assert_eq!(s["normals_computed"], s["mask_hits"]);
+}
+
+#[test]
+fn no_span_list_of_any_example_model_goes_to_the_heap() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for entry in std::fs::read_dir(root.join("models")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().and_then(|e| e.to_str()) != Some("csg") {
+            continue;
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let r = csgrt(
+            dir.path(),
+            &[
+                path.to_str().unwrap(),
+                "-o",
+                "x.png",
+                "--size",
+                "200x150",
+                "--stats-json",
+                "s.json",
+                "-q",
+            ],
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+        let s = stats(dir.path(), "s.json");
+        assert_eq!(s["span_spills"], 0, "{}", path.display());
+    }
+}
