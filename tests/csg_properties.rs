@@ -108,6 +108,42 @@ fn arb_ray() -> impl Strategy<Value = Ray> {
         .prop_map(|(o, d)| Ray::new(o.into(), DVec3::from(d).normalize()))
 }
 
+/// Spans along `ray` agree with point classification between every two
+/// consecutive boundaries (and beyond both ends), away from the boundaries.
+fn check_classification(csg: &Csg, root: u32, ray: &Ray) -> Result<(), TestCaseError> {
+    let mut st = Stats::default();
+    let list = csg.spans(root, ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
+    for s in &list {
+        prop_assert!(s.enter.t < s.exit.t);
+    }
+    for w in list.windows(2) {
+        prop_assert!(w[0].exit.t < w[1].enter.t);
+    }
+    let mut ts: Vec<f64> = list
+        .iter()
+        .flat_map(|s| [s.enter.t, s.exit.t])
+        .filter(|t| t.is_finite())
+        .collect();
+    ts.insert(0, -20.0);
+    ts.push(20.0);
+    for w in ts.windows(2) {
+        if w[1] - w[0] < 1e-6 {
+            continue;
+        }
+        for f in [0.5, 0.25, 0.75] {
+            let t = w[0] + f * (w[1] - w[0]);
+            prop_assert_eq!(
+                contains(&list, t),
+                csg.contains(root, ray.at(t)),
+                "t = {} on {:?}",
+                t,
+                ray
+            );
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(400))]
 
@@ -117,31 +153,7 @@ proptest! {
         let root = build(&mut csg, &tree);
         csg.root = Some(root);
         for ray in rays {
-            let mut st = Stats::default();
-            let list = csg.spans(root, &ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
-            // Sorted and disjoint, no empty spans.
-            for s in &list {
-                prop_assert!(s.enter.t < s.exit.t);
-            }
-            for w in list.windows(2) {
-                prop_assert!(w[0].exit.t < w[1].enter.t);
-            }
-            // Sample between consecutive boundaries (and beyond both ends),
-            // keeping clear of the boundaries themselves.
-            let mut ts: Vec<f64> = list.iter().flat_map(|s| [s.enter.t, s.exit.t])
-                .filter(|t| t.is_finite()).collect();
-            ts.insert(0, -20.0);
-            ts.push(20.0);
-            for w in ts.windows(2) {
-                if w[1] - w[0] < 1e-6 {
-                    continue;
-                }
-                for f in [0.5, 0.25, 0.75] {
-                    let t = w[0] + f * (w[1] - w[0]);
-                    let want = csg.contains(root, ray.at(t));
-                    prop_assert_eq!(contains(&list, t), want, "t = {} on {:?}", t, ray);
-                }
-            }
+            check_classification(&csg, root, &ray)?;
         }
     }
 
@@ -182,19 +194,7 @@ proptest! {
         let mut csg = Csg::default();
         let root = build(&mut csg, &tree);
         for ray in rays {
-            let mut st = Stats::default();
-            let list = csg.spans(root, &ray, f64::NEG_INFINITY, f64::INFINITY, &mut st);
-            let mut ts: Vec<f64> = list.iter().flat_map(|s| [s.enter.t, s.exit.t])
-                .filter(|t| t.is_finite()).collect();
-            ts.insert(0, -20.0);
-            ts.push(20.0);
-            for w in ts.windows(2) {
-                if w[1] - w[0] < 1e-6 {
-                    continue;
-                }
-                let t = 0.5 * (w[0] + w[1]);
-                prop_assert_eq!(contains(&list, t), csg.contains(root, ray.at(t)), "t = {}", t);
-            }
+            check_classification(&csg, root, &ray)?;
         }
     }
 }

@@ -198,14 +198,7 @@ impl Csg {
                     None => ch,
                 };
                 for &c in ch {
-                    let s = self.spans(c, ray, tmin, tmax, st);
-                    acc = if acc.is_empty() {
-                        s
-                    } else if s.is_empty() {
-                        acc
-                    } else {
-                        combine(Op::Union, &acc, &s, ray.origin.abs().max_element())
-                    };
+                    acc = self.union_with(acc, c, ray, tmin, tmax, st);
                 }
                 acc
             }
@@ -275,6 +268,26 @@ impl Csg {
         first_surface(&list, tmin).filter(|b| b.t < tmax)
     }
 
+    /// `acc ∪ spans(c)`, skipping the sweep when either side is empty.
+    fn union_with(
+        &self,
+        acc: SpanList,
+        c: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+    ) -> SpanList {
+        let s = self.spans(c, ray, tmin, tmax, st);
+        if acc.is_empty() {
+            s
+        } else if s.is_empty() {
+            acc
+        } else {
+            combine(Op::Union, &acc, &s, ray.origin.abs().max_element())
+        }
+    }
+
     /// A union's spans, good up to its first boundary after `tmin`.
     ///
     /// Children are taken in the order the ray enters their boxes; once the
@@ -291,16 +304,7 @@ impl Csg {
     ) -> SpanList {
         let n = &self.nodes[node as usize];
         let scale = ray.origin.abs().max_element();
-        let add = |acc: SpanList, c: u32, st: &mut Stats| -> SpanList {
-            let s = self.spans(c, ray, tmin, tmax, st);
-            if acc.is_empty() {
-                s
-            } else if s.is_empty() {
-                acc
-            } else {
-                combine(Op::Union, &acc, &s, scale)
-            }
-        };
+        let add = |acc, c, st: &mut Stats| self.union_with(acc, c, ray, tmin, tmax, st);
         // A child whose box begins at the first boundary may touch it and
         // merge it away (a part standing on a floor), and boundaries within
         // the coincidence bound are one: only boxes beyond that are cut.
