@@ -32,11 +32,18 @@ pub fn spans(r0: f64, r1: f64, z0: f64, o: DVec3, d: DVec3, emit: &mut impl FnMu
     // shift is added back to every t. Heights are measured from the bottom.
     let shift = -(o - DVec3::new(0.0, 0.0, z0 + 0.5)).dot(d) / d.length_squared();
     let o = o + shift * d - DVec3::new(0.0, 0.0, z0);
-    let emit = &mut |(t0, p0, t1, p1): RawSpan| emit((t0 + shift, p0, t1 + shift, p1));
+    if let Some((t0, p0, t1, p1)) = span(r0, r1, o, d) {
+        emit((t0 + shift, p0, t1 + shift, p1));
+    }
+}
+
+/// The one span of the convex solid along `o + t·d` (heights from the
+/// bottom cap), if any.
+fn span(r0: f64, r1: f64, o: DVec3, d: DVec3) -> Option<RawSpan> {
     // The slab 0 ≤ z ≤ 1.
-    let (z0, zp0, z1, zp1) = if d.z == 0.0 {
+    let slab = if d.z == 0.0 {
         if o.z <= 0.0 || o.z >= 1.0 {
-            return;
+            return None;
         }
         (f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP)
     } else {
@@ -54,57 +61,48 @@ pub fn spans(r0: f64, r1: f64, z0: f64, o: DVec3, d: DVec3, emit: &mut impl FnMu
     let a = d.x * d.x + d.y * d.y - k * k * d.z * d.z;
     let b = o.x * d.x + o.y * d.y - k * d.z * r_o;
     let c = o.x * o.x + o.y * o.y - r_o * r_o;
-    let clip = |s0: f64, s1: f64, emit: &mut dyn FnMut(RawSpan)| {
-        let (t0, p0) = if s0 > z0 { (s0, SIDE) } else { (z0, zp0) };
-        let (t1, p1) = if s1 < z1 { (s1, SIDE) } else { (z1, zp1) };
-        if t0 < t1 {
-            emit((t0, p0, t1, p1));
-        }
-    };
-    let mut emit = |s: RawSpan| emit(s);
+    let all = (f64::NEG_INFINITY, f64::INFINITY);
     if a == 0.0 {
-        if b > 0.0 {
-            clip(f64::NEG_INFINITY, -c / (2.0 * b), &mut emit);
+        return if b > 0.0 {
+            clip((f64::NEG_INFINITY, -c / (2.0 * b)), slab)
         } else if b < 0.0 {
-            clip(-c / (2.0 * b), f64::INFINITY, &mut emit);
+            clip((-c / (2.0 * b), f64::INFINITY), slab)
         } else if c < 0.0 {
-            clip(f64::NEG_INFINITY, f64::INFINITY, &mut emit);
-        }
-        return;
+            clip(all, slab)
+        } else {
+            None
+        };
     }
     let disc = b * b - a * c;
     if disc < 0.0 {
-        if a < 0.0 {
-            clip(f64::NEG_INFINITY, f64::INFINITY, &mut emit);
-        }
-        return;
+        return if a < 0.0 { clip(all, slab) } else { None };
     }
     let q = -(b + disc.sqrt().copysign(b));
-    let (mut lo, mut hi) = (q / a, c / q);
-    if q == 0.0 {
-        (lo, hi) = (0.0, 0.0);
-    }
+    let (mut lo, mut hi) = if q == 0.0 { (0.0, 0.0) } else { (q / a, c / q) };
     if lo > hi {
         std::mem::swap(&mut lo, &mut hi);
     }
     if a > 0.0 {
-        clip(lo, hi, &mut emit);
-    } else {
-        // Two pieces, one on each nappe; only one can meet the slab, but
-        // near an apex rounding may let both: keep their hull then.
-        let mut got: Option<RawSpan> = None;
-        let mut keep = |s: RawSpan| {
-            got = Some(match got {
-                None => s,
-                Some(g) => (g.0, g.1, s.2, s.3),
-            })
-        };
-        clip(f64::NEG_INFINITY, lo, &mut keep);
-        clip(hi, f64::INFINITY, &mut keep);
-        if let Some(s) = got {
-            emit(s);
-        }
+        return clip((lo, hi), slab);
     }
+    // Two pieces, one on each nappe; only one can meet the slab, but near
+    // an apex rounding may let both: keep their hull then.
+    match (
+        clip((f64::NEG_INFINITY, lo), slab),
+        clip((hi, f64::INFINITY), slab),
+    ) {
+        (Some(g), Some(s)) => Some((g.0, g.1, s.2, s.3)),
+        (g, s) => g.or(s),
+    }
+}
+
+/// The part of the side interval `(s0, s1)` inside the slab, its ends
+/// marked by the surface that bounds them.
+#[inline]
+fn clip((s0, s1): (f64, f64), (z0, zp0, z1, zp1): RawSpan) -> Option<RawSpan> {
+    let (t0, p0) = if s0 > z0 { (s0, SIDE) } else { (z0, zp0) };
+    let (t1, p1) = if s1 < z1 { (s1, SIDE) } else { (z1, zp1) };
+    (t0 < t1).then_some((t0, p0, t1, p1))
 }
 
 pub fn normal(r0: f64, r1: f64, z0: f64, p: DVec3, part: Part) -> DVec3 {
