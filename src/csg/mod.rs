@@ -198,7 +198,7 @@ impl Csg {
                     None => ch,
                 };
                 for &c in ch {
-                    acc = self.union_with(acc, c, ray, tmin, tmax, st);
+                    self.union_into(&mut acc, c, ray, tmin, tmax, st);
                 }
                 acc
             }
@@ -268,23 +268,25 @@ impl Csg {
         first_surface(&list, tmin).filter(|b| b.t < tmax)
     }
 
-    /// `acc ∪ spans(c)`, skipping the sweep when either side is empty.
-    fn union_with(
+    /// `acc ← acc ∪ spans(c)`, in place, skipping the sweep when either side
+    /// is empty (lists are large values: every move is a copy).
+    fn union_into(
         &self,
-        acc: SpanList,
+        acc: &mut SpanList,
         c: u32,
         ray: &Ray,
         tmin: f64,
         tmax: f64,
         st: &mut Stats,
-    ) -> SpanList {
+    ) {
         let s = self.spans(c, ray, tmin, tmax, st);
+        if s.is_empty() {
+            return;
+        }
         if acc.is_empty() {
-            s
-        } else if s.is_empty() {
-            acc
+            *acc = s;
         } else {
-            combine(Op::Union, &acc, &s, ray.origin.abs().max_element())
+            *acc = combine(Op::Union, acc, &s, ray.origin.abs().max_element());
         }
     }
 
@@ -304,7 +306,8 @@ impl Csg {
     ) -> SpanList {
         let n = &self.nodes[node as usize];
         let scale = ray.origin.abs().max_element();
-        let add = |acc, c, st: &mut Stats| self.union_with(acc, c, ray, tmin, tmax, st);
+        let add =
+            |acc: &mut SpanList, c, st: &mut Stats| self.union_into(acc, c, ray, tmin, tmax, st);
         // A child whose box begins at the first boundary may touch it and
         // merge it away (a part standing on a floor), and boundaries within
         // the coincidence bound are one: only boxes beyond that are cut.
@@ -318,10 +321,10 @@ impl Csg {
         if let Some(ix) = n.index.as_ref().filter(|_| ch.len() > BEST_FIRST_MIN) {
             let mut acc = SpanList::new();
             for &c in &ix.unbounded {
-                acc = add(acc, c, st);
+                add(&mut acc, c, st);
             }
             ix.bvh.visit_near_first(ray, tmin, tmax, st, |c, st| {
-                acc = add(std::mem::take(&mut acc), c, st);
+                add(&mut acc, c, st);
                 cut(&acc)
             });
             return acc;
@@ -345,7 +348,7 @@ impl Csg {
             if entry > cut(&acc) {
                 break;
             }
-            acc = add(acc, c, st);
+            add(&mut acc, c, st);
         }
         acc
     }
