@@ -102,8 +102,20 @@ pub fn main() -> i32 {
     }
 }
 
+/// The largest scene or ray file read, checked before reading it.
+pub const MAX_FILE_BYTES: u64 = 64 << 20;
+
 /// Reads a model file into a named source.
 pub fn read_source(path: &Path) -> Result<Source> {
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if meta.len() > MAX_FILE_BYTES {
+        return Err(Error::Usage(format!(
+            "{}: the file has {} bytes; the limit is {} MiB",
+            path.display(),
+            meta.len(),
+            MAX_FILE_BYTES >> 20
+        )));
+    }
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     let text = String::from_utf8(bytes)
         .map_err(|_| Error::Usage(format!("{}: the file is not UTF-8 text", path.display())))?;
