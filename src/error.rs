@@ -15,6 +15,9 @@
 use std::fmt;
 use std::path::PathBuf;
 
+/// How many characters of a long source line a diagnostic shows.
+pub const WINDOW: usize = 100;
+
 /// A byte range in a source text.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Span {
@@ -66,15 +69,31 @@ impl fmt::Display for Diagnostic {
         writeln!(f, "{kind}: {}", self.message)?;
         writeln!(f, "{pad}--> {}:{}:{}", self.file, self.line, self.col)?;
         writeln!(f, "{pad} |")?;
-        writeln!(f, "{num} | {}", self.source_line)?;
+        // A long line (a polyhedron's points, a machine-written file) is
+        // shown as a window of `WINDOW` characters around the caret.
+        let chars: Vec<char> = self.source_line.chars().collect();
+        let at = (self.col - 1).min(chars.len());
+        let (from, to) = if chars.len() <= WINDOW {
+            (0, chars.len())
+        } else {
+            let from = at.saturating_sub(WINDOW / 2).min(chars.len() - WINDOW);
+            (from, from + WINDOW)
+        };
+        let shown: String = chars[from..to].iter().collect();
+        let (open, close) = (
+            if from > 0 { "…" } else { "" },
+            if to < chars.len() { "…" } else { "" },
+        );
+        writeln!(f, "{num} | {open}{shown}{close}")?;
         // Tabs in the source line are echoed under the caret so it lines up.
-        let lead: String = self
-            .source_line
-            .chars()
-            .take(self.col - 1)
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
+        let lead: String = std::iter::repeat_n(' ', open.chars().count())
+            .chain(
+                chars[from..at]
+                    .iter()
+                    .map(|&c| if c == '\t' { '\t' } else { ' ' }),
+            )
             .collect();
-        let carets = "^".repeat(self.caret_len.max(1));
+        let carets = "^".repeat(self.caret_len.max(1).min(to.saturating_sub(at).max(1)));
         if self.label.is_empty() {
             write!(f, "{pad} | {lead}{carets}")
         } else {
@@ -208,6 +227,30 @@ mod tests {
         assert_eq!(
             d.to_string(),
             "error: unknown argument `sise` for `cube`\n --> a.csg:2:6\n  |\n2 | cube(sise = 2);\n  |      ^^^^ expected one of `size`, `center`"
+        );
+    }
+
+    #[test]
+    fn a_long_line_is_shown_as_a_window_around_the_caret() {
+        let line = format!(
+            "{}sphere(r = x);{}",
+            "cube(1); ".repeat(30),
+            " cube(2);".repeat(30)
+        );
+        let src = Source::new("l.csg", line.clone());
+        let at = line.find('x').unwrap();
+        let d = src.diagnostic(Severity::Error, Span::new(at, at + 1), "bad", "here");
+        let text = d.to_string();
+        let lines: Vec<&str> = text.lines().collect();
+        let shown = lines[3].strip_prefix("1 | ").unwrap();
+        assert!(shown.starts_with('…') && shown.ends_with('…'), "{shown}");
+        assert_eq!(shown.chars().count(), WINDOW + 2);
+        let caret = lines[4].strip_prefix("  | ").unwrap();
+        let col = caret.find('^').unwrap();
+        assert_eq!(
+            shown.chars().nth(caret[..col].chars().count()),
+            Some('x'),
+            "{text}"
         );
     }
 

@@ -163,3 +163,18 @@ fn a_closed_pipe_on_trace_rays_output_ends_quietly() {
     assert_eq!(o.status.code(), Some(0));
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
+
+#[test]
+fn a_million_nested_braces_end_in_an_error_not_a_stack_overflow() {
+    let n = 1_000_000;
+    let text = "group() {".repeat(n) + &"}".repeat(n);
+    let (dir, _) = scene("deep.csg", &text);
+    let r = csgrt(dir.path(), &["deep.csg", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    let first: Vec<&str> = r.stderr.lines().take(2).collect();
+    assert_eq!(first[0], "error: the file nests too deeply to be parsed");
+    assert!(first[1].starts_with(" --> deep.csg:1:"), "{}", first[1]);
+    // The echoed line is a window, not ten megabytes.
+    assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
+    assert_eq!(files(dir.path()), ["deep.csg"]);
+}

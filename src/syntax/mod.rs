@@ -227,6 +227,10 @@ fn syntax_error(src: &Source, e: pest::error::Error<Rule>) -> Error {
             )
         }
         ErrorVariant::ParsingError { .. } => (format!("unexpected {}", found.0), found.1),
+        // pest's own guards against deep recursion.
+        ErrorVariant::CustomError { message } if message.contains("limit reached") => {
+            ("the file nests too deeply to be parsed".to_string(), 1)
+        }
         ErrorVariant::CustomError { message } => (message.clone(), 1),
     };
     let label = if message.starts_with("expected") {
