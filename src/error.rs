@@ -86,13 +86,11 @@ impl fmt::Display for Diagnostic {
         );
         writeln!(f, "{num} | {open}{shown}{close}")?;
         // Tabs in the source line are echoed under the caret so it lines up.
-        let lead: String = std::iter::repeat_n(' ', open.chars().count())
-            .chain(
-                chars[from..at]
-                    .iter()
-                    .map(|&c| if c == '\t' { '\t' } else { ' ' }),
-            )
-            .collect();
+        let lead: String = " ".repeat(open.chars().count())
+            + &chars[from..at]
+                .iter()
+                .map(|&c| if c == '\t' { '\t' } else { ' ' })
+                .collect::<String>();
         let carets = "^".repeat(self.caret_len.max(1).min(to.saturating_sub(at).max(1)));
         if self.label.is_empty() {
             write!(f, "{pad} | {lead}{carets}")

@@ -129,6 +129,14 @@ fn unsupported(node: &str) -> String {
 }
 
 fn message(node: &str, line: usize, col: usize, source: &str) -> String {
+    // A line longer than the window is shown cut after it, with `…` (the
+    // caret here is near the start, so the window starts at column 1).
+    let window = csgrt::error::WINDOW;
+    let shown = if source.chars().count() > window {
+        source.chars().take(window).collect::<String>() + "…"
+    } else {
+        source.to_string()
+    };
     let caret = " ".repeat(col - 1) + &"^".repeat(node.len());
     let lead: String = source
         .chars()
@@ -141,7 +149,7 @@ fn message(node: &str, line: usize, col: usize, source: &str) -> String {
         lead + &caret[col - 1..]
     };
     format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {source}\n  | {caret} csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace\n"
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace\n"
     )
 }
 
