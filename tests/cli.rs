@@ -1,7 +1,7 @@
 //! The command line: outputs, counters, determinism and whole error messages.
 
 mod common;
-use common::{csgrt, csgrt_stdin, files, scene, stats};
+use common::{csgrt, csgrt_stdin, fails, files, scene, stats};
 
 const SPHERE: &str = "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nsphere(1);\n";
 
@@ -183,15 +183,6 @@ fn dump_scene_gives_camera_lights_materials_and_world_matrices() {
         serde_json::json!([1.0, 0.0, 0.0])
     );
     assert_eq!(d["lights"].as_array().unwrap().len(), 3);
-}
-
-/// Runs a bad scene and returns stderr, checking exit 2 and no output file.
-fn fails(text: &str) -> String {
-    let (dir, _) = scene("bad.csg", text);
-    let r = csgrt(dir.path(), &["bad.csg", "--size", "8x6", "-q"]);
-    assert_eq!(r.status, 2, "{}", r.stderr);
-    assert_eq!(files(dir.path()), ["bad.csg"], "no output may be left");
-    r.stderr
 }
 
 #[test]

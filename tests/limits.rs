@@ -1,15 +1,7 @@
 //! Every limit and bad value ends in its own whole, placed message.
 
 mod common;
-use common::{csgrt, files, scene};
-
-fn fails(text: &str) -> String {
-    let (dir, _) = scene("bad.csg", text);
-    let r = csgrt(dir.path(), &["bad.csg", "--size", "8x6", "-q"]);
-    assert_eq!(r.status, 2, "{}", r.stderr);
-    assert_eq!(files(dir.path()), ["bad.csg"], "no output may be left");
-    r.stderr
-}
+use common::{csgrt, fails, files, scene};
 
 #[test]
 fn a_non_finite_number_where_a_finite_one_belongs() {

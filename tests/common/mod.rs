@@ -46,6 +46,16 @@ pub fn scene(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
     (dir, path)
 }
 
+/// Runs a bad scene `bad.csg` and returns stderr, checking exit 2 and that
+/// no output file was left.
+pub fn fails(text: &str) -> String {
+    let (dir, _) = scene("bad.csg", text);
+    let r = csgrt(dir.path(), &["bad.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert_eq!(files(dir.path()), ["bad.csg"], "no output may be left");
+    r.stderr
+}
+
 /// The names of the files in a folder, sorted.
 pub fn files(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
