@@ -308,7 +308,19 @@ fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
     // An image is an ordinary file: readable by all, like one `create`d.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let mut tmp = builder.tempfile_in(dir).map_err(|e| Error::io(path, e))?;
+    if !dir.is_dir() {
+        return Err(Error::io(
+            path,
+            std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                format!("no such folder: {}", dir.display()),
+            ),
+        ));
+    }
+    // tempfile's errors name its random file; keep only what went wrong.
+    let mut tmp = builder
+        .tempfile_in(dir)
+        .map_err(|e| Error::io(path, std::io::Error::from(e.kind())))?;
     tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
     tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
     Ok(())

@@ -170,3 +170,15 @@ fn a_million_nested_braces_end_in_an_error_not_a_stack_overflow() {
     assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
     assert_eq!(files(dir.path()), ["deep.csg"]);
 }
+
+#[test]
+fn an_unwritable_output_is_a_clear_io_error() {
+    let (dir, _) = scene("s.csg", "sphere();\n");
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "8x6", "-q", "-o", "missing/x.png"],
+    );
+    assert_eq!(r.status, 1, "{}", r.stderr);
+    assert_eq!(r.stderr, "error: missing/x.png: no such folder: missing\n");
+    assert_eq!(files(dir.path()), ["s.csg"]);
+}
