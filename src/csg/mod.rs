@@ -16,7 +16,7 @@ use crate::stats::Stats;
 use bvh::Bvh;
 use glam::DVec3;
 use smallvec::SmallVec;
-use spans::{combine, Boundary, Op, Span, SpanList, INLINE_SPANS};
+use spans::{combine, Boundary, Op, Span, SpanList};
 
 /// A primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]
@@ -184,6 +184,13 @@ impl Csg {
                 return SpanList::new();
             }
         }
+        self.spans_within(node, ray, tmin, tmax, st)
+    }
+
+    /// [`Csg::spans`] for a node whose box the caller has already found the
+    /// ray to meet.
+    fn spans_within(&self, node: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> SpanList {
+        let n = &self.nodes[node as usize];
         let out = match &n.kind {
             NodeKind::Leaf(p) => self.prim_spans(*p, ray, st),
             NodeKind::Union(ch) => {
@@ -198,7 +205,8 @@ impl Csg {
                     None => ch,
                 };
                 for &c in ch {
-                    self.union_into(&mut acc, c, ray, tmin, tmax, st);
+                    let s = self.spans(c, ray, tmin, tmax, st);
+                    union_into(&mut acc, s, ray);
                 }
                 acc
             }
@@ -268,28 +276,6 @@ impl Csg {
         first_surface(&list, tmin).filter(|b| b.t < tmax)
     }
 
-    /// `acc ← acc ∪ spans(c)`, in place, skipping the sweep when either side
-    /// is empty (lists are large values: every move is a copy).
-    fn union_into(
-        &self,
-        acc: &mut SpanList,
-        c: u32,
-        ray: &Ray,
-        tmin: f64,
-        tmax: f64,
-        st: &mut Stats,
-    ) {
-        let s = self.spans(c, ray, tmin, tmax, st);
-        if s.is_empty() {
-            return;
-        }
-        if acc.is_empty() {
-            *acc = s;
-        } else {
-            *acc = combine(Op::Union, acc, &s, ray.origin.abs().max_element());
-        }
-    }
-
     /// A union's spans, good up to its first boundary after `tmin`.
     ///
     /// Children are taken in the order the ray enters their boxes; once the
@@ -306,8 +292,11 @@ impl Csg {
     ) -> SpanList {
         let n = &self.nodes[node as usize];
         let scale = ray.origin.abs().max_element();
-        let add =
-            |acc: &mut SpanList, c, st: &mut Stats| self.union_into(acc, c, ray, tmin, tmax, st);
+        // Every child reaching `add` has had its box tested already.
+        let add = |acc: &mut SpanList, c, st: &mut Stats| {
+            let s = self.spans_within(c, ray, tmin, tmax, st);
+            union_into(acc, s, ray);
+        };
         // A child whose box begins at the first boundary may touch it and
         // merge it away (a part standing on a floor), and boundaries within
         // the coincidence bound are one: only boxes beyond that are cut.
@@ -406,5 +395,15 @@ fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
         .find(|b| b.t > tmin && b.is_surface())
 }
 
-/// How many spans fit inline (re-exported for the notes and benchmarks).
-pub const SPAN_BUFFER: usize = INLINE_SPANS;
+/// `acc ← acc ∪ s`, in place, skipping the sweep when either side is empty
+/// (lists are large values: every move is a copy).
+fn union_into(acc: &mut SpanList, s: SpanList, ray: &Ray) {
+    if s.is_empty() {
+        return;
+    }
+    if acc.is_empty() {
+        *acc = s;
+    } else {
+        *acc = combine(Op::Union, acc, &s, ray.origin.abs().max_element());
+    }
+}
