@@ -308,19 +308,50 @@ fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
     // An image is an ordinary file: readable by all, like one `create`d.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    if !dir.is_dir() {
-        return Err(Error::io(
+    let refuse = |why: String| {
+        Err(Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+        ))
+    };
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => return refuse(format!("{} is not a folder", dir.display())),
+        Err(_) => return refuse(format!("no such folder: {}", dir.display())),
+    }
+    // The rename would replace a device or a pipe (say `/dev/null`) with a
+    // file, and a folder cannot be replaced at all: only regular files.
+    if let Ok(m) = std::fs::symlink_metadata(path) {
+        let m = if m.file_type().is_symlink() {
+            std::fs::metadata(path).unwrap_or(m)
+        } else {
+            m
+        };
+        if m.is_dir() {
+            return refuse("it is a folder".to_string());
+        }
+        if !m.is_file() {
+            return refuse(
+                "it exists and is not a regular file; outputs replace regular files only"
+                    .to_string(),
+            );
+        }
+    }
+    // tempfile's errors name its random file; say only what went wrong.
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| {
+        let why = match e.kind() {
+            std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+            std::io::ErrorKind::NotFound => "it takes no new files".to_string(),
+            k => k.to_string(),
+        };
+        Error::io(
             path,
             std::io::Error::new(
-                std::io::ErrorKind::NotFound,
-                format!("no such folder: {}", dir.display()),
+                e.kind(),
+                format!("cannot create a file in {}: {why}", dir.display()),
             ),
-        ));
-    }
-    // tempfile's errors name its random file; keep only what went wrong.
-    let mut tmp = builder
-        .tempfile_in(dir)
-        .map_err(|e| Error::io(path, std::io::Error::from(e.kind())))?;
+        )
+    })?;
     tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
     tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
     Ok(())

@@ -89,22 +89,26 @@ fn too_many_samples_threads_or_depth_and_too_big_an_image() {
         ),
         (
             vec!["--size", "40000x10"],
-            "`40000x10`: each side may be at most 32768 pixels",
+            "invalid value '40000x10' for '--size <WxH>': `40000x10`: each side may be at most 32768 pixels",
         ),
         (
             vec!["--size", "20000x20000"],
-            "`20000x20000`: at most 100000000 pixels in all",
+            "invalid value '20000x20000' for '--size <WxH>': `20000x20000`: at most 100000000 pixels in all",
         ),
         (
             vec!["--size", "0x10"],
-            "`0x10`: width and height must be at least 1",
+            "invalid value '0x10' for '--size <WxH>': `0x10`: width and height must be at least 1",
         ),
     ] {
         let mut a = vec!["s.csg", "-q"];
         a.extend(args.iter());
         let r = csgrt(dir.path(), &a);
         assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
-        assert!(r.stderr.contains(needle), "{args:?}: {}", r.stderr);
+        assert_eq!(
+            r.stderr,
+            format!("error: {needle}\n\nFor more information, try '--help'.\n"),
+            "{args:?}"
+        );
         assert_eq!(files(dir.path()), ["s.csg"], "{args:?}: nothing written");
     }
 }
@@ -181,4 +185,165 @@ fn an_unwritable_output_is_a_clear_io_error() {
     assert_eq!(r.status, 1, "{}", r.stderr);
     assert_eq!(r.stderr, "error: missing/x.png: no such folder: missing\n");
     assert_eq!(files(dir.path()), ["s.csg"]);
+}
+
+#[test]
+fn a_million_statements_chained_without_braces_end_in_an_error() {
+    let text = "union() ".repeat(1_000_000) + "cube();\n";
+    let (dir, _) = scene("chain.csg", &text);
+    let r = csgrt(dir.path(), &["chain.csg", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    let first: Vec<&str> = r.stderr.lines().take(2).collect();
+    assert_eq!(first[0], "error: the file nests too deeply to be parsed");
+    assert!(first[1].starts_with(" --> chain.csg:1:"), "{}", first[1]);
+    assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
+    assert_eq!(files(dir.path()), ["chain.csg"]);
+}
+
+#[test]
+fn statements_nest_at_most_256_deep_with_or_without_braces() {
+    let chained = "translate([1, 0, 0])\n".repeat(300) + "cube();\n";
+    assert_eq!(
+        fails(&chained),
+        "error: nesting deeper than 256 levels\n   --> bad.csg:257:1\n    |\n257 | translate([1, 0, 0])\n    | ^^^^^^^^^ the limit is reached here\n"
+    );
+    let braced = "group() {\n".repeat(300) + &"}\n".repeat(300);
+    assert_eq!(
+        fails(&braced),
+        "error: nesting deeper than 256 levels\n   --> bad.csg:257:1\n    |\n257 | group() {\n    | ^^^^^ the limit is reached here\n"
+    );
+    // 256 levels are fine.
+    let (dir, _) = scene(
+        "ok.csg",
+        &("translate([1, 0, 0])\n".repeat(255) + "cube();\n"),
+    );
+    let r = csgrt(dir.path(), &["ok.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+}
+
+#[test]
+fn vectors_nest_at_most_256_deep() {
+    let text = "sphere(r =\n".to_string() + &"[\n".repeat(300) + &"]\n".repeat(300) + ");\n";
+    assert_eq!(
+        fails(&text),
+        "error: nesting deeper than 256 levels\n   --> bad.csg:258:1\n    |\n258 | [\n    | ^ the limit is reached here\n"
+    );
+}
+
+#[test]
+fn a_stray_closing_brace_at_the_start() {
+    assert_eq!(
+        fails("}\nsphere();\n"),
+        "error: expected a statement or the end of the file, found `}`\n --> bad.csg:1:1\n  |\n1 | }\n  | ^\n"
+    );
+}
+
+#[test]
+fn a_flattened_solid_is_left_out_with_a_warning() {
+    let (dir, _) = scene(
+        "flat.csg",
+        "multmatrix([[1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube();\nsphere();\n",
+    );
+    let r = csgrt(dir.path(), &["flat.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(
+        r.stderr,
+        "warning: this `cube` is flattened by a singular transform\n --> flat.csg:1:70\n  |\n1 | multmatrix([[1, 0, 0, 0], [0, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) cube();\n  |                                                                      ^^^^ it has no volume and is left out, as in OpenSCAD\n"
+    );
+    assert_eq!(files(dir.path()), ["flat.csg", "flat.png"]);
+}
+
+/// Runs `s.csg` into `out` and returns (status, stderr), checking that the
+/// folder still holds only what it held.
+fn output_fails(out: &str, setup: impl Fn(&std::path::Path)) -> (i32, String) {
+    let (dir, _) = scene("s.csg", "sphere();\n");
+    setup(dir.path());
+    let before = files(dir.path());
+    let r = csgrt(dir.path(), &["s.csg", "--size", "8x6", "-q", "-o", out]);
+    assert_eq!(files(dir.path()), before, "{out}: nothing written");
+    (r.status, r.stderr)
+}
+
+#[test]
+fn outputs_that_cannot_be_written_are_clear_io_errors() {
+    let none = |_: &std::path::Path| {};
+    assert_eq!(
+        output_fails("s.csg/x.png", none),
+        (1, "error: s.csg/x.png: s.csg is not a folder\n".to_string())
+    );
+    assert_eq!(
+        output_fails("sub", |d| std::fs::create_dir(d.join("sub")).unwrap()),
+        (1, "error: sub: it is a folder\n".to_string())
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_device_or_a_link_to_one_is_never_replaced() {
+    let (status, stderr) = output_fails("null.png", |d| {
+        std::os::unix::fs::symlink("/dev/null", d.join("null.png")).unwrap()
+    });
+    assert_eq!(status, 1);
+    assert_eq!(
+        stderr,
+        "error: null.png: it exists and is not a regular file; outputs replace regular files only\n"
+    );
+    let m = std::fs::metadata("/dev/null").unwrap();
+    assert!(!m.is_file(), "/dev/null is still a device");
+}
+
+#[cfg(unix)]
+#[test]
+fn a_folder_that_refuses_new_files_is_a_clear_io_error() {
+    use std::os::unix::fs::PermissionsExt;
+    // A read-only folder refuses an ordinary user; root may write anywhere
+    // on a disk, so for root the folder is /proc, which takes no files.
+    let probe = tempfile::tempdir().unwrap();
+    let ro = probe.path().join("ro");
+    std::fs::create_dir(&ro).unwrap();
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).unwrap();
+    let is_root = std::fs::write(ro.join("probe"), b"").is_ok();
+    if is_root {
+        let (status, stderr) = output_fails("/proc/csgrt-test.png", |_| {});
+        assert_eq!(status, 1);
+        assert_eq!(
+            stderr,
+            "error: /proc/csgrt-test.png: cannot create a file in /proc: it takes no new files\n"
+        );
+    } else {
+        let (status, stderr) = output_fails("ro/x.png", |d| {
+            std::fs::create_dir(d.join("ro")).unwrap();
+            std::fs::set_permissions(d.join("ro"), std::fs::Permissions::from_mode(0o555)).unwrap();
+        });
+        assert_eq!(status, 1);
+        assert_eq!(
+            stderr,
+            "error: ro/x.png: cannot create a file in ro: permission denied\n"
+        );
+    }
+}
+
+#[test]
+fn sizes_and_positions_beyond_1e15_are_out_of_range() {
+    assert_eq!(
+        fails("translate([1e300, 0, 0]) translate([1e300, 0, 0]) cube();\n"),
+        "error: this `cube` is out of range\n --> bad.csg:1:51\n  |\n1 | translate([1e300, 0, 0]) translate([1e300, 0, 0]) cube();\n  |                                                   ^^^^ expected sizes and positions within ±1e15\n"
+    );
+    assert_eq!(
+        fails("sphere(r = 2e15);\n"),
+        "error: this `sphere` is out of range\n --> bad.csg:1:1\n  |\n1 | sphere(r = 2e15);\n  | ^^^^^^ expected sizes and positions within ±1e15\n"
+    );
+    // Found by the fuzzer: a display-list sphere whose radius cubed overflows.
+    let (dir, _) = scene("big.ray", "sphere 2 -3 1 1e103\n");
+    let r = csgrt(dir.path(), &["big.ray", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert_eq!(
+        r.stderr,
+        "error: this sphere is out of range\n --> big.ray:1:1\n  |\n1 | sphere 2 -3 1 1e103\n  | ^^^^^^^^^^^^^^^^^^^ expected a centre within ±1e15 and a radius from 1e-15 to 1e15\n"
+    );
+    assert_eq!(files(dir.path()), ["big.ray"]);
+    // Just inside the range renders.
+    let (dir, _) = scene("ok.csg", "translate([1e14, 0, 0]) sphere(r = 1e14);\n");
+    let r = csgrt(dir.path(), &["ok.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
 }

@@ -3,6 +3,20 @@
 use super::Ray;
 use glam::{DAffine3, DMat3, DVec3};
 
+/// The largest magnitude of a transform's entries (sizes, positions and
+/// their products), and of its inverse's. Beyond it, squared distances in
+/// the ray tests would lose all precision long before they overflow.
+pub const MAX_MAGNITUDE: f64 = 1e15;
+
+/// Why a matrix cannot place a solid.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Degenerate {
+    /// Singular or nearly so: the solid has no volume.
+    Flat,
+    /// Sizes or positions beyond [`MAX_MAGNITUDE`], or not finite.
+    OutOfRange,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Transform {
     /// Object space → world.
@@ -21,17 +35,25 @@ impl Transform {
         normal: DMat3::IDENTITY,
     };
 
-    /// `None` when the matrix is singular (a flattened solid) or not finite.
-    pub fn new(to_world: DAffine3) -> Option<Transform> {
-        let det = to_world.matrix3.determinant();
-        if !det.is_finite() || det == 0.0 || !to_world.translation.is_finite() {
-            return None;
+    /// The transform of a solid, or why it cannot be one: its entries
+    /// exceed [`MAX_MAGNITUDE`] ([`Degenerate::OutOfRange`]), or it flattens
+    /// the solid — singular, or so nearly that its inverse's entries exceed
+    /// the same bound, a solid thinner than 1/[`MAX_MAGNITUDE`] of its size
+    /// ([`Degenerate::Flat`]).
+    pub fn new(to_world: DAffine3) -> Result<Transform, Degenerate> {
+        // `!(x <= max)` also catches NaN.
+        let over = |v: &f64| !(v.abs() <= MAX_MAGNITUDE);
+        if to_world.to_cols_array().iter().any(over) {
+            return Err(Degenerate::OutOfRange);
+        }
+        if to_world.matrix3.determinant() == 0.0 {
+            return Err(Degenerate::Flat);
         }
         let to_object = to_world.inverse();
-        if !to_object.matrix3.is_finite() || !to_object.translation.is_finite() {
-            return None;
+        if to_object.matrix3.to_cols_array().iter().any(over) {
+            return Err(Degenerate::Flat);
         }
-        Some(Transform {
+        Ok(Transform {
             to_world,
             to_object,
             normal: to_object.matrix3.transpose(),

@@ -6,6 +6,7 @@ use super::{defaults, CameraSpec, Light, Material, Scene};
 use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
 use crate::error::{Diagnostic, Result, Severity, Source, Span};
+use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Shape, Transform};
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DMat3, DVec3};
@@ -289,17 +290,33 @@ impl Resolver<'_> {
         }))
     }
 
-    fn leaf(&mut self, s: &Statement, shape: Shape, world: DAffine3, mat: Material) -> Option<u32> {
-        let Some(xf) = Transform::new(world) else {
-            self.warn(
-                s.name_span,
-                &format!("this `{}` is flattened by a singular transform", s.name),
-                "it has no volume and is left out, as in OpenSCAD",
-            );
-            return None;
+    fn leaf(
+        &mut self,
+        s: &Statement,
+        shape: Shape,
+        world: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let xf = match Transform::new(world) {
+            Ok(xf) => xf,
+            Err(Degenerate::Flat) => {
+                self.warn(
+                    s.name_span,
+                    &format!("this `{}` is flattened by a singular transform", s.name),
+                    "it has no volume and is left out, as in OpenSCAD",
+                );
+                return Ok(None);
+            }
+            Err(Degenerate::OutOfRange) => {
+                return Err(self.src.error(
+                    s.name_span,
+                    format!("this `{}` is out of range", s.name),
+                    format!("expected sizes and positions within ±{MAX_MAGNITUDE:e}"),
+                ));
+            }
         };
         let material = self.material_id(mat);
-        Some(self.csg.add_prim(Primitive::new(shape, xf, material)))
+        Ok(Some(self.csg.add_prim(Primitive::new(shape, xf, material))))
     }
 
     fn empty(&mut self, s: &Statement, why: &str) -> Result<Option<u32>> {
@@ -319,7 +336,7 @@ impl Resolver<'_> {
                 // Centring is the shape's, so the translation stays exact.
                 let scale = if center { 0.5 * size } else { size };
                 let shape = Shape::Cuboid { centered: center };
-                Ok(self.leaf(s, shape, xf * DAffine3::from_scale(scale), mat))
+                self.leaf(s, shape, xf * DAffine3::from_scale(scale), mat)
             }
             "sphere" => {
                 let a = Args::bind(self.src, s, &["r", "d"])?;
@@ -331,12 +348,12 @@ impl Resolver<'_> {
                 if r <= 0.0 {
                     return self.empty(s, "its radius is zero or negative");
                 }
-                Ok(self.leaf(
+                self.leaf(
                     s,
                     Shape::Sphere,
                     xf * DAffine3::from_scale(DVec3::splat(r)),
                     mat,
-                ))
+                )
             }
             "cylinder" => {
                 let a = Args::bind(
@@ -366,7 +383,7 @@ impl Resolver<'_> {
                     centered: center,
                 };
                 let local = DAffine3::from_scale(DVec3::new(rmax, rmax, h));
-                Ok(self.leaf(s, shape, xf * local, mat))
+                self.leaf(s, shape, xf * local, mat)
             }
             "torus" => {
                 let a = Args::bind(self.src, s, &["R", "r"])?;
@@ -383,7 +400,7 @@ impl Resolver<'_> {
                     ));
                 }
                 let shape = Shape::Torus { minor: small / big };
-                Ok(self.leaf(s, shape, xf * DAffine3::from_scale(DVec3::splat(big)), mat))
+                self.leaf(s, shape, xf * DAffine3::from_scale(DVec3::splat(big)), mat)
             }
             "halfspace" => {
                 let a = Args::bind(self.src, s, &["normal", "offset"])?;
@@ -399,7 +416,7 @@ impl Resolver<'_> {
                 }
                 let z = n / len;
                 let local = DAffine3::from_mat3_translation(basis_from_z(z), z * (offset / len));
-                Ok(self.leaf(s, Shape::Halfspace, xf * local, mat))
+                self.leaf(s, Shape::Halfspace, xf * local, mat)
             }
             _ => unreachable!("not a solid: {}", s.name),
         }

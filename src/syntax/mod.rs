@@ -44,7 +44,13 @@ fn too_deep(src: &Source, span: Span) -> Error {
 fn statement(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Statement> {
     let span = Span::from(pair.as_span());
     if depth > MAX_NESTING {
-        return Err(too_deep(src, span));
+        // Point at the statement's name, not at everything it holds.
+        let at = pair
+            .clone()
+            .into_inner()
+            .find(|p| p.as_rule() == Rule::name)
+            .map_or(span, |p| p.as_span().into());
+        return Err(too_deep(src, at));
     }
     let mut modifiers = Modifiers::default();
     let mut name = String::new();
@@ -68,7 +74,8 @@ fn statement(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Stateme
                 args_span = p.as_span().into();
                 for a in p.into_inner() {
                     if a.as_rule() == Rule::argument {
-                        args.push(argument(src, a, depth)?);
+                        // Vectors nest on their own count, from 1.
+                        args.push(argument(src, a)?);
                     }
                 }
             }
@@ -94,7 +101,7 @@ fn statement(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Stateme
     })
 }
 
-fn argument(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Arg> {
+fn argument(src: &Source, pair: Pair<'_, Rule>) -> Result<Arg> {
     let span = Span::from(pair.as_span());
     let mut name = None;
     let mut value = None;
@@ -102,7 +109,7 @@ fn argument(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Arg> {
         match p.as_rule() {
             Rule::name => name = Some((p.as_str().to_string(), p.as_span().into())),
             Rule::equals => {}
-            _ => value = Some(self::value(src, p, depth)?),
+            _ => value = Some(self::value(src, p, 1)?),
         }
     }
     let value = value.expect("the grammar gives every argument a value");
@@ -195,6 +202,8 @@ fn rule_name(rule: Rule) -> &'static str {
         Rule::boolean => "`true` or `false`",
         Rule::undef => "`undef`",
         Rule::EOI => "the end of the file",
+        // A file that fails at its first token.
+        Rule::file => "a statement or the end of the file",
         _ => "more input",
     }
 }

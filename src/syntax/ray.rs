@@ -10,6 +10,7 @@
 use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
 use crate::error::{Error, Result, Source, Span};
+use crate::geometry::transform::MAX_MAGNITUDE;
 use crate::geometry::{Shape, Transform};
 use crate::scene::{defaults, CameraSpec, Light, Material, Scene};
 use glam::{DAffine3, DVec3};
@@ -196,7 +197,16 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                 });
                 let m =
                     DAffine3::from_translation(v3(&n)) * DAffine3::from_scale(DVec3::splat(n[3]));
-                let xf = Transform::new(m).expect("a positive radius is invertible");
+                let Ok(xf) = Transform::new(m) else {
+                    return Err(src.error(
+                        span,
+                        "this sphere is out of range",
+                        format!(
+                            "expected a centre within ±{MAX_MAGNITUDE:e} and a radius from {:e} to {MAX_MAGNITUDE:e}",
+                            1.0 / MAX_MAGNITUDE
+                        ),
+                    ));
+                };
                 spheres.push(csg.add_prim(Primitive::new(Shape::Sphere, xf, material)));
             }
             _ => {}
