@@ -2,7 +2,7 @@
 //! combination. `cargo bench --bench spans`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use csgrt::csg::spans::{combine, Boundary, Op, Span, SpanList};
+use csgrt::csg::spans::{combine, Boundary, Op, Span};
 use csgrt::geometry::Shape;
 use glam::DVec3;
 
@@ -64,7 +64,7 @@ fn primitives(c: &mut Criterion) {
     g.finish();
 }
 
-fn list(prim: u32, v: &[(f64, f64)]) -> SpanList {
+fn list(prim: u32, v: &[(f64, f64)]) -> Vec<Span> {
     let b = |t| Boundary {
         t,
         prim,

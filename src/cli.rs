@@ -369,7 +369,7 @@ pub fn stats_json(s: &Stats, seconds: f64) -> String {
         "bound_tests": s.bound_tests,
         "bound_culled": s.bound_culled,
         "normals_computed": s.normals_computed,
-        "span_spills": s.span_spills,
+        "span_allocations": s.span_allocations,
         "max_spans": s.max_spans,
         "nonfinite_samples": s.nonfinite_samples,
         "render_seconds": seconds,

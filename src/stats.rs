@@ -15,8 +15,9 @@ pub struct Stats {
     /// Subtrees skipped because the ray missed their box.
     pub bound_culled: u64,
     pub normals_computed: u64,
-    /// Span lists that outgrew their inline buffer and went to the heap.
-    pub span_spills: u64,
+    /// Queries whose span lists outgrew the thread's scratch buffer (each
+    /// such query allocates once; see `csg::SCRATCH_SPANS`).
+    pub span_allocations: u64,
     /// The longest span list any node produced.
     pub max_spans: u64,
     /// Samples whose colour was NaN or infinite (drawn black); always 0
@@ -35,7 +36,7 @@ impl Stats {
         self.bound_tests += o.bound_tests;
         self.bound_culled += o.bound_culled;
         self.normals_computed += o.normals_computed;
-        self.span_spills += o.span_spills;
+        self.span_allocations += o.span_allocations;
         self.max_spans = self.max_spans.max(o.max_spans);
         self.nonfinite_samples += o.nonfinite_samples;
     }

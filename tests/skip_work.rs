@@ -125,6 +125,6 @@ fn no_span_list_of_any_example_model_goes_to_the_heap() {
         );
         assert_eq!(r.status, 0, "{}", r.stderr);
         let s = stats(dir.path(), "s.json");
-        assert_eq!(s["span_spills"], 0, "{}", path.display());
+        assert_eq!(s["span_allocations"], 0, "{}", path.display());
     }
 }

@@ -16,7 +16,7 @@ use crate::stats::Stats;
 use bvh::Bvh;
 use glam::DVec3;
 use smallvec::SmallVec;
-use spans::{combine, Boundary, Op, Span, SpanList};
+use spans::{Boundary, Op, Span};
 
 /// A primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]
@@ -175,26 +175,65 @@ impl Csg {
 
     /// The spans of `node` along `ray`. The list agrees with the true solid
     /// on the open range (tmin, tmax); outside it, it may hold anything.
-    pub fn spans(&self, node: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> SpanList {
+    pub fn spans(&self, node: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> Vec<Span> {
+        self.spans_with(node, ray, tmin, tmax, st, <[Span]>::to_vec)
+    }
+
+    /// [`Csg::spans`], handed to `f` from the thread's scratch space, so
+    /// that no list is allocated.
+    pub fn spans_with<R>(
+        &self,
+        node: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        f: impl FnOnce(&[Span]) -> R,
+    ) -> R {
+        with_scratch(st, |sc, st| {
+            self.push_spans(node, ray, tmin, tmax, st, sc);
+            f(&sc.stack)
+        })
+    }
+
+    /// Pushes the spans of `node` onto the scratch stack (after what is
+    /// there), testing its box first.
+    fn push_spans(
+        &self,
+        node: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        sc: &mut Scratch,
+    ) {
         let n = &self.nodes[node as usize];
         if n.bounds.is_bounded() {
             st.bound_tests += 1;
             if !n.bounds.hit(ray, tmin, tmax) {
                 st.bound_culled += 1;
-                return SpanList::new();
+                return;
             }
         }
-        self.spans_within(node, ray, tmin, tmax, st)
+        self.push_spans_within(node, ray, tmin, tmax, st, sc)
     }
 
-    /// [`Csg::spans`] for a node whose box the caller has already found the
-    /// ray to meet.
-    fn spans_within(&self, node: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> SpanList {
+    /// [`Csg::push_spans`] for a node whose box the caller has already found
+    /// the ray to meet.
+    fn push_spans_within(
+        &self,
+        node: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        sc: &mut Scratch,
+    ) {
         let n = &self.nodes[node as usize];
-        let out = match &n.kind {
-            NodeKind::Leaf(p) => self.prim_spans(*p, ray, st),
+        let base = sc.stack.len();
+        match &n.kind {
+            NodeKind::Leaf(p) => self.push_prim_spans(*p, ray, st, sc),
             NodeKind::Union(ch) => {
-                let mut acc = SpanList::new();
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
                 let ch: &[u32] = match &n.index {
                     Some(ix) => {
@@ -205,10 +244,10 @@ impl Csg {
                     None => ch,
                 };
                 for &c in ch {
-                    let s = self.spans(c, ray, tmin, tmax, st);
-                    union_into(&mut acc, s, ray);
+                    let top = sc.stack.len();
+                    self.push_spans(c, ray, tmin, tmax, st, sc);
+                    sc.merge(Op::Union, base, top, ray);
                 }
-                acc
             }
             NodeKind::Intersection(ch) | NodeKind::Difference(ch) => {
                 let op = if matches!(n.kind, NodeKind::Intersection(_)) {
@@ -216,35 +255,29 @@ impl Csg {
                 } else {
                     Op::Difference
                 };
-                let mut acc = self.spans(ch[0], ray, tmin, tmax, st);
+                self.push_spans(ch[0], ray, tmin, tmax, st, sc);
                 for &c in &ch[1..] {
-                    if acc.is_empty() {
+                    let acc = &sc.stack[base..];
+                    let (Some(first), Some(last)) = (acc.first(), acc.last()) else {
                         break;
-                    }
+                    };
                     // Later children matter only where the result may be.
-                    let lo = tmin.max(acc[0].enter.t);
-                    let hi = tmax.min(acc[acc.len() - 1].exit.t);
-                    let s = self.spans(c, ray, lo, hi, st);
-                    if s.is_empty() && op == Op::Difference {
-                        continue;
-                    }
-                    acc = combine(op, &acc, &s, ray.origin.abs().max_element());
+                    let lo = tmin.max(first.enter.t);
+                    let hi = tmax.min(last.exit.t);
+                    let top = sc.stack.len();
+                    self.push_spans(c, ray, lo, hi, st, sc);
+                    sc.merge(op, base, top, ray);
                 }
-                acc
             }
-        };
-        st.max_spans = st.max_spans.max(out.len() as u64);
-        if out.spilled() {
-            st.span_spills += 1;
         }
-        out
+        st.max_spans = st.max_spans.max((sc.stack.len() - base) as u64);
     }
 
-    fn prim_spans(&self, id: u32, ray: &Ray, st: &mut Stats) -> SpanList {
+    fn push_prim_spans(&self, id: u32, ray: &Ray, st: &mut Stats, sc: &mut Scratch) {
         st.primitive_tests += 1;
         let p = &self.prims[id as usize];
         let (o, d) = p.xf.ray_to_object(ray);
-        let mut out = SpanList::new();
+        let stack = &mut sc.stack;
         p.shape.spans(o, d, &mut |(t0, p0, t1, p1)| {
             let b = |t, part| Boundary {
                 t,
@@ -252,12 +285,11 @@ impl Csg {
                 part,
                 flip: false,
             };
-            out.push(Span {
+            stack.push(Span {
                 enter: b(t0, p0),
                 exit: b(t1, p1),
             })
         });
-        out
     }
 
     /// The first surface boundary with `tmin < t < tmax`, if any.
@@ -269,18 +301,21 @@ impl Csg {
         st: &mut Stats,
     ) -> Option<Boundary> {
         let root = self.root?;
-        let list = match &self.nodes[root as usize].kind {
-            NodeKind::Union(ch) => self.union_first(root, ch, ray, tmin, tmax, st),
-            _ => self.spans(root, ray, tmin, tmax, st),
-        };
-        first_surface(&list, tmin).filter(|b| b.t < tmax)
+        with_scratch(st, |sc, st| {
+            match &self.nodes[root as usize].kind {
+                NodeKind::Union(ch) => self.union_first(root, ch, ray, tmin, tmax, st, sc),
+                _ => self.push_spans(root, ray, tmin, tmax, st, sc),
+            };
+            first_surface(&sc.stack, tmin).filter(|b| b.t < tmax)
+        })
     }
 
-    /// A union's spans, good up to its first boundary after `tmin`.
+    /// Pushes a union's spans, good up to its first boundary after `tmin`.
     ///
     /// Children are taken in the order the ray enters their boxes; once the
     /// next box begins beyond the first boundary found, no child left can
     /// change the result before that boundary, and the walk stops.
+    #[allow(clippy::too_many_arguments)]
     fn union_first(
         &self,
         node: u32,
@@ -289,18 +324,21 @@ impl Csg {
         tmin: f64,
         tmax: f64,
         st: &mut Stats,
-    ) -> SpanList {
+        sc: &mut Scratch,
+    ) {
         let n = &self.nodes[node as usize];
         let scale = ray.origin.abs().max_element();
+        let base = sc.stack.len();
         // Every child reaching `add` has had its box tested already.
-        let add = |acc: &mut SpanList, c, st: &mut Stats| {
-            let s = self.spans_within(c, ray, tmin, tmax, st);
-            union_into(acc, s, ray);
+        let add = |c, st: &mut Stats, sc: &mut Scratch| {
+            let top = sc.stack.len();
+            self.push_spans_within(c, ray, tmin, tmax, st, sc);
+            sc.merge(Op::Union, base, top, ray);
         };
         // A child whose box begins at the first boundary may touch it and
         // merge it away (a part standing on a floor), and boundaries within
         // the coincidence bound are one: only boxes beyond that are cut.
-        let cut = |acc: &SpanList| {
+        let cut = |acc: &[Span]| {
             first_surface(acc, tmin).map_or(f64::INFINITY, |b| b.t + 2.0 * coincidence(b.t, scale))
         };
         // Best first over the hierarchy pays only for wide unions: measured
@@ -308,15 +346,14 @@ impl Csg {
         // sorting and 0.82 s best first, a Menger sponge of 8000 cubes in
         // 0.58 s by sorting and 0.40 s best first.
         if let Some(ix) = n.index.as_ref().filter(|_| ch.len() > BEST_FIRST_MIN) {
-            let mut acc = SpanList::new();
             for &c in &ix.unbounded {
-                add(&mut acc, c, st);
+                add(c, st, sc);
             }
             ix.bvh.visit_near_first(ray, tmin, tmax, st, |c, st| {
-                add(&mut acc, c, st);
-                cut(&acc)
+                add(c, st, sc);
+                cut(&sc.stack[base..])
             });
-            return acc;
+            return;
         }
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
         for &c in ch {
@@ -332,14 +369,12 @@ impl Csg {
             }
         }
         order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut acc = SpanList::new();
         for (entry, c) in order {
-            if entry > cut(&acc) {
+            if entry > cut(&sc.stack[base..]) {
                 break;
             }
-            add(&mut acc, c, st);
+            add(c, st, sc);
         }
-        acc
     }
 
     /// The first surface the ray hits in (tmin, tmax), with its normal.
@@ -395,15 +430,80 @@ fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
         .find(|b| b.t > tmin && b.is_surface())
 }
 
-/// `acc ← acc ∪ s`, in place, skipping the sweep when either side is empty
-/// (lists are large values: every move is a copy).
-fn union_into(acc: &mut SpanList, s: SpanList, ray: &Ray) {
-    if s.is_empty() {
-        return;
+/// Spans a thread reserves for its queries before any query runs; a query
+/// that needs more grows the buffer once (counted in `span_allocations`).
+pub const SCRATCH_SPANS: usize = 256;
+
+/// A thread's working space for span queries. Nodes push their results on
+/// `stack`, each above its parent's; a combination is written to `out` and
+/// copied back down, so no list is ever allocated or moved whole.
+struct Scratch {
+    stack: Vec<Span>,
+    out: Vec<Span>,
+}
+
+impl Scratch {
+    fn new() -> Scratch {
+        Scratch {
+            stack: Vec::with_capacity(SCRATCH_SPANS),
+            out: Vec::with_capacity(SCRATCH_SPANS),
+        }
     }
-    if acc.is_empty() {
-        *acc = s;
-    } else {
-        *acc = combine(Op::Union, acc, &s, ray.origin.abs().max_element());
+
+    /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`.
+    fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
+        let (a, b) = self.stack[base..].split_at(top - base);
+        match op {
+            // Nothing to do: A stays, or B is the whole result and already
+            // sits where A would be.
+            Op::Union | Op::Difference if b.is_empty() => return,
+            Op::Union if a.is_empty() => return,
+            Op::Intersection | Op::Difference if a.is_empty() => {
+                self.stack.truncate(base);
+                return;
+            }
+            Op::Intersection if b.is_empty() => {
+                self.stack.truncate(base);
+                return;
+            }
+            _ => {}
+        }
+        let scale = ray.origin.abs().max_element();
+        // A union of lists apart by more than the coincidence bound is the
+        // two lists one after the other: the common case of a walk in ray
+        // order.
+        if op == Op::Union {
+            let gap_after =
+                |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
+            if gap_after(&a[a.len() - 1], &b[0]) {
+                return;
+            }
+        }
+        self.out.clear();
+        spans::combine_into(op, a, b, scale, &mut self.out);
+        self.stack.truncate(base);
+        self.stack.extend_from_slice(&self.out);
     }
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::new());
+}
+
+/// Runs a query on this thread's scratch space, emptied first (or on a
+/// fresh one if a query is already running on this thread).
+fn with_scratch<R>(st: &mut Stats, f: impl FnOnce(&mut Scratch, &mut Stats) -> R) -> R {
+    SCRATCH.with(|cell| {
+        let Ok(mut sc) = cell.try_borrow_mut() else {
+            st.span_allocations += 1;
+            return f(&mut Scratch::new(), st);
+        };
+        sc.stack.clear();
+        let cap = (sc.stack.capacity(), sc.out.capacity());
+        let r = f(&mut sc, st);
+        if (sc.stack.capacity(), sc.out.capacity()) != cap {
+            st.span_allocations += 1;
+        }
+        r
+    })
 }

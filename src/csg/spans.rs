@@ -20,23 +20,6 @@
 
 use crate::geometry::robust::coincidence;
 use crate::geometry::{Part, NO_PART};
-use smallvec::SmallVec;
-
-/// Inline capacity of a [`SpanList`], chosen by measurement (800×600, one
-/// thread, best of three; `span_spills` counts lists that went to the heap):
-///
-/// | inline | glass.csg | shadows.csg | seed.csg | spills (glass / shadows) |
-/// |---|---|---|---|---|
-/// | 3 | 0.755 s | 0.198 s | 0.246 s | 313 / 2401 |
-/// | 4 | 0.922 s | 0.151 s | 0.255 s | 0 / 12 |
-/// | 5 | 1.030 s | 0.166 s | 0.288 s | 0 / 0 |
-/// | 6 | 0.967 s | 0.167 s | 0.268 s | 0 / 0 |
-/// | 8 | 1.118 s | 0.190 s | 0.293 s | 0 / 0 |
-///
-/// No list in the example models holds more than 5 spans. Lists are moved
-/// by value, so a larger buffer costs copies; 6 is the smallest size with
-/// no heap allocation in any example.
-pub const INLINE_SPANS: usize = 6;
 
 /// One end of a span: where a ray crosses a primitive's surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,8 +58,6 @@ pub struct Span {
     pub exit: Boundary,
 }
 
-pub type SpanList = SmallVec<[Span; INLINE_SPANS]>;
-
 /// The three set operations.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Op {
@@ -109,14 +90,20 @@ fn next(list: &[Span], i: usize, inside: bool) -> Option<Boundary> {
 
 /// `a op b`, sweeping both sorted lists once; `scale` is the largest
 /// absolute coordinate of the ray's origin (0 for abstract lists).
-pub fn combine(op: Op, a: &[Span], b: &[Span], scale: f64) -> SpanList {
-    let mut out = SpanList::new();
+pub fn combine(op: Op, a: &[Span], b: &[Span], scale: f64) -> Vec<Span> {
+    let mut out = Vec::new();
+    combine_into(op, a, b, scale, &mut out);
+    out
+}
+
+/// [`combine`], appending the result to `out`.
+pub fn combine_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span>) {
     // Quick answers that need no sweep.
     match op {
-        Op::Union if a.is_empty() => return b.iter().copied().collect(),
-        Op::Union | Op::Difference if b.is_empty() => return a.iter().copied().collect(),
-        Op::Intersection | Op::Difference if a.is_empty() => return out,
-        Op::Intersection if b.is_empty() => return out,
+        Op::Union if a.is_empty() => return out.extend_from_slice(b),
+        Op::Union | Op::Difference if b.is_empty() => return out.extend_from_slice(a),
+        Op::Intersection | Op::Difference if a.is_empty() => return,
+        Op::Intersection if b.is_empty() => return,
         _ => {}
     }
     let (mut ia, mut ib) = (0usize, 0usize);
@@ -184,7 +171,6 @@ pub fn combine(op: Op, a: &[Span], b: &[Span], scale: f64) -> SpanList {
             break;
         }
     }
-    out
 }
 
 #[cfg(test)]
@@ -202,7 +188,7 @@ mod tests {
     }
 
     /// A list from (enter, exit) pairs; A's surfaces are prim 0, B's prim 1.
-    fn list(prim: u32, v: &[(f64, f64)]) -> SpanList {
+    fn list(prim: u32, v: &[(f64, f64)]) -> Vec<Span> {
         v.iter()
             .map(|&(x, y)| Span {
                 enter: b(x, prim),

@@ -41,8 +41,7 @@ impl Transform {
     /// the same bound, a solid thinner than 1/[`MAX_MAGNITUDE`] of its size
     /// ([`Degenerate::Flat`]).
     pub fn new(to_world: DAffine3) -> Result<Transform, Degenerate> {
-        // `!(x <= max)` also catches NaN.
-        let over = |v: &f64| !(v.abs() <= MAX_MAGNITUDE);
+        let over = |v: &f64| v.is_nan() || v.abs() > MAX_MAGNITUDE;
         if to_world.to_cols_array().iter().any(over) {
             return Err(Degenerate::OutOfRange);
         }

@@ -134,24 +134,26 @@ impl<'a> Shader<'a> {
         let Some(root) = csg.root else {
             return 1.0;
         };
-        let mut pass = 1.0;
-        for s in csg.spans(root, ray, 0.0, dist, st) {
-            if s.exit.t <= 0.0 || s.enter.t >= dist {
-                continue;
+        csg.spans_with(root, ray, 0.0, dist, st, |list| {
+            let mut pass = 1.0;
+            for s in list {
+                if s.exit.t <= 0.0 || s.enter.t >= dist {
+                    continue;
+                }
+                // The solid crossed is named by the surface the ray enters
+                // by, or leaves by if it starts inside.
+                let face = if s.enter.t > 0.0 && s.enter.is_surface() {
+                    s.enter
+                } else {
+                    s.exit
+                };
+                pass *= self.material(face.prim).kt;
+                if pass <= 0.0 {
+                    return 0.0;
+                }
             }
-            // The solid crossed is named by the surface the ray enters by,
-            // or leaves by if it starts inside.
-            let face = if s.enter.t > 0.0 && s.enter.is_surface() {
-                s.enter
-            } else {
-                s.exit
-            };
-            pass *= self.material(face.prim).kt;
-            if pass <= 0.0 {
-                return 0.0;
-            }
-        }
-        pass
+            pass
+        })
     }
 }
 
