@@ -52,8 +52,7 @@ impl Aabb {
     /// Whether the ray meets the box for some `t` in `[tmin, tmax]`.
     ///
     /// NaN-safe: a zero direction component gives ±∞ slab distances, and a
-    /// `0·∞` NaN (origin exactly on a slab plane) is ignored by `min`/`max`,
-    /// which keep the other operand. The far distance is widened by
+    /// `0·∞` NaN (origin exactly on a slab plane) is ignored. The far distance is widened by
     /// `1 + 2γ₃` so that rounding never culls a box the ray grazes.
     pub fn hit(&self, ray: &Ray, tmin: f64, tmax: f64) -> bool {
         self.entry(ray, tmin, tmax).is_some()
@@ -63,13 +62,24 @@ impl Aabb {
     /// starts inside), or `None` if it misses; the same test as [`hit`].
     ///
     /// [`hit`]: Aabb::hit
+    #[inline]
     pub fn entry(&self, ray: &Ray, tmin: f64, tmax: f64) -> Option<f64> {
         let t0 = (self.min - ray.origin) * ray.inv_dir;
         let t1 = (self.max - ray.origin) * ray.inv_dir;
-        let near = t0.min(t1);
-        let far = t0.max(t1) * (1.0 + 2.0 * GAMMA3);
-        let lo = tmin.max(near.x).max(near.y).max(near.z);
-        let hi = tmax.min(far.x).min(far.y).min(far.z);
+        // Branch-free min and max (one `minsd`/`maxsd` each) that return
+        // their second operand when the first is NaN; the running bounds
+        // are always the second operand, so a NaN slab distance constrains
+        // nothing.
+        let lt = |a: f64, b: f64| if a < b { a } else { b };
+        let gt = |a: f64, b: f64| if a > b { a } else { b };
+        let widen = 1.0 + 2.0 * GAMMA3;
+        let mut lo = tmin;
+        let mut hi = tmax;
+        for i in 0..3 {
+            let (a, b) = (t0[i], t1[i]);
+            lo = gt(lt(a, b), lo);
+            hi = lt(gt(a, b) * widen, hi);
+        }
         (lo <= hi).then_some(lo)
     }
 }
