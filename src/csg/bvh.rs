@@ -123,75 +123,16 @@ impl Bvh {
     }
 }
 
-/// An entry of the best-first frontier: a box's entry distance and either a
-/// hierarchy node or a child (`item`), ordered by distance, then kind, then
-/// index, so the order never depends on anything but the ray.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct Front {
-    entry: f64,
-    item: bool,
-    index: u32,
-}
-
-impl Front {
-    fn before(&self, o: &Front) -> bool {
-        (self.entry, self.item, self.index)
-            .partial_cmp(&(o.entry, o.item, o.index))
-            .is_some_and(|c| c.is_lt())
-    }
-}
-
-/// A binary min-heap on a small inline buffer (no allocation per ray in
-/// ordinary scenes).
-#[derive(Default)]
-struct Frontier(SmallVec<[Front; 64]>);
-
-impl Frontier {
-    fn push(&mut self, f: Front) {
-        self.0.push(f);
-        let mut i = self.0.len() - 1;
-        while i > 0 {
-            let p = (i - 1) / 2;
-            if !self.0[i].before(&self.0[p]) {
-                break;
-            }
-            self.0.swap(i, p);
-            i = p;
-        }
-    }
-
-    fn pop(&mut self) -> Option<Front> {
-        let last = self.0.pop()?;
-        if self.0.is_empty() {
-            return Some(last);
-        }
-        let top = std::mem::replace(&mut self.0[0], last);
-        let n = self.0.len();
-        let mut i = 0;
-        loop {
-            let (l, r) = (2 * i + 1, 2 * i + 2);
-            let mut m = i;
-            if l < n && self.0[l].before(&self.0[m]) {
-                m = l;
-            }
-            if r < n && self.0[r].before(&self.0[m]) {
-                m = r;
-            }
-            if m == i {
-                break;
-            }
-            self.0.swap(i, m);
-            i = m;
-        }
-        Some(top)
-    }
-}
-
 impl Bvh {
-    /// Visits the children whose boxes the ray meets in the order the ray
-    /// enters their boxes (best first over the hierarchy), and stops as
-    /// soon as the next box begins beyond the distance `visit` returns
-    /// (the caller's cut-off; ∞ for none).
+    /// Visits the children whose boxes the ray meets, nearer subtrees
+    /// first, skipping every box that begins beyond the distance `visit`
+    /// returns (the caller's cut-off; ∞ for none).
+    ///
+    /// Depth first, the nearer child of each node first. A box skipped for
+    /// beginning beyond the cut is kept, and looked at again at the end
+    /// should a later visit have moved the cut past it (a child that merges
+    /// away the boundary that set the cut), so that on return every child
+    /// whose box begins at or before the final cut has been visited.
     pub fn visit_near_first(
         &self,
         ray: &Ray,
@@ -201,52 +142,62 @@ impl Bvh {
         mut visit: impl FnMut(u32, &mut Stats) -> f64,
     ) {
         let mut cut = f64::INFINITY;
-        let mut front = Frontier::default();
-        let test = |b: &Aabb, st: &mut Stats, cut: f64| {
+        // (entry, index, is an item): boxes still to open.
+        let mut stack: SmallVec<[(f64, u32, bool); 64]> = SmallVec::new();
+        let mut skipped: SmallVec<[(f64, u32, bool); 32]> = SmallVec::new();
+        let test = |b: &Aabb, st: &mut Stats| {
             st.bound_tests += 1;
-            let e = b.entry(ray, tmin, tmax.min(cut));
+            let e = b.entry(ray, tmin, tmax);
             if e.is_none() {
                 st.bound_culled += 1;
             }
             e
         };
-        if let Some(entry) = test(&self.nodes[0].bounds, st, cut) {
-            front.push(Front {
-                entry,
-                item: false,
-                index: 0,
-            });
+        if let Some(e) = test(&self.nodes[0].bounds, st) {
+            stack.push((e, 0, false));
         }
-        while let Some(f) = front.pop() {
-            if f.entry > cut {
-                st.bound_culled += 1 + front.0.len() as u64;
+        loop {
+            while let Some((e, i, item)) = stack.pop() {
+                if e > cut {
+                    skipped.push((e, i, item));
+                    continue;
+                }
+                if item {
+                    cut = visit(self.items[i as usize], st);
+                    continue;
+                }
+                let n = &self.nodes[i as usize];
+                let mut pair: SmallVec<[(f64, u32, bool); 2]> = SmallVec::new();
+                if n.count > 0 {
+                    for k in n.start..n.start + n.count {
+                        if let Some(e) = test(&self.item_bounds[k as usize], st) {
+                            pair.push((e, k, true));
+                        }
+                    }
+                } else {
+                    for c in [n.start, n.start + 1] {
+                        if let Some(e) = test(&self.nodes[c as usize].bounds, st) {
+                            pair.push((e, c, false));
+                        }
+                    }
+                }
+                // Farther first onto the stack, so the nearer pops first.
+                pair.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(b.1.cmp(&a.1)));
+                stack.extend(pair);
+            }
+            // Whatever was skipped but now begins within the cut goes back.
+            let before = skipped.len();
+            let mut k = 0;
+            while k < skipped.len() {
+                if skipped[k].0 <= cut {
+                    stack.push(skipped.swap_remove(k));
+                } else {
+                    k += 1;
+                }
+            }
+            if skipped.len() == before {
+                st.bound_culled += skipped.len() as u64;
                 return;
-            }
-            if f.item {
-                cut = visit(self.items[f.index as usize], st);
-                continue;
-            }
-            let n = &self.nodes[f.index as usize];
-            if n.count > 0 {
-                for k in n.start..n.start + n.count {
-                    if let Some(entry) = test(&self.item_bounds[k as usize], st, cut) {
-                        front.push(Front {
-                            entry,
-                            item: true,
-                            index: k,
-                        });
-                    }
-                }
-            } else {
-                for c in [n.start, n.start + 1] {
-                    if let Some(entry) = test(&self.nodes[c as usize].bounds, st, cut) {
-                        front.push(Front {
-                            entry,
-                            item: false,
-                            index: c,
-                        });
-                    }
-                }
             }
         }
     }
