@@ -1,9 +1,10 @@
 //! Real roots of polynomials of degree ≤ 4 inside an interval.
 //!
-//! No closed forms: the roots of a polynomial's derivative split the interval
-//! into pieces where it is monotonic, and each piece with a sign change holds
-//! exactly one root, found by Newton steps safeguarded by bisection. The
-//! derivative's roots are found the same way, down to a linear polynomial.
+//! No closed forms above degree 2: the roots of a polynomial's derivative
+//! split the interval into pieces where it is monotonic, and each piece with
+//! a sign change holds exactly one root, found by Newton steps safeguarded by
+//! bisection. The derivative's roots are found the same way, down to a
+//! quadratic, solved by the formula that does not cancel.
 //! This is slower than Ferrari's formula but loses no roots to cancellation.
 
 /// Coefficients, lowest degree first: `c[0] + c[1]·x + …`.
@@ -44,6 +45,9 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -
         }
         return 0;
     }
+    if degree == 2 {
+        return quadratic_in(c, lo, hi, out);
+    }
     // Split (lo, hi) at the critical points.
     let d = derivative(c, degree);
     let mut crit = [0.0; 4];
@@ -61,6 +65,28 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -
         }
         a = b;
         fa = fb;
+    }
+    n
+}
+
+/// The simple roots of the quadratic `c` in `(lo, hi)`, sorted, by the
+/// formula that does not cancel: q = −(b + sign(b)·√disc)/2, roots q/a and
+/// c/q. A double root (disc = 0) touches without crossing: none.
+fn quadratic_in(c: &Poly, lo: f64, hi: f64, out: &mut [f64; 4]) -> usize {
+    let (a, b, k) = (c[2], c[1], c[0]);
+    let disc = b * b - 4.0 * a * k;
+    if disc <= 0.0 || !disc.is_finite() {
+        return 0;
+    }
+    let q = -0.5 * (b + disc.sqrt().copysign(b));
+    let (x0, x1) = (q / a, k / q);
+    let (x0, x1) = if x0 <= x1 { (x0, x1) } else { (x1, x0) };
+    let mut n = 0;
+    for x in [x0, x1] {
+        if x > lo && x < hi {
+            out[n] = x;
+            n += 1;
+        }
     }
     n
 }
@@ -88,7 +114,9 @@ fn refine(c: &Poly, degree: usize, d: &Poly, mut a: f64, mut b: f64, fa: f64) ->
         } else {
             0.5 * (a + b)
         };
-        if next == x || b - a <= f64::EPSILON * a.abs().max(b.abs()) {
+        if (next - x).abs() <= 2.0 * f64::EPSILON * x.abs()
+            || b - a <= f64::EPSILON * a.abs().max(b.abs())
+        {
             return next;
         }
         x = next;
