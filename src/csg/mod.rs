@@ -207,13 +207,13 @@ impl Csg {
         st: &mut Stats,
         sc: &mut Scratch,
     ) {
-        let n = &self.nodes[node as usize];
-        if n.bounds.is_bounded() {
-            st.bound_tests += 1;
-            if !n.bounds.hit(ray, tmin, tmax) {
-                st.bound_culled += 1;
-                return;
-            }
+        // Every box is tested, unbounded ones too: a half-space's box still
+        // culls rays that never reach its side, and a box that is empty
+        // (a disjoint intersection) at worst lets the spans be computed.
+        st.bound_tests += 1;
+        if !self.nodes[node as usize].bounds.hit(ray, tmin, tmax) {
+            st.bound_culled += 1;
+            return;
         }
         self.push_spans_within(node, ray, tmin, tmax, st, sc)
     }
@@ -357,18 +357,18 @@ impl Csg {
         }
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
         for &c in ch {
-            let b = &self.nodes[c as usize].bounds;
-            if !b.is_bounded() {
-                order.push((tmin, c));
-                continue;
-            }
             st.bound_tests += 1;
-            match b.entry(ray, tmin, tmax) {
+            match self.nodes[c as usize].bounds.entry(ray, tmin, tmax) {
                 Some(t) => order.push((t, c)),
                 None => st.bound_culled += 1,
             }
         }
-        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // Entries are never NaN (the box test keeps `tmin` over NaN).
+        order.sort_unstable_by(|a, b| {
+            (a.0, a.1)
+                .partial_cmp(&(b.0, b.1))
+                .unwrap_or(std::cmp::Ordering::Equal)
+        });
         for (entry, c) in order {
             if entry > cut(&sc.stack[base..]) {
                 break;
@@ -470,12 +470,17 @@ impl Scratch {
         }
         let scale = ray.origin.abs().max_element();
         // A union of lists apart by more than the coincidence bound is the
-        // two lists one after the other: the common case of a walk in ray
-        // order.
+        // two lists one after the other, in either order: the common case.
         if op == Op::Union {
             let gap_after =
                 |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
             if gap_after(&a[a.len() - 1], &b[0]) {
+                return;
+            }
+            // B wholly before A (a part in front of a floor): swap the two.
+            if gap_after(&b[b.len() - 1], &a[0]) {
+                let nb = b.len();
+                self.stack[base..].rotate_right(nb);
                 return;
             }
         }
