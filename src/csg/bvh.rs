@@ -3,8 +3,8 @@
 //! only at the children whose boxes it meets: O(log n + hits) box tests
 //! instead of n.
 //!
-//! Built once, by splitting the children at the median of their box
-//! centres along the widest axis, down to leaves of at most [`LEAF`].
+//! Built once, top down, splitting the children where the surface-area
+//! heuristic is least, down to leaves of at most [`LEAF`].
 
 use crate::geometry::{Aabb, Ray};
 use crate::stats::Stats;
@@ -61,21 +61,7 @@ impl Bvh {
             self.item_bounds.extend(items.iter().map(|(_, b)| *b));
             return;
         }
-        let centres = items
-            .iter()
-            .fold(Aabb::EMPTY, |a, (_, b)| a.include(b.center()));
-        let ext = centres.max - centres.min;
-        let axis = if ext.x >= ext.y && ext.x >= ext.z {
-            0
-        } else if ext.y >= ext.z {
-            1
-        } else {
-            2
-        };
-        let mid = items.len() / 2;
-        items.select_nth_unstable_by(mid, |a, b| {
-            a.1.center()[axis].total_cmp(&b.1.center()[axis])
-        });
+        let mid = sah_split(items);
         let left = self.nodes.len();
         for _ in 0..2 {
             self.nodes.push(BvhNode {
@@ -176,8 +162,15 @@ impl Bvh {
                     }
                 } else {
                     for c in [n.start, n.start + 1] {
-                        if let Some(e) = test(&self.nodes[c as usize].bounds, st) {
-                            pair.push((e, c, false));
+                        let child = &self.nodes[c as usize];
+                        if let Some(e) = test(&child.bounds, st) {
+                            // A leaf of one child has that child's box:
+                            // it is the child, with no second test.
+                            if child.count == 1 {
+                                pair.push((e, child.start, true));
+                            } else {
+                                pair.push((e, c, false));
+                            }
                         }
                     }
                 }
@@ -201,6 +194,51 @@ impl Bvh {
             }
         }
     }
+}
+
+/// Surface area of a box: the chance a random ray that meets its parent
+/// meets it is in proportion to it.
+fn area(b: &Aabb) -> f64 {
+    let e = b.max - b.min;
+    e.x * e.y + e.y * e.z + e.z * e.x
+}
+
+/// Orders `items` and returns where to split them: along the axis and at
+/// the place, in the order of box centres, that minimise the surface-area
+/// heuristic `area(left)·n_left + area(right)·n_right`. Ties keep the
+/// earlier axis and the more even split, so the tree depends only on the
+/// input.
+fn sah_split(items: &mut [(u32, Aabb)]) -> usize {
+    let n = items.len();
+    let by_centre = |axis: usize| {
+        move |a: &(u32, Aabb), b: &(u32, Aabb)| {
+            a.1.center()[axis]
+                .total_cmp(&b.1.center()[axis])
+                .then(a.0.cmp(&b.0))
+        }
+    };
+    let mut best = (f64::INFINITY, 0usize, n / 2);
+    let mut right = vec![0.0; n];
+    for axis in 0..3 {
+        items.sort_by(by_centre(axis));
+        let mut acc = Aabb::EMPTY;
+        for i in (1..n).rev() {
+            acc = acc.union(&items[i].1);
+            right[i] = area(&acc) * (n - i) as f64;
+        }
+        let mut acc = Aabb::EMPTY;
+        for i in 1..n {
+            acc = acc.union(&items[i - 1].1);
+            let cost = area(&acc) * i as f64 + right[i];
+            let even = (2 * i).abs_diff(n) < (2 * best.2).abs_diff(n);
+            if cost < best.0 || (cost == best.0 && axis == best.1 && even) {
+                best = (cost, axis, i);
+            }
+        }
+    }
+    let (_, axis, mid) = best;
+    items.sort_by(by_centre(axis));
+    mid
 }
 
 #[cfg(test)]
