@@ -10,15 +10,16 @@ use glam::DVec3;
 
 pub fn spans(o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     let a = d.length_squared();
+    let inv_a = 1.0 / a;
     let b = o.dot(d); // half the linear coefficient
-    let l = o - (b / a) * d; // the line's closest point to the centre
+    let l = o - (b * inv_a) * d; // the line's closest point to the centre
     let disc = a * (1.0 - l.length_squared());
     if disc <= 0.0 || !disc.is_finite() {
         return;
     }
     let c = o.length_squared() - 1.0;
     let q = -(b + disc.sqrt().copysign(b));
-    let (t0, t1) = (q / a, c / q);
+    let (t0, t1) = (q * inv_a, c / q);
     let (t0, t1) = if t0 < t1 { (t0, t1) } else { (t1, t0) };
     if t0 < t1 {
         emit((t0, 0, t1, 0));
