@@ -111,8 +111,9 @@ impl Shape {
     }
 
     /// A tight world box of the solid under `m`: exact for spheres
-    /// (ellipsoids) and cone frusta (the hull of two elliptic discs), the
-    /// transformed object box otherwise.
+    /// (ellipsoids), cone frusta (the hull of two elliptic discs) and tori
+    /// (a circle swept by a ball), one-sided for half-spaces with an
+    /// axis-aligned plane, the transformed object box for cubes.
     pub fn world_bounds(&self, m: &DAffine3) -> Aabb {
         let col = |i: usize| m.matrix3.col(i);
         match *self {
@@ -129,7 +130,30 @@ impl Shape {
                 let c1 = m.transform_point3(DVec3::new(0.0, 0.0, z0 + 1.0));
                 Aabb::new(c0 - e * r0, c0 + e * r0).union(&Aabb::new(c1 - e * r1, c1 + e * r1))
             }
-            Shape::Halfspace => Aabb::EVERYTHING,
+            Shape::Torus { minor } => {
+                // The torus is the core circle ⊕ a ball of radius `minor`,
+                // and a linear map keeps Minkowski sums: the half-extents
+                // add, the ellipse's √(u² + v²) and the ellipsoid's
+                // minor·|row|.
+                let (u, v, w) = (col(0), col(1), col(2));
+                let e = (u * u + v * v).powf(0.5) + minor * (u * u + v * v + w * w).powf(0.5);
+                Aabb::new(m.translation - e, m.translation + e)
+            }
+            Shape::Halfspace => {
+                // Bounded on one side when the plane is axis-aligned (a
+                // floor): the solid is n·(p − c) ≤ 0 for the world normal n.
+                let n = m.matrix3.inverse().transpose() * DVec3::Z;
+                let mut b = Aabb::EVERYTHING;
+                let axes = (0..3).filter(|&i| n[i] != 0.0).collect::<Vec<_>>();
+                if let [i] = axes[..] {
+                    if n[i] > 0.0 {
+                        b.max[i] = m.translation[i];
+                    } else {
+                        b.min[i] = m.translation[i];
+                    }
+                }
+                b
+            }
             _ => {
                 let b = self.object_bounds();
                 let mut out = Aabb::EMPTY;

@@ -41,6 +41,23 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     let bxy = p.x * u.x + p.y * u.y;
     let axy = u.x * u.x + u.y * u.y;
     let cxy = p.x * p.x + p.y * p.y;
+    // The solid lies where 1 − r ≤ ρ ≤ 1 + r (ρ the distance from the
+    // axis). ρ² along the clipped segment is a convex quadratic: if even
+    // its largest value (at an end) is inside the hole, or its smallest
+    // beyond the rim, the line misses, with no quartic to solve. Through
+    // the hole of a ring seen face on, this is most rays.
+    let rho2 = |s: f64| cxy + s * (2.0 * bxy + s * axy);
+    let (inner, outer) = ((1.0 - minor) * (1.0 - minor), (1.0 + minor) * (1.0 + minor));
+    let s_min = if axy > 0.0 {
+        (-bxy / axy).clamp(0.0, span)
+    } else {
+        0.0
+    };
+    // A margin of a few ulps keeps grazing rays for the exact test.
+    let margin = 1e-12;
+    if rho2(0.0).max(rho2(span)) < inner * (1.0 - margin) || rho2(s_min) > outer * (1.0 + margin) {
+        return;
+    }
     // (s² + 2b s + c)² − 4(axy s² + 2 bxy s + cxy), |u| = 1.
     let poly: Poly = [
         c * c - 4.0 * cxy,
