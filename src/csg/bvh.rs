@@ -14,6 +14,7 @@ use smallvec::SmallVec;
 pub const MIN_CHILDREN: usize = 8;
 /// The most children a leaf holds.
 pub const LEAF: usize = 2;
+const _: () = assert!(LEAF <= 2, "the traversal keeps at most two boxes a node");
 
 #[derive(Clone, Debug, PartialEq)]
 struct BvhNode {
@@ -153,11 +154,16 @@ impl Bvh {
                     continue;
                 }
                 let n = &self.nodes[i as usize];
-                let mut pair: SmallVec<[(f64, u32, bool); 2]> = SmallVec::new();
+                // At most two boxes (LEAF = 2): test both, then push the
+                // farther first so that the nearer pops first; those
+                // beginning beyond the cut go straight to the skipped.
+                let mut found = [(0.0, 0u32, false); 2];
+                let mut m = 0;
                 if n.count > 0 {
                     for k in n.start..n.start + n.count {
                         if let Some(e) = test(&self.item_bounds[k as usize], st) {
-                            pair.push((e, k, true));
+                            found[m] = (e, k, true);
+                            m += 1;
                         }
                     }
                 } else {
@@ -166,17 +172,25 @@ impl Bvh {
                         if let Some(e) = test(&child.bounds, st) {
                             // A leaf of one child has that child's box:
                             // it is the child, with no second test.
-                            if child.count == 1 {
-                                pair.push((e, child.start, true));
+                            found[m] = if child.count == 1 {
+                                (e, child.start, true)
                             } else {
-                                pair.push((e, c, false));
-                            }
+                                (e, c, false)
+                            };
+                            m += 1;
                         }
                     }
                 }
-                // Farther first onto the stack, so the nearer pops first.
-                pair.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(b.1.cmp(&a.1)));
-                stack.extend(pair);
+                if m == 2 && (found[0].0, found[0].1) < (found[1].0, found[1].1) {
+                    found.swap(0, 1);
+                }
+                for f in &found[..m] {
+                    if f.0 > cut {
+                        skipped.push(*f);
+                    } else {
+                        stack.push(*f);
+                    }
+                }
             }
             // Whatever was skipped but now begins within the cut goes back.
             let before = skipped.len();
