@@ -102,7 +102,7 @@ fn one_normal_per_shaded_hit_and_none_for_misses() {
 }
 
 #[test]
-fn no_span_list_of_any_example_model_goes_to_the_heap() {
+fn no_span_query_of_any_example_model_allocates() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     for entry in std::fs::read_dir(root.join("models")).unwrap() {
         let path = entry.unwrap().path();
@@ -127,4 +127,29 @@ fn no_span_list_of_any_example_model_goes_to_the_heap() {
         let s = stats(dir.path(), "s.json");
         assert_eq!(s["span_allocations"], 0, "{}", path.display());
     }
+}
+
+#[test]
+fn a_ray_through_more_spans_than_the_scratch_holds_counts_its_allocation() {
+    // A wall lit through 300 thin transparent slabs: its shadow rays need
+    // the full span list of the slabs' union, more spans than the 256 a
+    // thread reserves.
+    let slabs: String = (0..300)
+        .map(|i| {
+            format!(
+                "translate([{}, -5, -5]) cube([0.1, 10, 10]);\n",
+                i as f64 * 0.2
+            )
+        })
+        .collect();
+    let text = format!(
+        "camera(eye = [65, 0, 0], lookat = [70, 0, 0], fov = 10);\npoint_light([1, 1, 1], position = [-100, 0, 0]);\ntranslate([70, -50, -50]) cube([1, 100, 100]);\ncolor([1, 1, 1, 0.5]) union() {{\n{slabs}}}\n"
+    );
+    let s = counters(&text, "4x3");
+    assert!(s["span_allocations"].as_u64().unwrap() > 0, "{s}");
+    assert_eq!(
+        csgrt::csg::SCRATCH_SPANS,
+        256,
+        "the scene above needs more spans than the scratch holds"
+    );
 }
