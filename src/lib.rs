@@ -16,6 +16,8 @@ pub mod csg;
 pub mod dump;
 pub mod error;
 pub mod geometry;
+#[doc(hidden)]
+pub mod harness;
 pub mod pov;
 pub mod render;
 pub mod scene;

@@ -1,0 +1,53 @@
+//! The fuzzing harness, shared by `fuzz/fuzz_targets/scene.rs` (libFuzzer,
+//! nightly) and `tests/fuzz_corpus.rs` (which replays the kept corpus on
+//! stable in the normal test line).
+
+use crate::error::Error;
+use crate::render::{self, Settings};
+use crate::{dump, pov, syntax, Source};
+
+/// Any bytes → parse → resolve → a tiny render, the mask, the JSON dump and
+/// the POV-Ray export. The first byte picks the format (odd: `.ray`, even:
+/// `.csg`), the rest is the file text. Panics if anything panics, if a
+/// scene error carries no place in the file, or if a render produces a
+/// non-finite sample or the wrong number of bytes.
+pub fn exercise(data: &[u8]) {
+    let Some((&pick, rest)) = data.split_first() else {
+        return;
+    };
+    // The CLI refuses text that is not UTF-8 before parsing.
+    let Ok(text) = std::str::from_utf8(rest) else {
+        return;
+    };
+    let ray = pick & 1 == 1;
+    let name = if ray { "fuzz.ray" } else { "fuzz.csg" };
+    let src = Source::new(name, text);
+    let loaded = if ray {
+        syntax::ray::load_ray(&src)
+    } else {
+        crate::load_csg(&src)
+    };
+    let scene = match loaded {
+        Ok(scene) => scene,
+        Err(Error::Scene(d)) => {
+            let shown = d.to_string();
+            let place = format!("--> {name}:{}:{}", d.line, d.col);
+            assert!(shown.contains(&place), "no place in {shown}");
+            return;
+        }
+        Err(e) => panic!("an error without a place: {e}"),
+    };
+    let s = Settings {
+        width: 6,
+        height: 4,
+        spp: 2,
+        max_depth: 4,
+    };
+    let out = render::render(&scene, &s, &|| {});
+    assert_eq!(out.rgb.len(), 6 * 4 * 3);
+    assert_eq!(out.stats.nonfinite_samples, 0, "a non-finite sample");
+    assert_eq!(render::mask(&scene, &s).len(), 6 * 4);
+    let cam = scene.view(s.width, s.height);
+    let _ = dump::scene_json(&scene, &cam, s.width, s.height).to_string();
+    let _ = pov::scene_sdl(&scene, &cam, s.width, s.height, s.max_depth);
+}

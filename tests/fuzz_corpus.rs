@@ -1,0 +1,36 @@
+//! Replays the fuzzer's kept corpus (`fuzz/corpus/scene`, minimised) and
+//! every input it ever crashed on (`fuzz/regressions`) through the same
+//! harness, on stable, in the normal test line.
+
+use std::path::Path;
+
+fn inputs(dir: &str) -> Vec<std::path::PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+    let mut v: Vec<_> = std::fs::read_dir(&root)
+        .unwrap_or_else(|e| panic!("{}: {e}", root.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    v.sort();
+    v
+}
+
+fn replay(dir: &str, at_least: usize) {
+    let files = inputs(dir);
+    assert!(files.len() >= at_least, "{dir}: {} inputs", files.len());
+    for f in files {
+        let data = std::fs::read(&f).unwrap();
+        if std::panic::catch_unwind(|| csgrt::harness::exercise(&data)).is_err() {
+            panic!("{} fails the harness", f.display());
+        }
+    }
+}
+
+#[test]
+fn the_kept_fuzz_corpus_passes_the_harness() {
+    replay("fuzz/corpus/scene", 100);
+}
+
+#[test]
+fn inputs_that_once_crashed_pass_the_harness() {
+    replay("fuzz/regressions", 1);
+}
