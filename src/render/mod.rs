@@ -51,12 +51,16 @@ pub fn to_byte(v: f64) -> u8 {
 pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Rendered {
     let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
     let shader = Shader::new(scene, s.max_depth);
-    let rows: Vec<(Vec<u8>, Stats)> = (0..s.height)
-        .into_par_iter()
-        .map(|y| {
+    // Each row is written in place by whichever thread takes it; the
+    // counters are sums and maxima, the same in any order.
+    let mut rgb = vec![0u8; 3 * (s.width as usize) * (s.height as usize)];
+    let stats = rgb
+        .par_chunks_mut(3 * s.width as usize)
+        .enumerate()
+        .map(|(y, row)| {
+            let y = y as u32;
             let mut st = Stats::default();
-            let mut row = Vec::with_capacity(3 * s.width as usize);
-            for x in 0..s.width {
+            for (x, px) in (0..s.width).zip(row.chunks_exact_mut(3)) {
                 let mut sum = DVec3::ZERO;
                 for k in 0..s.spp {
                     let (ox, oy) = sampler::offset(x, y, k, s.spp);
@@ -70,19 +74,16 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
                     }
                 }
                 let c = sum / s.spp as f64;
-                row.extend([to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
+                px.copy_from_slice(&[to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
                 st.pixels += 1;
             }
             on_row();
-            (row, st)
+            st
         })
-        .collect();
-    let mut stats = Stats::default();
-    let mut rgb = Vec::with_capacity(3 * (s.width * s.height) as usize);
-    for (row, st) in rows {
-        rgb.extend(row);
-        stats.add(&st);
-    }
+        .reduce(Stats::default, |mut a, b| {
+            a.add(&b);
+            a
+        });
     Rendered {
         width: s.width,
         height: s.height,
