@@ -6,6 +6,7 @@
 //! Built once, top down, splitting the children where the surface-area
 //! heuristic is least, down to leaves of at most [`LEAF`].
 
+use crate::geometry::aabb::AabbPair;
 use crate::geometry::{Aabb, Ray};
 use crate::stats::Stats;
 use smallvec::SmallVec;
@@ -32,6 +33,9 @@ pub struct Bvh {
     items: Vec<u32>,
     /// Their boxes, in the same order.
     item_bounds: Vec<Aabb>,
+    /// For each node, the boxes of its two children (inner) or items
+    /// (leaf; the second lane unused in a leaf of one), tested together.
+    pairs: Vec<AabbPair>,
 }
 
 impl Bvh {
@@ -42,6 +46,7 @@ impl Bvh {
             nodes: Vec::with_capacity(2 * items.len() / LEAF + 1),
             items: Vec::with_capacity(items.len()),
             item_bounds: Vec::with_capacity(items.len()),
+            pairs: Vec::new(),
         };
         bvh.nodes.push(BvhNode {
             bounds: Aabb::EMPTY,
@@ -49,6 +54,18 @@ impl Bvh {
             count: 0,
         });
         bvh.split(0, &mut items);
+        bvh.pairs = bvh
+            .nodes
+            .iter()
+            .map(|n| {
+                let (s, c) = (n.start as usize, n.count as usize);
+                match c {
+                    0 => AabbPair::new(&bvh.nodes[s].bounds, &bvh.nodes[s + 1].bounds),
+                    1 => AabbPair::new(&bvh.item_bounds[s], &Aabb::EMPTY),
+                    _ => AabbPair::new(&bvh.item_bounds[s], &bvh.item_bounds[s + 1]),
+                }
+            })
+            .collect();
         bvh
     }
 
@@ -154,32 +171,34 @@ impl Bvh {
                     continue;
                 }
                 let n = &self.nodes[i as usize];
-                // At most two boxes (LEAF = 2): test both, then push the
-                // farther first so that the nearer pops first; those
-                // beginning beyond the cut go straight to the skipped.
+                // At most two boxes (LEAF = 2), tested together; then the
+                // farther is pushed first so that the nearer pops first,
+                // and those beginning beyond the cut go straight to the
+                // skipped.
+                let entries = self.pairs[i as usize].entries(ray, tmin, tmax);
+                let boxes = if n.count > 0 { n.count as usize } else { 2 };
+                st.bound_tests += boxes as u64;
                 let mut found = [(0.0, 0u32, false); 2];
                 let mut m = 0;
-                if n.count > 0 {
-                    for k in n.start..n.start + n.count {
-                        if let Some(e) = test(&self.item_bounds[k as usize], st) {
-                            found[m] = (e, k, true);
-                            m += 1;
+                for (lane, e) in entries.into_iter().enumerate().take(boxes) {
+                    let Some(e) = e else {
+                        st.bound_culled += 1;
+                        continue;
+                    };
+                    let k = n.start + lane as u32;
+                    found[m] = if n.count > 0 {
+                        (e, k, true)
+                    } else {
+                        // A leaf of one child has that child's box: it is
+                        // the child, with no second test.
+                        let child = &self.nodes[k as usize];
+                        if child.count == 1 {
+                            (e, child.start, true)
+                        } else {
+                            (e, k, false)
                         }
-                    }
-                } else {
-                    for c in [n.start, n.start + 1] {
-                        let child = &self.nodes[c as usize];
-                        if let Some(e) = test(&child.bounds, st) {
-                            // A leaf of one child has that child's box:
-                            // it is the child, with no second test.
-                            found[m] = if child.count == 1 {
-                                (e, child.start, true)
-                            } else {
-                                (e, c, false)
-                            };
-                            m += 1;
-                        }
-                    }
+                    };
+                    m += 1;
                 }
                 if m == 2 && (found[0].0, found[0].1) < (found[1].0, found[1].1) {
                     found.swap(0, 1);
