@@ -6,7 +6,7 @@ exported by csgrt (--export-pov) and rendered by both renderers at the same
 size, one sample per pixel, shadows on, with one thread and with all cores
 (csgrt --threads N, POV-Ray +WTN). Runs alternate between the renderers and
 the thread counts, and the median of --runs is kept (the speed-up on all cores
-also from the fastest runs); times are wall-clock for the whole process,
+also as the median of each round's own ratio); times are wall-clock for the whole process,
 parse included, and render only: csgrt's render_seconds (--stats-json)
 against POV-Ray's own "Trace Time". The table gives the times, the ratio
 csgrt / POV-Ray,
@@ -254,9 +254,11 @@ def main():
                     pr.append(pov_trace_seconds(err))
             for threads in (1, cores):
                 row[threads] = tuple(statistics.median(x) for x in times[threads])
-            # The fastest render of each: the run least disturbed by anything
+            # Each round's 1-thread and all-core renders ran a moment apart: the
+            # median of their ratios is the paired estimate of the speed-up.
             # else on the machine (see the note under the table).
-            row["fastest"] = {t: min(times[t][2]) for t in (1, cores)}
+            row["paired"] = statistics.median(
+                one / many for one, many in zip(times[1][2], times[cores][2]))
             rows.append(row)
             c1, p1, r1, t1 = row[1]
             print(f"{name}: process {c1:.3f} s vs {p1:.3f} s ({c1 / p1:.2f}); "
@@ -274,15 +276,15 @@ def main():
         "and the share of rays whose tests are at most 3× the primitives they enter (or 3 for a",
         "ray that enters none).",
         "",
-        f"The speed-up on {cores} threads is given twice: from the median render times, and from",
-        "the fastest render of each. On a machine shared with other work (a virtual machine,",
-        "say) a run that uses every core is the one that loses time whenever anything else",
-        "runs, and the median can carry that; the fastest runs show what the renderer itself",
-        "does with the cores.",
+        f"The speed-up on {cores} threads is given twice: from the median render times, and as the",
+        "median over rounds of each round's own ratio (its 1-thread and all-core renders ran a",
+        "moment apart). On a machine shared with other work (a virtual machine, say) the run",
+        "that uses every core loses time whenever anything else runs, and the machine's speed",
+        "drifts from minute to minute; pairing cancels the drift.",
         "",
         "| scene | 1 thread: csgrt process | POV-Ray process | ratio | csgrt render | POV-Ray trace | ratio "
         f"| {cores} threads: csgrt render | POV-Ray trace | ratio | csgrt speed-up (medians) "
-        "| (fastest runs) | primary rays/s (1 thread) "
+        "| (paired rounds) | primary rays/s (1 thread) "
         "| primitive tests per primary ray (shadows included) | first-hit tests per primitive entered "
         "| rays within 3× |",
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|",
@@ -294,7 +296,7 @@ def main():
         lines.append(
             f"| {r['scene']} | {c1:.3f} s | {p1:.3f} s | {c1 / p1:.2f} | {r1:.3f} s | {t1:.3f} s | "
             f"{r1 / t1:.2f} | {rn:.3f} s | {tn:.3f} s | {rn / tn:.2f} | {r1 / rn:.2f}× | "
-            f"{r['fastest'][1] / r['fastest'][cores]:.2f}× | "
+            f"{r['paired']:.2f}× | "
             f"{s['primary_rays'] / r1:,.0f} | {s['primitive_tests'] / s['primary_rays']:.2f} | "
             f"{r['entered']['tests_per_entered']:.2f} | {100 * r['entered']['rays_within_3x']:.1f} % |"
         )
