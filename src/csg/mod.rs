@@ -16,7 +16,7 @@ use crate::stats::Stats;
 use bvh::Bvh;
 use glam::DVec3;
 use smallvec::SmallVec;
-use spans::{Boundary, Op, Span};
+use spans::{Boundary, Op, Quick, Span};
 
 /// A primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]
@@ -453,20 +453,15 @@ impl Scratch {
     /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`.
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         let (a, b) = self.stack[base..].split_at(top - base);
-        match op {
-            // Nothing to do: A stays, or B is the whole result and already
-            // sits where A would be.
-            Op::Union | Op::Difference if b.is_empty() => return,
-            Op::Union if a.is_empty() => return,
-            Op::Intersection | Op::Difference if a.is_empty() => {
+        match spans::quick(op, a, b) {
+            // Nothing to do: A stays, or B is the whole result and, A being
+            // empty, already sits where A would be.
+            Some(Quick::A | Quick::B) => return,
+            Some(Quick::Empty) => {
                 self.stack.truncate(base);
                 return;
             }
-            Op::Intersection if b.is_empty() => {
-                self.stack.truncate(base);
-                return;
-            }
-            _ => {}
+            None => {}
         }
         let scale = ray.origin.abs().max_element();
         // A union of lists apart by more than the coincidence bound is the

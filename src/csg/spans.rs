@@ -96,15 +96,35 @@ pub fn combine(op: Op, a: &[Span], b: &[Span], scale: f64) -> Vec<Span> {
     out
 }
 
+/// What `a op b` is when a side is empty, with no sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quick {
+    /// `a` itself.
+    A,
+    /// `b` itself (`a` is empty).
+    B,
+    Empty,
+}
+
+/// The answer to `a op b` that needs no sweep, or `None` when both lists
+/// hold spans.
+pub fn quick(op: Op, a: &[Span], b: &[Span]) -> Option<Quick> {
+    match op {
+        Op::Union if a.is_empty() => Some(Quick::B),
+        Op::Union | Op::Difference if b.is_empty() => Some(Quick::A),
+        Op::Intersection | Op::Difference if a.is_empty() => Some(Quick::Empty),
+        Op::Intersection if b.is_empty() => Some(Quick::Empty),
+        _ => None,
+    }
+}
+
 /// [`combine`], appending the result to `out`.
 pub fn combine_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span>) {
-    // Quick answers that need no sweep.
-    match op {
-        Op::Union if a.is_empty() => return out.extend_from_slice(b),
-        Op::Union | Op::Difference if b.is_empty() => return out.extend_from_slice(a),
-        Op::Intersection | Op::Difference if a.is_empty() => return,
-        Op::Intersection if b.is_empty() => return,
-        _ => {}
+    match quick(op, a, b) {
+        Some(Quick::A) => return out.extend_from_slice(a),
+        Some(Quick::B) => return out.extend_from_slice(b),
+        Some(Quick::Empty) => return,
+        None => {}
     }
     let (mut ia, mut ib) = (0usize, 0usize);
     let (mut in_a, mut in_b) = (false, false);
