@@ -160,19 +160,28 @@ fn a_closed_pipe_on_trace_rays_output_ends_quietly() {
     assert_eq!(String::from_utf8_lossy(&o.stderr), "");
 }
 
-#[test]
-fn a_million_nested_braces_end_in_an_error_not_a_stack_overflow() {
-    let n = 1_000_000;
-    let text = "group() {".repeat(n) + &"}".repeat(n);
-    let (dir, _) = scene("deep.csg", &text);
-    let r = csgrt(dir.path(), &["deep.csg", "-q"]);
+/// A one-line file too deep for the parser: status 2, the message, its
+/// place on line 1, a short echo of the line, and nothing written.
+fn assert_too_deep_to_parse(name: &str, text: &str) {
+    let (dir, _) = scene(name, text);
+    let r = csgrt(dir.path(), &[name, "-q"]);
     assert_eq!(r.status, 2, "{}", r.stderr);
     let first: Vec<&str> = r.stderr.lines().take(2).collect();
     assert_eq!(first[0], "error: the file nests too deeply to be parsed");
-    assert!(first[1].starts_with(" --> deep.csg:1:"), "{}", first[1]);
-    // The echoed line is a window, not ten megabytes.
+    assert!(
+        first[1].starts_with(&format!(" --> {name}:1:")),
+        "{}",
+        first[1]
+    );
+    // The echoed line is a window, not megabytes.
     assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
-    assert_eq!(files(dir.path()), ["deep.csg"]);
+    assert_eq!(files(dir.path()), [name]);
+}
+
+#[test]
+fn a_million_nested_braces_end_in_an_error_not_a_stack_overflow() {
+    let n = 1_000_000;
+    assert_too_deep_to_parse("deep.csg", &("group() {".repeat(n) + &"}".repeat(n)));
 }
 
 #[test]
@@ -189,15 +198,7 @@ fn an_unwritable_output_is_a_clear_io_error() {
 
 #[test]
 fn a_million_statements_chained_without_braces_end_in_an_error() {
-    let text = "union() ".repeat(1_000_000) + "cube();\n";
-    let (dir, _) = scene("chain.csg", &text);
-    let r = csgrt(dir.path(), &["chain.csg", "-q"]);
-    assert_eq!(r.status, 2, "{}", r.stderr);
-    let first: Vec<&str> = r.stderr.lines().take(2).collect();
-    assert_eq!(first[0], "error: the file nests too deeply to be parsed");
-    assert!(first[1].starts_with(" --> chain.csg:1:"), "{}", first[1]);
-    assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
-    assert_eq!(files(dir.path()), ["chain.csg"]);
+    assert_too_deep_to_parse("chain.csg", &("union() ".repeat(1_000_000) + "cube();\n"));
 }
 
 #[test]
