@@ -1,0 +1,729 @@
+#!/usr/bin/env python3
+"""The oracle's own reader of csgrt scene files (`.csg` and `.ray`).
+
+It shares nothing with csgrt's Rust code: it follows the product contract
+(the language reference in the README and OpenSCAD's meaning of each
+statement) and builds, in plain Python, what the file says:
+
+* a tree of leaves (sphere, cube, cylinder/cone, torus, halfspace), each in
+  its own OpenSCAD coordinates (a cube of `size` from the origin or centred,
+  a cylinder from z = 0 to h, ...) with the 4x4 matrix that places it in the
+  world and its material, under `union`/`intersection`/`difference` nodes;
+* the camera (the file's, or the default framing below), the background and
+  the lights.
+
+OpenSCAD's meanings used here: `rotate(a = [x, y, z])` turns about x, then
+y, then z (R = Rz Ry Rx); `rotate(a, v)` about the axis v; `rotate(a)`
+about z; `mirror(v)` reflects in the plane through the origin with normal v
+(a zero v is no mirror); `multmatrix` takes rows; a diameter beats a radius,
+`r1`/`r2` beat `r`; `color(c, alpha)`: alpha (or c's fourth entry) below 1
+transmits 1 - alpha without bending; OpenSCAD's `color([-1, -1, -1, -1])`
+is no colour. `%` and `*` leave a subtree out; `!` renders only that one.
+A solid of zero or negative size, or flattened by a singular transform, is
+empty.
+
+csgrt's documented defaults: OpenSCAD's Cornfield colours (faces #f9d72c,
+background #ffffe5) and, without lights, an ambient term with a key and a
+fill light; without a camera, the frame of the scene's box from OpenSCAD's
+default view direction (rotation [55, 0, 25]), the eye pulled back until
+the box's eight corners lie in the central 90 % of a 30 degree view.
+
+The scene's box, for that framing, is derived here the same way the
+README's language reference states it: a leaf's exact world box (an
+ellipsoid's or a disc's extent, a torus as circle + ball, a box's corners,
+an axis-aligned halfspace bounded on one side), unions join boxes,
+intersections cut them, a difference keeps its first child's; when that box
+is unbounded (a floor), the union of the bounded leaves' boxes is framed.
+
+Usage as a module: `read(path, width, height)` -> Scene.
+"""
+
+import math
+import re
+
+import numpy as np
+
+# --------------------------------------------------------------------------
+# Errors
+# --------------------------------------------------------------------------
+
+
+class ReadError(Exception):
+    def __init__(self, path, line, col, msg):
+        super().__init__(f"{path}:{line}:{col}: {msg}")
+
+
+# --------------------------------------------------------------------------
+# The .csg text: tokens and statements
+# --------------------------------------------------------------------------
+
+TOKEN = re.compile(
+    r"""
+    (?P<ws>[ \t\r\n]+)
+  | (?P<comment>//[^\n]*|/\*.*?\*/)
+  | (?P<number>[-+]?(?:(?:inf|nan)(?![A-Za-z0-9_])|(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?))
+  | (?P<string>"(?:[^"\\]|\\.)*")
+  | (?P<name>[$A-Za-z_][A-Za-z0-9_]*)
+  | (?P<punct>[()\[\]{},;=#%*!])
+    """,
+    re.VERBOSE | re.DOTALL,
+)
+
+UNDEF = object()
+
+
+class Stmt:
+    def __init__(self, name, args, children, mods, line, col):
+        self.name, self.args, self.children, self.mods = name, args, children, mods
+        self.line, self.col = line, col
+
+
+class Parser:
+    def __init__(self, path, text):
+        self.path = path
+        self.toks = []
+        pos, line, lstart = 0, 1, 0
+        while pos < len(text):
+            m = TOKEN.match(text, pos)
+            if not m:
+                raise ReadError(path, line, pos - lstart + 1, f"unexpected character {text[pos]!r}")
+            kind = m.lastgroup
+            if kind not in ("ws", "comment"):
+                self.toks.append((kind, m.group(), line, pos - lstart + 1))
+            for k, ch in enumerate(m.group()):
+                if ch == "\n":
+                    line, lstart = line + 1, pos + k + 1
+            pos = m.end()
+        self.toks.append(("eof", "", line, pos - lstart + 1))
+        self.i = 0
+
+    def peek(self):
+        return self.toks[self.i]
+
+    def take(self, value=None, kind=None):
+        t = self.toks[self.i]
+        if (value is not None and t[1] != value) or (kind is not None and t[0] != kind):
+            want = value if value is not None else kind
+            raise ReadError(self.path, t[2], t[3], f"expected {want!r}, found {t[1]!r}")
+        self.i += 1
+        return t
+
+    def file(self):
+        out = []
+        while self.peek()[0] != "eof":
+            if self.peek()[1] == ";":
+                self.i += 1
+                continue
+            out.append(self.statement())
+        return out
+
+    def statement(self):
+        mods = ""
+        while self.peek()[1] in ("#", "%", "*", "!"):
+            mods += self.take()[1]
+        kind, name, line, col = self.take(kind="name")
+        self.take("(")
+        args = []
+        while self.peek()[1] != ")":
+            if self.peek()[0] == "name" and self.toks[self.i + 1][1] == "=":
+                key = self.take()[1]
+                self.take("=")
+                args.append((key, self.value()))
+            else:
+                args.append((None, self.value()))
+            if self.peek()[1] == ",":
+                self.i += 1
+            elif self.peek()[1] != ")":
+                t = self.peek()
+                raise ReadError(self.path, t[2], t[3], f"expected ',' or ')', found {t[1]!r}")
+        self.take(")")
+        children = []
+        t = self.peek()
+        if t[1] == ";":
+            self.i += 1
+        elif t[1] == "{":
+            self.i += 1
+            while self.peek()[1] != "}":
+                if self.peek()[1] == ";":
+                    self.i += 1
+                    continue
+                if self.peek()[0] == "eof":
+                    raise ReadError(self.path, t[2], t[3], "this block is never closed")
+                children.append(self.statement())
+            self.i += 1
+        else:
+            children.append(self.statement())
+        return Stmt(name, args, children, mods, line, col)
+
+    def value(self):
+        kind, text, line, col = self.peek()
+        self.i += 1
+        if kind == "number":
+            return float(text)
+        if kind == "string":
+            return re.sub(r"\\(.)", r"\1", text[1:-1])
+        if kind == "name" and text in ("true", "false"):
+            return text == "true"
+        if kind == "name" and text == "undef":
+            return UNDEF
+        if text == "[":
+            out = []
+            while self.peek()[1] != "]":
+                out.append(self.value())
+                if self.peek()[1] == ",":
+                    self.i += 1
+                elif self.peek()[1] != "]":
+                    t = self.peek()
+                    raise ReadError(self.path, t[2], t[3], f"expected ',' or ']', found {t[1]!r}")
+            self.i += 1
+            return out
+        raise ReadError(self.path, line, col, f"expected a value, found {text!r}")
+
+
+# --------------------------------------------------------------------------
+# Meaning
+# --------------------------------------------------------------------------
+
+CORNFIELD = dict(
+    color=np.array([249, 215, 44]) / 255.0, ka=0.2, kd=0.8, ks=0.3, ns=30.0, kr=0.0, kt=0.0, ior=1.5
+)
+BACKGROUND = np.array([1.0, 1.0, 0.898])
+
+
+def default_lights():
+    def unit(v):
+        v = np.array(v, dtype=float)
+        return v / np.linalg.norm(v)
+
+    return [
+        ("ambient", np.ones(3), None),
+        ("directional", np.full(3, 0.8), -unit([-0.35, -0.6, 0.72])),
+        ("directional", np.full(3, 0.35), -unit([1.0, -0.25, 0.15])),
+    ]
+
+
+PARAMS = {
+    "cube": ["size", "center"],
+    "sphere": ["r", "d"],
+    "cylinder": ["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
+    "torus": ["R", "r"],
+    "halfspace": ["normal", "offset"],
+    "translate": ["v"],
+    "rotate": ["a", "v"],
+    "scale": ["v"],
+    "mirror": ["v"],
+    "multmatrix": ["m"],
+    "color": ["c", "alpha"],
+    "material": ["color", "ka", "kd", "ks", "ns", "kr", "kt", "ior"],
+    "union": [],
+    "intersection": [],
+    "difference": [],
+    "group": [],
+    "render": ["convexity"],
+    "camera": ["eye", "lookat", "up", "fov"],
+    "background": ["color"],
+    "ambient_light": ["color"],
+    "directional_light": ["color", "direction"],
+    "point_light": ["color", "position"],
+}
+SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace")
+TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
+SCENE = ("camera", "background", "ambient_light", "directional_light", "point_light")
+
+
+class Leaf:
+    """A primitive in its OpenSCAD coordinates, placed by `matrix`."""
+
+    def __init__(self, kind, params, matrix, material, stmt):
+        self.kind, self.params, self.matrix, self.material = kind, params, matrix, material
+        self.line, self.col = stmt.line, stmt.col
+        self.id = None
+
+
+class Op:
+    def __init__(self, op, children):
+        self.op, self.children = op, children
+
+
+class Scene:
+    def __init__(self):
+        self.root = None
+        self.camera = None  # (eye, lookat, up, fov) as the file says
+        self.background = BACKGROUND
+        self.lights = []
+        self.leaves = []
+
+    def view(self, width, height):
+        """(eye, lookat, up, fov) to render at width x height."""
+        return self.camera if self.camera else framing(self, width, height)
+
+
+def bind(path, s):
+    """The statement's arguments by name ($-variables are OpenSCAD's
+    facet settings; an explicit $fn of 3 to 8 on a round solid is a shape
+    the oracle cannot build yet)."""
+    names = PARAMS[s.name]
+    out, k = {}, 0
+    for key, v in s.args:
+        if key is None:
+            if k >= len(names):
+                raise ReadError(path, s.line, s.col, f"too many arguments for {s.name}")
+            key = names[k]
+            k += 1
+        elif key.startswith("$"):
+            if key == "$fn" and isinstance(v, float) and 3 <= v <= 8 and s.name in ("sphere", "cylinder"):
+                raise ReadError(path, s.line, s.col, f"$fn = {v:g} makes {s.name} a polyhedron; not in the oracle yet")
+            continue
+        elif key not in names:
+            raise ReadError(path, s.line, s.col, f"unknown argument {key} for {s.name}")
+        if v is not UNDEF:
+            out[key] = v
+    return out
+
+
+def num(path, s, a, key, default=None):
+    v = a.get(key, default)
+    if v is None:
+        return None
+    if isinstance(v, bool) or not isinstance(v, float) or not math.isfinite(v):
+        raise ReadError(path, s.line, s.col, f"{key} of {s.name} must be a finite number")
+    return v
+
+
+def vec(path, s, a, key, default=None, scalar=False, sizes=(3,)):
+    v = a.get(key, default)
+    if v is None:
+        return None
+    if scalar and isinstance(v, float):
+        return np.full(3, v)
+    if (
+        not isinstance(v, list)
+        or len(v) not in sizes
+        or not all(isinstance(x, float) and not isinstance(x, bool) and math.isfinite(x) for x in v)
+    ):
+        raise ReadError(path, s.line, s.col, f"{key} of {s.name} must be a vector of {sizes} numbers")
+    return np.array(v + [0.0] * (3 - len(v)) if len(v) < 3 else v, dtype=float)
+
+
+def sin_cos_deg(deg):
+    """sin and cos of degrees, exact at multiples of 90 (as OpenSCAD)."""
+    r = math.fmod(deg, 360.0)
+    if r < 0:
+        r += 360.0
+    if r % 90.0 == 0.0:
+        return [(0.0, 1.0), (1.0, 0.0), (0.0, -1.0), (-1.0, 0.0)][int(r // 90) % 4]
+    return math.sin(math.radians(r)), math.cos(math.radians(r))
+
+
+def axis_rotation(axis, deg):
+    """Rodrigues: right-handed turn by deg about the unit axis."""
+    s, c = sin_cos_deg(deg)
+    x, y, z = axis
+    t = 1 - c
+    return np.array(
+        [
+            [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
+            [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
+            [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
+        ]
+    )
+
+
+def affine(m3=None, t=None):
+    m = np.eye(4)
+    if m3 is not None:
+        m[:3, :3] = m3
+    if t is not None:
+        m[:3, 3] = t
+    return m
+
+
+class Reader:
+    def __init__(self, path):
+        self.path = path
+        self.scene = Scene()
+
+    def err(self, s, msg):
+        return ReadError(self.path, s.line, s.col, msg)
+
+    def top(self, stmts):
+        roots = [s for s in self.walk_bang(stmts)]
+        if roots:
+            stmts_used = [roots[0]]
+        else:
+            stmts_used = stmts
+        kids = []
+        for s in stmts:
+            if s.name in SCENE:
+                if s.mods:
+                    raise self.err(s, "a scene statement takes no modifiers")
+                self.scene_statement(s)
+        for s in stmts_used:
+            if s.name in SCENE:
+                continue
+            n = self.node(s, np.eye(4), dict(CORNFIELD))
+            if n is not None:
+                kids.append(n)
+        self.scene.root = self.union(kids)
+        if not self.scene.lights:
+            self.scene.lights = default_lights()
+
+    def walk_bang(self, stmts):
+        for s in stmts:
+            if "*" in s.mods or "%" in s.mods:
+                continue
+            if "!" in s.mods:
+                yield s
+            yield from self.walk_bang(s.children)
+
+    @staticmethod
+    def union(kids):
+        if not kids:
+            return None
+        return kids[0] if len(kids) == 1 else Op("union", kids)
+
+    def node(self, s, xf, mat, bang_ok=True):
+        if "%" in s.mods or "*" in s.mods:
+            return None
+        name = s.name
+        if name in SCENE:
+            raise self.err(s, f"{name} must stand at the top level")
+        if name not in PARAMS:
+            raise self.err(s, f"the oracle does not know {name}")
+        a = bind(self.path, s)
+        if name in SOLIDS:
+            if s.children:
+                raise self.err(s, f"{name} takes no children")
+            return self.solid(s, a, xf, mat)
+        kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
+        if name in TRANSFORMS:
+            return self.union(kids(xf @ self.transform(s, a), mat))
+        if name in ("color", "material"):
+            return self.union(kids(xf, self.appearance(s, a, mat)))
+        if name == "intersection":
+            parts = [self.node(c, xf, mat) for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+            if not parts or any(p is None for p in parts):
+                return None
+            return parts[0] if len(parts) == 1 else Op("intersection", parts)
+        if name == "difference":
+            live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+            if not live:
+                return None
+            first = self.node(live[0], xf, mat)
+            if first is None:
+                return None
+            rest = [k for k in (self.node(c, xf, mat) for c in live[1:]) if k is not None]
+            return first if not rest else Op("difference", [first, self.union(rest)])
+        return self.union(kids(xf, mat))  # union, group, render
+
+    def leaf(self, s, kind, params, xf, mat):
+        if abs(np.linalg.det(xf[:3, :3])) <= 1e-300 or np.linalg.cond(xf[:3, :3]) > 1e15:
+            return None  # flattened: no volume
+        leaf = Leaf(kind, params, xf, dict(mat), s)
+        leaf.id = len(self.scene.leaves)
+        self.scene.leaves.append(leaf)
+        return leaf
+
+    def solid(self, s, a, xf, mat):
+        k = s.name
+        if k == "cube":
+            size = vec(self.path, s, a, "size", 1.0, scalar=True)
+            center = bool(a.get("center", False))
+            if size.min() <= 0:
+                return None
+            return self.leaf(s, k, dict(size=size, center=center), xf, mat)
+        if k == "sphere":
+            d = num(self.path, s, a, "d")
+            r = d / 2 if d is not None else num(self.path, s, a, "r", 1.0)
+            if r <= 0:
+                return None
+            return self.leaf(s, k, dict(r=r), xf, mat)
+        if k == "cylinder":
+            g = lambda key: num(self.path, s, a, key)
+            h = g("h") if g("h") is not None else 1.0
+            r = g("d") / 2 if g("d") is not None else (g("r") if g("r") is not None else 1.0)
+            r1 = g("d1") / 2 if g("d1") is not None else (g("r1") if g("r1") is not None else r)
+            r2 = g("d2") / 2 if g("d2") is not None else (g("r2") if g("r2") is not None else r)
+            if min(r1, r2) < 0:
+                raise self.err(s, "a radius of cylinder is negative")
+            if h <= 0 or max(r1, r2) <= 0:
+                return None
+            return self.leaf(s, k, dict(h=h, r1=r1, r2=r2, center=bool(a.get("center", False))), xf, mat)
+        if k == "torus":
+            R = num(self.path, s, a, "R", 2.0)
+            r = num(self.path, s, a, "r", 0.5)
+            if R < 0 or r < 0:
+                raise self.err(s, "a radius of torus is negative")
+            if R == 0 or r == 0:
+                return None
+            if r >= R:
+                raise self.err(s, "the tube radius r of a torus must be smaller than R")
+            return self.leaf(s, k, dict(R=R, r=r), xf, mat)
+        n = vec(self.path, s, a, "normal", [0.0, 0.0, 1.0])
+        if not np.any(n):
+            raise self.err(s, "the normal of a halfspace must not be zero")
+        return self.leaf(s, k, dict(normal=n, offset=num(self.path, s, a, "offset", 0.0)), xf, mat)
+
+    def transform(self, s, a):
+        k = s.name
+        if k == "translate":
+            return affine(t=vec(self.path, s, a, "v", [0.0, 0.0, 0.0], sizes=(2, 3)))
+        if k == "scale":
+            return affine(np.diag(vec(self.path, s, a, "v", 1.0, scalar=True, sizes=(2, 3))))
+        if k == "mirror":
+            n = vec(self.path, s, a, "v", [0.0, 0.0, 0.0], sizes=(2, 3))
+            l2 = float(n @ n)
+            return affine(np.eye(3) - 2 * np.outer(n, n) / l2) if l2 else np.eye(4)
+        if k == "rotate":
+            if "v" in a:
+                axis = vec(self.path, s, a, "v")
+                if not np.any(axis):
+                    raise self.err(s, "the axis of a rotation must not be zero")
+                return affine(axis_rotation(axis / np.linalg.norm(axis), num(self.path, s, a, "a", 0.0)))
+            ang = a.get("a", 0.0)
+            if isinstance(ang, float):
+                ang = np.array([0.0, 0.0, ang])
+            else:
+                ang = vec(self.path, s, a, "a", sizes=(1, 2, 3))
+            e = np.eye(3)
+            return affine(axis_rotation(e[2], ang[2]) @ axis_rotation(e[1], ang[1]) @ axis_rotation(e[0], ang[0]))
+        m = a.get("m")
+        if m is None:
+            return np.eye(4)
+        if not isinstance(m, list) or len(m) not in (3, 4) or any(not isinstance(r, list) or len(r) != 4 for r in m):
+            raise self.err(s, "m of multmatrix must be 3 or 4 rows of 4 numbers")
+        out = np.eye(4)
+        out[: len(m)] = np.array(m, dtype=float)
+        if not np.all(np.isfinite(out)):
+            raise self.err(s, "m of multmatrix must be finite")
+        if len(m) == 4 and list(out[3]) != [0.0, 0.0, 0.0, 1.0]:
+            raise self.err(s, "the last row of a multmatrix must be [0, 0, 0, 1]")
+        return out
+
+    def appearance(self, s, a, mat):
+        m = dict(mat)
+        if s.name == "color":
+            c = vec(self.path, s, a, "c", sizes=(3, 4)) if "c" in a and len(a["c"]) == 3 else None
+            if "c" in a and isinstance(a["c"], list) and len(a["c"]) == 4:
+                c4 = [float(x) for x in a["c"]]
+                if min(c4) < 0:  # OpenSCAD's "no colour"
+                    return m
+                c, alpha = np.array(c4[:3]), c4[3]
+            else:
+                if c is None:
+                    return m
+                alpha = 1.0
+            if "alpha" in a:
+                alpha = num(self.path, s, a, "alpha")
+            m["color"] = np.clip(c, 0, 1)
+            alpha = min(max(alpha, 0.0), 1.0)
+            if alpha < 1:
+                m["kt"], m["ior"] = 1 - alpha, 1.0
+            return m
+        if "color" in a:
+            m["color"] = vec(self.path, s, a, "color")
+        for key in ("ka", "kd", "ks", "ns", "kr", "kt", "ior"):
+            v = num(self.path, s, a, key)
+            if v is not None:
+                if v < 0:
+                    raise self.err(s, f"{key} must not be negative")
+                m[key] = v
+        return m
+
+    def scene_statement(self, s):
+        a = bind(self.path, s)
+        sc = self.scene
+        if s.name == "camera":
+            if sc.camera:
+                raise self.err(s, "a second camera")
+            eye, lookat = vec(self.path, s, a, "eye"), vec(self.path, s, a, "lookat")
+            if eye is None or lookat is None:
+                raise self.err(s, "a camera needs eye and lookat")
+            sc.camera = (eye, lookat, vec(self.path, s, a, "up", [0.0, 0.0, 1.0]), num(self.path, s, a, "fov", 30.0))
+        elif s.name == "background":
+            sc.background = vec(self.path, s, a, "color")
+        else:
+            c = vec(self.path, s, a, "color", 1.0, scalar=True)
+            if s.name == "ambient_light":
+                sc.lights.append(("ambient", c, None))
+            elif s.name == "directional_light":
+                d = vec(self.path, s, a, "direction")
+                sc.lights.append(("directional", c, d / np.linalg.norm(d)))
+            else:
+                sc.lights.append(("point", c, vec(self.path, s, a, "position")))
+
+
+# --------------------------------------------------------------------------
+# The seed's display list (.ray)
+# --------------------------------------------------------------------------
+
+
+def read_ray(path, text):
+    """Slide 32's format: one statement a line; `surface` takes ten numbers
+    over as many lines as it needs and applies to the spheres after it."""
+    sc = Scene()
+    eye, lookat, up, fov = np.array([0.0, 0, 10]), np.zeros(3), np.array([0.0, 1, 0]), 30.0
+    sc.background = np.zeros(3)
+    words = []  # (word, line, col)
+    for ln, line in enumerate(text.split("\n"), 1):
+        line = re.split(r"#|//", line, maxsplit=1)[0]
+        for m in re.finditer(r"\S+", line):
+            words.append((m.group(), ln, m.start() + 1))
+    i, mat, spheres = 0, None, []
+
+    def nums(k):
+        nonlocal i
+        out = []
+        for _ in range(k):
+            if i >= len(words):
+                raise ReadError(path, words[-1][1], words[-1][2], "expected a number")
+            w, ln, col = words[i]
+            try:
+                out.append(float(w))
+            except ValueError:
+                raise ReadError(path, ln, col, f"expected a number, found {w!r}")
+            i += 1
+        return np.array(out)
+
+    while i < len(words):
+        w, ln, col = words[i]
+        i += 1
+        if w == "eye":
+            eye = nums(3)
+        elif w == "lookat":
+            lookat = nums(3)
+        elif w == "up":
+            up = nums(3)
+        elif w == "fov":
+            fov = float(nums(1)[0])
+        elif w == "background":
+            sc.background = nums(3)
+        elif w == "light":
+            c = nums(3)
+            kind = words[i][0]
+            i += 1
+            if kind == "ambient":
+                sc.lights.append(("ambient", c, None))
+            elif kind == "directional":
+                d = nums(3)
+                sc.lights.append(("directional", c, d / np.linalg.norm(d)))
+            elif kind == "point":
+                sc.lights.append(("point", c, nums(3)))
+            else:
+                raise ReadError(path, ln, col, f"unknown light kind {kind!r}")
+        elif w == "surface":
+            n = nums(10)
+            mat = dict(color=n[:3], ka=n[3], kd=n[4], ks=n[5], ns=n[6], kr=n[7], kt=n[8], ior=n[9])
+        elif w == "sphere":
+            n = nums(4)
+            st = Stmt("sphere", [], [], "", ln, col)
+            leaf = Leaf("sphere", dict(r=float(n[3])), affine(t=n[:3]), dict(mat or CORNFIELD), st)
+            leaf.id = len(sc.leaves)
+            sc.leaves.append(leaf)
+            spheres.append(leaf)
+        else:
+            raise ReadError(path, ln, col, f"unknown statement {w!r}")
+    sc.camera = (eye, lookat, up, fov)
+    sc.root = Reader.union(spheres)
+    if not sc.lights:
+        sc.lights = default_lights()
+    return sc
+
+
+# --------------------------------------------------------------------------
+# Bounds and the default camera
+# --------------------------------------------------------------------------
+
+EVERYTHING = (np.full(3, -np.inf), np.full(3, np.inf))
+EMPTY = (np.full(3, np.inf), np.full(3, -np.inf))
+
+
+def leaf_box(leaf):
+    """The exact world box of a leaf."""
+    m, p = leaf.matrix, leaf.params
+    L, t = m[:3, :3], m[:3, 3]
+    row = lambda cols: np.sqrt(sum(L[:, c] ** 2 for c in cols))
+    if leaf.kind == "sphere":
+        e = p["r"] * row([0, 1, 2])
+        return t - e, t + e
+    if leaf.kind == "torus":
+        e = p["R"] * row([0, 1]) + p["r"] * row([0, 1, 2])
+        return t - e, t + e
+    if leaf.kind == "cylinder":
+        z0 = -p["h"] / 2 if p["center"] else 0.0
+        e = row([0, 1])
+        c0, c1 = L @ [0, 0, z0] + t, L @ [0, 0, z0 + p["h"]] + t
+        return np.minimum(c0 - e * p["r1"], c1 - e * p["r2"]), np.maximum(c0 + e * p["r1"], c1 + e * p["r2"])
+    if leaf.kind == "cube":
+        s = p["size"]
+        lo = -s / 2 if p["center"] else np.zeros(3)
+        corners = [L @ (lo + s * np.array([(i >> k) & 1 for k in range(3)])) + t for i in range(8)]
+        return np.min(corners, axis=0), np.max(corners, axis=0)
+    # halfspace n.x <= offset: bounded on one side when axis-aligned
+    n = np.linalg.inv(L).T @ p["normal"]
+    lo, hi = EVERYTHING[0].copy(), EVERYTHING[1].copy()
+    nz = [i for i in range(3) if n[i] != 0]
+    if len(nz) == 1:
+        q = L @ (p["normal"] * p["offset"] / (p["normal"] @ p["normal"])) + t
+        i = nz[0]
+        if n[i] > 0:
+            hi[i] = q[i]
+        else:
+            lo[i] = q[i]
+    return lo, hi
+
+
+def box(node):
+    if node is None:
+        return EMPTY
+    if isinstance(node, Leaf):
+        return leaf_box(node)
+    bs = [box(c) for c in node.children]
+    if node.op == "union":
+        return np.min([b[0] for b in bs], axis=0), np.max([b[1] for b in bs], axis=0)
+    if node.op == "intersection":
+        return np.max([b[0] for b in bs], axis=0), np.min([b[1] for b in bs], axis=0)
+    return bs[0]
+
+
+def framing_box(scene):
+    lo, hi = box(scene.root)
+    if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) or np.any(lo > hi):
+        return lo, hi
+    bounded = [leaf_box(x) for x in scene.leaves]
+    bounded = [b for b in bounded if np.all(np.isfinite(b[0])) and np.all(np.isfinite(b[1]))]
+    if not bounded:
+        return EMPTY
+    return np.min([b[0] for b in bounded], axis=0), np.max([b[1] for b in bounded], axis=0)
+
+
+def framing(scene, width, height, fov=30.0, fill=0.9):
+    lo, hi = framing_box(scene)
+    if np.any(lo > hi) or not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+        lo, hi = -np.ones(3), np.ones(3)
+    center = (lo + hi) / 2
+    ax, az = math.radians(55), math.radians(25)
+    back = np.array([math.sin(ax) * math.sin(az), -math.sin(ax) * math.cos(az), math.cos(ax)])
+    fwd = -back
+    right = np.cross(fwd, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, fwd)
+    tan_h = math.tan(math.radians(fov) / 2) * fill
+    tan_v = tan_h * height / width
+    dist = 0.5 * np.linalg.norm(hi - lo) * 1.01
+    for i in range(8):
+        c = np.where([(i >> k) & 1 for k in range(3)], hi, lo) - center
+        depth = c @ fwd
+        dist = max(dist, abs(c @ right) / tan_h - depth, abs(c @ up) / tan_v - depth)
+    dist = max(dist, 1e-9)
+    return center + back * dist, center, np.array([0.0, 0.0, 1.0]), fov
+
+
+def read(path):
+    with open(path, encoding="utf-8") as f:
+        text = f.read()
+    if path.endswith(".ray"):
+        return read_ray(path, text)
+    r = Reader(path)
+    r.top(Parser(path, text).file())
+    return r.scene
