@@ -40,6 +40,7 @@ LIMIT = 1e-9
 OFFSETS = [0.0, 1e3, 1e6]
 SIZES = [1e-3, 1.0, 1e3]
 SLIM = 1e-9  # how far inside the outline grazing rays pass, in sizes
+ANGLE_FLOOR = 1e-12  # radians: rounding of unit vectors and of the pose
 
 
 def M(x):
@@ -65,16 +66,112 @@ def unit(v):
 # --------------------------------------------------------------------------
 
 
-class Prim:
-    """A primitive of size s centred near c (all floats, exact in f64)."""
+def rotation(deg):
+    """OpenSCAD's rotate([x, y, z]): Rz Ry Rx, exact at 50 digits."""
+    out = [[M(i == j) for j in range(3)] for i in range(3)]
+    for axis in (0, 1, 2):
+        a = mp.pi * M(deg[axis]) / 180
+        c, s = mp.cos(a), mp.sin(a)
+        i, j = [(1, 2), (2, 0), (0, 1)][axis]
+        r = [[M(k == m) for m in range(3)] for k in range(3)]
+        r[i][i], r[i][j], r[j][i], r[j][j] = c, -s, s, c
+        out = matmul(r, out)
+    return out
 
-    def __init__(self, kind, c, s):
-        self.kind, self.c, self.s = kind, c, s
+
+def matmul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
+
+
+def apply(m, v):
+    return [sum(m[i][k] * v[k] for k in range(3)) for i in range(3)]
+
+
+def transpose(m):
+    return [[m[j][i] for j in range(3)] for i in range(3)]
+
+
+# How a primitive is posed: rotate(angles) scale(factors), then translated.
+POSES = {
+    "plain": None,
+    "rotated": ([30.0, 50.0, 20.0], [1.0, 1.0, 1.0]),
+    "scaled": ([0.0, 0.0, 0.0], [1.5, 0.625, 1.125]),
+    "rotated+scaled": ([-40.0, 25.0, 70.0], [0.75, 1.25, 1.875]),
+}
+
+
+class Prim:
+    """A primitive of size s centred near c (all floats, exact in f64),
+    posed by `translate(c) rotate(angles) scale(factors)`."""
+
+    def __init__(self, kind, c, s, pose="plain"):
+        self.kind, self.c, self.s, self.pose = kind, c, s, pose
+        if POSES[pose] is None:
+            self.lin = [[M(i == j) for j in range(3)] for i in range(3)]
+        else:
+            angles, factors = POSES[pose]
+            self.lin = matmul(rotation(angles), [[M(factors[i]) if i == j else M(0) for j in range(3)] for i in range(3)])
+        self.inv = mp.matrix(self.lin) ** -1
+        self.inv = [[self.inv[i, j] for j in range(3)] for i in range(3)]
+        sv = mp.svd_r(mp.matrix(self.lin), compute_uv=False)
+        self.smax, self.smin = max(sv), min(sv)
+
+    def place(self, o, d):
+        """A ray given in the unposed frame (around c), posed, as floats."""
+        rel = [M(o[i]) - M(self.c[i]) for i in range(3)]
+        po = apply(self.lin, rel)
+        return [float(M(self.c[i]) + po[i]) for i in range(3)], unit(apply(self.lin, v3(d)))
 
     def text(self):
+        body = self.body()
         c = ", ".join(repr(x) for x in self.c)
+        if POSES[self.pose] is None:
+            return f"translate([{c}]) {body}\n"
+        angles, factors = POSES[self.pose]
+        a = ", ".join(repr(x) for x in angles)
+        f = ", ".join(repr(x) for x in factors)
+        return f"translate([{c}]) rotate([{a}]) scale([{f}]) {body}\n"
+
+    def local(self, o, d):
+        rel = [M(o[i]) - M(self.c[i]) for i in range(3)]
+        return apply(self.inv, rel), apply(self.inv, v3(d))
+
+    def normal(self, o, d, t):
+        """The exact unit outward normal where the ray crosses at t, and the
+        smallest curvature radius there (object units)."""
+        lo, ld = self.local(o, d)
+        p = [lo[i] + t * ld[i] for i in range(3)]
+        s, k = M(self.s), self.kind
+        if k == "sphere":
+            n, rho = p, s
+        elif k == "cube":
+            i = max(range(3), key=lambda i: abs(p[i]))
+            n, rho = [M(0)] * 3, mp.inf
+            n[i] = mp.sign(p[i])
+        elif k in ("cylinder", "cone", "frustum"):
+            h, r0 = s / 2, s / 2
+            r1 = {"cylinder": s / 2, "cone": M(0), "frustum": s / 4}[k]
+            kk = (r1 - r0) / s
+            rz = r0 + kk * (p[2] + h)
+            rxy = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+            dist = [abs(p[2] + h), abs(p[2] - h), abs(rxy - rz)]
+            j = min(range(3), key=lambda j: dist[j])
+            if j < 2:
+                n, rho = [M(0), M(0), M(-1 if j == 0 else 1)], mp.inf
+            else:
+                n, rho = [p[0], p[1], -kk * rz], rxy
+        else:
+            R, r = s, s / 4
+            q = p[0] ** 2 + p[1] ** 2 + p[2] ** 2 + R * R - r * r
+            n = [4 * q * p[0] - 8 * R * R * p[0], 4 * q * p[1] - 8 * R * R * p[1], 4 * q * p[2]]
+            rho = min(r, R - r)
+        w = apply(transpose(self.inv), n)
+        ln = mp.sqrt(dot(w, w))
+        return [x / ln for x in w], rho
+
+    def body(self):
         s = repr(self.s)
-        body = {
+        return {
             "sphere": f"sphere(r = {s});",
             "cube": f"cube({s}, center = true);",
             "cylinder": f"cylinder(h = {s}, r = {repr(self.s / 2)}, center = true);",
@@ -82,12 +179,10 @@ class Prim:
             "frustum": f"cylinder(h = {s}, r1 = {repr(self.s / 2)}, r2 = {repr(self.s / 4)}, center = true);",
             "torus": f"torus(R = {s}, r = {repr(self.s / 4)});",
         }[self.kind]
-        return f"translate([{c}]) {body}\n"
 
     def crossings(self, o, d):
         """Sorted exact t of every boundary crossing of the line."""
-        o = [M(o[i]) - M(self.c[i]) for i in range(3)]
-        d = v3(d)
+        o, d = self.local(o, d)
         s = M(self.s)
         k = self.kind
         if k == "sphere":
@@ -241,7 +336,43 @@ def run(binary, prim, rays, work):
         for _, o, d in rays:
             f.write(" ".join(repr(float(x)) for x in (*o, *d)) + "\n")
     out = subprocess.run([binary, scene, "--trace-rays", rf], check=True, capture_output=True, text=True)
-    return [None if line == "miss" else float(line.split()[0]) for line in out.stdout.splitlines()]
+    return [None if line == "miss" else [float(x) for x in line.split()] for line in out.stdout.splitlines()]
+
+
+def check_ray(p, case, o, d, c, worst, worst_angle, failures):
+    """csgrt's answer c (t and normal, or None) against the exact one."""
+    exact = p.first(o, d)
+    kind, size = p.kind, p.s
+    where = (
+        f"{kind} ({p.pose}) size {size:g} at offset {max(abs(x) for x in p.c):g}, "
+        f"{case} ray {' '.join(repr(x) for x in (*o, *d))}"
+    )
+    key = (kind, p.pose, case)
+    if (exact is None) != (c is None):
+        failures.append(f"{where}: csgrt {c}, exact {exact}")
+        worst[key] = (float("inf"), where)
+        return
+    if exact is None:
+        return
+    t, n = M(c[0]), v3(c[1:])
+    scale = max(exact, M(size))
+    err = float(abs(t - exact) / scale)
+    if err > worst.get(key, (-1.0, ""))[0]:
+        worst[key] = (err, where)
+    if err > LIMIT:
+        failures.append(f"{where}: relative error {err:.3g} > {LIMIT:g}")
+    # The normal: a point off by LIMIT x scale along the ray sees the normal
+    # turned by at most that distance over the world's curvature radius
+    # there (smin x rho / kappa), plus the rounding of a unit vector.
+    exact_n, rho = p.normal(o, d, exact)
+    cosang = max(-1, min(1, dot(n, exact_n) / mp.sqrt(dot(n, n))))
+    angle = float(mp.acos(cosang))
+    kappa = p.smax / p.smin
+    bound = float(LIMIT * scale * kappa / (p.smin * rho)) + ANGLE_FLOOR
+    if angle / bound > worst_angle.get(key, (-1.0, 0.0))[0]:
+        worst_angle[key] = (angle / bound, angle)
+    if angle > bound:
+        failures.append(f"{where}: normal {angle:.3g} rad from the exact one (bound {bound:.3g})")
 
 
 def main():
@@ -252,32 +383,20 @@ def main():
     ap.add_argument("--report", default=None)
     a = ap.parse_args()
     rng = random.Random(20261122)
-    worst = {}  # (kind, case) -> (error, description)
+    worst = {}  # (kind, pose, case) -> (error, description)
+    worst_angle = {}  # (kind, pose, case) -> (angle / bound, angle)
     failures = []
     direction = [1.0, 0.7, 0.3]
     with tempfile.TemporaryDirectory() as work:
         for kind in ["sphere", "cube", "cylinder", "cone", "frustum", "torus"]:
-            for off in OFFSETS:
-                for size in SIZES:
-                    p = Prim(kind, [off * x for x in direction], size)
-                    rays = rays_for(p, a.rays, rng)
-                    got = run(a.csgrt, p, rays, work)
-                    for (case, o, d), t in zip(rays, got):
-                        exact = p.first(o, d)
-                        where = f"{kind} size {size:g} at offset {off:g}, {case} ray {' '.join(repr(x) for x in (*o, *d))}"
-                        if (exact is None) != (t is None):
-                            failures.append(f"{where}: csgrt {t}, exact {exact}")
-                            err = float("inf")
-                        elif exact is None:
-                            continue
-                        else:
-                            scale = max(exact, M(size))
-                            err = float(abs(M(t) - exact) / scale)
-                        key = (kind, case)
-                        if err > worst.get(key, (-1.0, ""))[0]:
-                            worst[key] = (err, where)
-                        if err > LIMIT and err != float("inf"):
-                            failures.append(f"{where}: relative error {err:.3g} > {LIMIT:g}")
+            for pose in POSES:
+                for off in OFFSETS:
+                    for size in SIZES:
+                        p = Prim(kind, [off * x for x in direction], size, pose)
+                        rays = [(case, *p.place(o, d)) for case, o, d in rays_for(p, a.rays, rng)]
+                        got = run(a.csgrt, p, rays, work)
+                        for (case, o, d), c in zip(rays, got):
+                            check_ray(p, case, o, d, c, worst, worst_angle, failures)
     lines = [
         "# Accuracy against exact arithmetic",
         "",
@@ -286,11 +405,17 @@ def main():
         "1e6 and sized 1e-3, 1 and 1e3; the error is |t - t_exact| / max(t_exact, size). The limit is",
         f"{LIMIT:g}.",
         "",
-        "| primitive | case | worst relative error | where |",
-        "|---|---|---|---|",
+        "Each primitive is also rotated, scaled unevenly, and both (`rotate([..]) scale([..])`,",
+        "exact rotations at 50 digits), and csgrt's normal is compared with the exact one: its angle",
+        "must stay within LIMIT x scale over the curvature radius there (times the condition number",
+        f"of the pose), plus {ANGLE_FLOOR:g} rad for rounding.",
+        "",
+        "| primitive | pose | case | worst relative error | worst normal angle (rad) | angle / bound | where |",
+        "|---|---|---|---|---|---|---|",
     ]
-    for (kind, case), (err, where) in sorted(worst.items()):
-        lines.append(f"| {kind} | {case} | {err:.3g} | {where.split(',')[0]} |")
+    for key, (err, where) in sorted(worst.items()):
+        ratio, angle = worst_angle.get(key, (0.0, 0.0))
+        lines.append(f"| {key[0]} | {key[1]} | {key[2]} | {err:.3g} | {angle:.3g} | {ratio:.3g} | {where.split(',')[0]} |")
     text = "\n".join(lines) + "\n"
     print(text)
     if a.report:
