@@ -1,0 +1,456 @@
+#!/usr/bin/env python3
+"""Does csgrt's `--export-pov` say what the scene file says?
+
+For each scene, csgrt writes POV-Ray 3.7 SDL; this tool parses the SDL back
+with a reader of its own (POV-Ray's meaning: objects are placed by
+`rotate` then `matrix <a..l>`, a row-vector transform p' = p M with the
+last three numbers the translation; `rotate x*90` turns +y to +z; `plane
+{ z, 0 }` is z <= 0; a box, sphere, cylinder, cone and torus their usual
+solids; union, intersection, difference with POV-Ray's first-minus-rest),
+reads the same scene with the oracle's own reader (tools/scene.py), and
+compares:
+
+* the solid: inside or outside, at 4000 points of the scene's box (and a
+  margin around it) and 200 in each leaf's box, for the whole tree; a point within 1e-9 of the size
+  of any leaf's surface is skipped;
+* each leaf: every exported leaf must be the same solid as one leaf of the
+  file (the same answer at every sample point), with its colour, its
+  transmission and its finish (ambient, diffuse, phong, phong_size,
+  reflection) the file's material;
+* the camera: location, look_at, sky and angle the file's view, `right`
+  the image's aspect; the lights: their colours, positions, and for a
+  directional light its direction (point_at minus location); the
+  background and the summed ambient light.
+
+Usage: pov_check.py [--csgrt BIN] SCENE...   (exit 1 if any differs)
+"""
+
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import scene as reader  # noqa: E402
+
+WIDTH, HEIGHT = 40, 30
+
+# --------------------------------------------------------------------------
+# SDL: tokens and objects
+# --------------------------------------------------------------------------
+
+TOKEN = re.compile(r"\s+|//[^\n]*|(#version|[A-Za-z_][A-Za-z_0-9]*|[-+]?\d+\.?\d*(?:[eE][-+]?\d+)?|[{}<>,*/-])")
+
+
+def tokens(text):
+    out = []
+    for m in TOKEN.finditer(text):
+        if m.group(1):
+            out.append(m.group(1))
+    return out
+
+
+class Sdl:
+    def __init__(self, text):
+        self.t = tokens(text)
+        self.i = 0
+
+    def peek(self):
+        return self.t[self.i] if self.i < len(self.t) else None
+
+    def take(self, want=None):
+        x = self.t[self.i]
+        if want is not None and x != want:
+            raise ValueError(f"expected {want!r} at token {self.i}, found {x!r}")
+        self.i += 1
+        return x
+
+    def number(self):
+        x = self.take()
+        if x == "-":
+            return -float(self.take())
+        return float(x)
+
+    def vector(self):
+        self.take("<")
+        out = [self.number()]
+        while self.peek() == ",":
+            self.take()
+            out.append(self.number())
+        self.take(">")
+        return np.array(out)
+
+    def block(self):
+        """The rest of a `{ ... }` whose `{` was read, skipped."""
+        depth = 1
+        while depth:
+            x = self.take()
+            depth += {"{": 1, "}": -1}.get(x, 0)
+
+
+SHAPES = ("box", "sphere", "cylinder", "cone", "torus", "plane")
+
+
+class PovLeaf:
+    def __init__(self, kind, params, matrix, texture):
+        self.kind, self.params, self.matrix, self.texture = kind, params, matrix, texture
+
+    def inside(self, pts):
+        """Inside tests of world points (n x 3), in POV-Ray's terms."""
+        q = (pts - self.matrix[:3, 3]) @ np.linalg.inv(self.matrix[:3, :3]).T
+        p = self.params
+        if self.kind == "box":
+            return np.all((q >= p["lo"]) & (q <= p["hi"]), axis=1)
+        if self.kind == "sphere":
+            return np.sum((q - p["c"]) ** 2, axis=1) <= p["r"] ** 2
+        if self.kind in ("cylinder", "cone"):
+            return frustum_inside(q, p["a"][2], p["b"][2], p["ra"], p["rb"])
+        if self.kind == "torus":
+            # rotate x*90 first: object (x, y, z) came from torus coords
+            # (x, -z, y)... in POV-Ray the torus lies in the x-z plane.
+            rx = np.array([[1, 0, 0], [0, 0, -1], [0, 1, 0.0]])
+            u = q @ rx  # back to the torus's own x-z plane
+            return (np.hypot(u[:, 0], u[:, 2]) - p["R"]) ** 2 + u[:, 1] ** 2 <= p["r"] ** 2
+        return q[:, 2] <= p["d"]
+
+
+class PovOp:
+    def __init__(self, op, children):
+        self.op, self.children = op, children
+
+    def inside(self, pts):
+        return combine(self.op, [c.inside(pts) for c in self.children])
+
+
+def combine(op, ins):
+    """A CSG operation on its operands' inside answers (difference: the
+    first minus the rest, in POV-Ray and in OpenSCAD alike)."""
+    if op == "union":
+        return np.any(ins, axis=0)
+    if op == "intersection":
+        return np.all(ins, axis=0)
+    return ins[0] & ~np.any(ins[1:], axis=0)
+
+
+def frustum_inside(q, z0, z1, r0, r1):
+    """Points q of the solid between z0 and z1 whose radius goes from r0
+    to r1 (a cylinder, a cone frustum or a cone)."""
+    f = (q[:, 2] - z0) / (z1 - z0)
+    r = r0 + (r1 - r0) * f
+    return (f >= 0) & (f <= 1) & (np.hypot(q[:, 0], q[:, 1]) <= r)
+
+
+def pov_matrix(nums):
+    """POV-Ray's matrix <a..l>: rows of a row-vector transform."""
+    m = np.eye(4)
+    rows = np.array(nums).reshape(4, 3)
+    m[:3, :3] = rows[:3].T
+    m[:3, 3] = rows[3]
+    return m
+
+
+def read_object(s, kind):
+    s.take("{")
+    p = {}
+    if kind == "box":
+        p["lo"] = s.vector()
+        s.take(",")
+        p["hi"] = s.vector()
+    elif kind == "sphere":
+        p["c"] = s.vector()
+        s.take(",")
+        p["r"] = s.number()
+    elif kind == "cylinder":
+        p["a"] = s.vector()
+        s.take(",")
+        p["b"] = s.vector()
+        s.take(",")
+        p["ra"] = p["rb"] = s.number()
+    elif kind == "cone":
+        p["a"] = s.vector()
+        s.take(",")
+        p["ra"] = s.number()
+        s.take(",")
+        p["b"] = s.vector()
+        s.take(",")
+        p["rb"] = s.number()
+    elif kind == "torus":
+        p["R"] = s.number()
+        s.take(",")
+        p["r"] = s.number()
+    else:
+        axis = s.take()
+        if axis != "z":
+            raise ValueError(f"a plane along {axis}")
+        s.take(",")
+        p["d"] = s.number()
+    m, texture = np.eye(4), {}
+    while s.peek() != "}":
+        w = s.take()
+        if w == "rotate":
+            axis = s.take()
+            s.take("*")
+            ang = s.number()
+            if (axis, ang) != ("x", 90.0) or kind != "torus":
+                raise ValueError(f"rotate {axis}*{ang} on a {kind}")
+        elif w == "matrix":
+            m = pov_matrix(s.vector())
+        elif w == "texture":
+            s.take("{")
+            while s.peek() != "}":
+                part = s.take()
+                s.take("{")
+                if part == "pigment":
+                    s.take("color")
+                    s.take("rgbt")
+                    texture["rgbt"] = s.vector()
+                    s.take("}")
+                elif part == "finish":
+                    while s.peek() != "}":
+                        key = s.take()  # before the value: Python reads the right side first
+                        texture[key] = s.number()
+                    s.take("}")
+                else:
+                    s.block()
+            s.take("}")
+        elif w == "interior":
+            s.take("{")
+            s.take("ior")
+            texture["ior"] = s.number()
+            s.take("}")
+        else:
+            raise ValueError(f"unexpected {w!r} in a {kind}")
+    s.take("}")
+    return PovLeaf(kind, p, m, texture)
+
+
+def read_node(s, word):
+    if word in SHAPES:
+        return read_object(s, word)
+    s.take("{")
+    kids = []
+    while s.peek() != "}":
+        kids.append(read_node(s, s.take()))
+    s.take("}")
+    return PovOp(word, kids)
+
+
+def read_sdl(text):
+    s = Sdl(text)
+    out = {"lights": [], "root": None}
+    while s.peek() is not None:
+        w = s.take()
+        if w == "#version":
+            s.number()
+        elif w == "global_settings":
+            s.take("{")
+            while s.peek() != "}":
+                k = s.take()
+                if k == "ambient_light":
+                    s.take("color")
+                    s.take("rgb")
+                    out["ambient"] = s.vector()
+                elif k == "adc_bailout":
+                    s.number()
+                    s.take("/")
+                    s.number()
+                else:
+                    s.number()
+            s.take("}")
+        elif w == "background":
+            s.take("{")
+            s.take("color")
+            s.take("rgb")
+            out["background"] = s.vector()
+            s.take("}")
+        elif w == "camera":
+            s.take("{")
+            cam = {}
+            while s.peek() != "}":
+                k = s.take()
+                if k == "perspective":
+                    continue
+                if k in ("location", "sky", "look_at"):
+                    cam[k] = s.vector()
+                elif k == "angle":
+                    cam[k] = s.number()
+                elif k == "right":
+                    s.take("-")
+                    s.take("x")
+                    s.take("*")
+                    cam[k] = s.number()
+                elif k == "up":
+                    cam[k] = s.take()
+            s.take("}")
+            out["camera"] = cam
+        elif w == "light_source":
+            s.take("{")
+            light = {"at": s.vector()}
+            while s.peek() != "}":
+                k = s.take()
+                if k == "color":
+                    s.take("rgb")
+                    light["color"] = s.vector()
+                elif k == "parallel":
+                    light["parallel"] = True
+                elif k == "point_at":
+                    light["point_at"] = s.vector()
+            s.take("}")
+            out["lights"].append(light)
+        else:
+            out["root"] = read_node(s, w)
+    return out
+
+
+# --------------------------------------------------------------------------
+# The file, through the oracle's reader
+# --------------------------------------------------------------------------
+
+
+def leaf_inside(leaf, pts):
+    q = (pts - leaf.matrix[:3, 3]) @ np.linalg.inv(leaf.matrix[:3, :3]).T
+    p = leaf.params
+    if leaf.kind == "sphere":
+        return np.sum(q**2, axis=1) <= p["r"] ** 2
+    if leaf.kind == "cube":
+        lo = -p["size"] / 2 if p["center"] else np.zeros(3)
+        return np.all((q >= lo) & (q <= lo + p["size"]), axis=1)
+    if leaf.kind == "cylinder":
+        z0 = -p["h"] / 2 if p["center"] else 0.0
+        return frustum_inside(q, z0, z0 + p["h"], p["r1"], p["r2"])
+    if leaf.kind == "torus":
+        return (np.hypot(q[:, 0], q[:, 1]) - p["R"]) ** 2 + q[:, 2] ** 2 <= p["r"] ** 2
+    return q @ p["normal"] <= p["offset"]
+
+
+def tree_inside(node, pts):
+    if node is None:
+        return np.zeros(len(pts), dtype=bool)
+    if isinstance(node, reader.Leaf):
+        return leaf_inside(node, pts)
+    return combine(node.op, [tree_inside(c, pts) for c in node.children])
+
+
+def pov_leaves(node):
+    if isinstance(node, PovLeaf):
+        yield node
+    elif node is not None:
+        for c in node.children:
+            yield from pov_leaves(c)
+
+
+def near_any_surface(sc, pts, eps):
+    """Points whose inside answer flips within eps along some axis, for
+    any leaf: they are too close to a surface to judge."""
+    out = np.zeros(len(pts), dtype=bool)
+    for leaf in sc.leaves:
+        base = leaf_inside(leaf, pts)
+        for k in range(3):
+            for s in (-1, 1):
+                d = np.zeros(3)
+                d[k] = s * eps
+                out |= leaf_inside(leaf, pts + d) != base
+    return out
+
+
+def close(a, b, tol=1e-9):
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    return a.shape == b.shape and bool(np.all(np.abs(a - b) <= tol * np.maximum(1.0, np.abs(b))))
+
+
+def check(path, binary):
+    sc = reader.read(path)
+    with tempfile.TemporaryDirectory() as work:
+        out = os.path.join(work, "s.pov")
+        subprocess.run([binary, path, "--size", f"{WIDTH}x{HEIGHT}", "--export-pov", out, "-q"], check=True)
+        with open(out) as f:
+            sdl = read_sdl(f.read())
+    bad = []
+    # Camera, lights, background.
+    eye, lookat, up, fov = sc.view(WIDTH, HEIGHT)
+    cam = sdl["camera"]
+    for k, want in (("location", eye), ("look_at", lookat), ("sky", up), ("angle", fov), ("right", WIDTH / HEIGHT)):
+        if not close(cam[k], want):
+            bad.append(f"camera {k} is {cam[k]}, the file says {want}")
+    if not close(sdl["background"], sc.background):
+        bad.append(f"background {sdl['background']}, the file says {sc.background}")
+    ambient = sum((c for kind, c, _ in sc.lights if kind == "ambient"), np.zeros(3))
+    if not close(sdl.get("ambient", np.zeros(3)), ambient):
+        bad.append(f"ambient light {sdl.get('ambient')}, the file says {ambient}")
+    lights = [(kind, c, x) for kind, c, x in sc.lights if kind != "ambient"]
+    if len(lights) != len(sdl["lights"]):
+        bad.append(f"{len(sdl['lights'])} light sources, the file has {len(lights)}")
+    for (kind, c, x), got in zip(lights, sdl["lights"]):
+        if not close(got["color"], c):
+            bad.append(f"a light's colour is {got['color']}, the file says {c}")
+        if kind == "point" and (got.get("parallel") or not close(got["at"], x)):
+            bad.append(f"a point light at {got['at']}, the file says {x}")
+        if kind == "directional":
+            d = got.get("point_at", np.zeros(3)) - got["at"]
+            if not got.get("parallel") or not close(d / np.linalg.norm(d), x / np.linalg.norm(x)):
+                bad.append(f"a directional light along {d}, the file says {x}")
+    # The solid and its leaves, at sample points.
+    boxes = [reader.leaf_box(x) for x in sc.leaves]
+    boxes = [b for b in boxes if np.all(np.isfinite(b[0])) and np.all(np.isfinite(b[1]))] or [(-np.ones(3), np.ones(3))]
+    lo, hi = np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+    size = float(np.linalg.norm(hi - lo))
+    rng = np.random.default_rng(12)
+    pts = [lo - 0.1 * size + rng.random((4000, 3)) * (hi - lo + 0.2 * size)]
+    # And 200 points in each bounded leaf's own box, so that a small or
+    # thin leaf is told apart from its neighbours.
+    for blo, bhi in boxes:
+        pad = 0.05 * (bhi - blo)
+        pts.append(blo - pad + rng.random((200, 3)) * (bhi - blo + 2 * pad))
+    pts = np.concatenate(pts)
+    keep = ~near_any_surface(sc, pts, 1e-9 * size)
+    pts = pts[keep]
+    want = tree_inside(sc.root, pts)
+    got = sdl["root"].inside(pts) if sdl["root"] else np.zeros(len(pts), dtype=bool)
+    if np.any(want != got):
+        bad.append(f"the exported solid differs at {int(np.sum(want != got))} of {len(pts)} points")
+    mine = {x.id: leaf_inside(x, pts) for x in sc.leaves}
+    for pl in pov_leaves(sdl["root"]):
+        ins = pl.inside(pts)
+        match = [x for x in sc.leaves if np.array_equal(mine[x.id], ins)]
+        if not match:
+            bad.append(f"an exported {pl.kind} is no solid of the file")
+            continue
+        mat = match[0].material
+        tex = pl.texture
+        want_t = dict(rgbt=[*mat["color"], mat["kt"]], ambient=mat["ka"], diffuse=mat["kd"], phong=mat["ks"],
+                      phong_size=mat["ns"], reflection=mat["kr"])
+        if mat["kt"] > 0:
+            want_t["ior"] = mat["ior"]
+        for k, w in want_t.items():
+            if k not in tex or not close(tex[k], w):
+                bad.append(f"the exported {pl.kind}'s {k} is {tex.get(k)}, the file says {w}")
+    return bad
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scenes", nargs="+")
+    ap.add_argument("--csgrt", default="target/release/csgrt")
+    a = ap.parse_args()
+    failed = 0
+    for path in a.scenes:
+        try:
+            bad = check(path, a.csgrt)
+        except (ValueError, KeyError, subprocess.CalledProcessError, reader.ReadError) as e:
+            bad = [f"cannot check: {e}"]
+        name = os.path.basename(path)
+        print(f"{name}: {'ok' if not bad else bad[0]}")
+        for b in bad[1:5]:
+            print(f"  {b}")
+        failed += bool(bad)
+    print(f"{len(a.scenes) - failed} passed, {failed} failed")
+    sys.exit(1 if failed else 0)
+
+
+if __name__ == "__main__":
+    main()
