@@ -257,12 +257,21 @@ fn a_flattened_solid_is_left_out_with_a_warning() {
 /// Runs `s.csg` into `out` and returns (status, stderr), checking that the
 /// folder still holds only what it held.
 fn output_fails(out: &str, setup: impl Fn(&std::path::Path)) -> (i32, String) {
+    let (status, stderr, _) = output_fails_in(out, setup);
+    (status, stderr)
+}
+
+/// As [`output_fails`], keeping the folder for a look afterwards.
+fn output_fails_in(
+    out: &str,
+    setup: impl Fn(&std::path::Path),
+) -> (i32, String, tempfile::TempDir) {
     let (dir, _) = scene("s.csg", "sphere();\n");
     setup(dir.path());
     let before = files(dir.path());
     let r = csgrt(dir.path(), &["s.csg", "--size", "8x6", "-q", "-o", out]);
     assert_eq!(files(dir.path()), before, "{out}: nothing written");
-    (r.status, r.stderr)
+    (r.status, r.stderr, dir)
 }
 
 #[test]
@@ -281,7 +290,7 @@ fn outputs_that_cannot_be_written_are_clear_io_errors() {
 #[cfg(unix)]
 #[test]
 fn a_device_or_a_link_to_one_is_never_replaced() {
-    let (status, stderr) = output_fails("null.png", |d| {
+    let (status, stderr, dir) = output_fails_in("null.png", |d| {
         std::os::unix::fs::symlink("/dev/null", d.join("null.png")).unwrap()
     });
     assert_eq!(status, 1);
@@ -289,8 +298,15 @@ fn a_device_or_a_link_to_one_is_never_replaced() {
         stderr,
         "error: null.png: it exists and is not a regular file; outputs replace regular files only\n"
     );
-    let m = std::fs::metadata("/dev/null").unwrap();
-    assert!(!m.is_file(), "/dev/null is still a device");
+    // A rename over the link would replace the link (never /dev/null), so
+    // what must survive is the link itself, still pointing at the device.
+    let link = dir.path().join("null.png");
+    let kind = std::fs::symlink_metadata(&link).unwrap().file_type();
+    assert!(kind.is_symlink(), "the link was replaced by {kind:?}");
+    assert_eq!(
+        std::fs::read_link(&link).unwrap(),
+        std::path::Path::new("/dev/null")
+    );
 }
 
 #[cfg(unix)]

@@ -60,9 +60,10 @@ proptest! {
         let middle = m.transform_point3(shape.object_bounds().center());
         let eye = middle - from * 10.0 * size;
         let look = Ray::new(eye, from);
-        let Some(hit) = csg.first_hit(&look, 0.0, f64::INFINITY, &mut st) else {
-            return Ok(());
-        };
+        // The middle of a convex solid's box is inside it, so the ray hits.
+        let hit = csg.first_hit(&look, 0.0, f64::INFINITY, &mut st);
+        prop_assert!(hit.is_some(), "a ray aimed at the middle missed (size {}, offset {})", size, center);
+        let hit = hit.unwrap();
         let n = hit.normal;
         let err = point_error(hit.point, look.origin, hit.t * look.dir);
         // Leaving: any direction into the outer hemisphere.

@@ -2,26 +2,11 @@
 //! transforms and parts a million units from the origin.
 
 mod common;
-use common::{csgrt, scene, stats};
+use common::{csgrt, scene, stats, Rng};
 use csgrt::geometry::Ray;
 use csgrt::stats::Stats;
 use csgrt::{load_csg, Source};
 use glam::{DAffine3, DMat3, DVec3};
-
-/// A small deterministic generator (SplitMix64), so failures reproduce.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
-    }
-}
 
 fn load(text: &str) -> csgrt::Scene {
     load_csg(&Source::new("t.csg", text)).unwrap()

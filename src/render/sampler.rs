@@ -98,8 +98,29 @@ mod tests {
     }
 
     #[test]
+    fn one_sample_is_the_pixel_centre() {
+        for (px, py) in [(0, 0), (7, 3), (4000, 12)] {
+            assert_eq!(offset(px, py, 0, 1), (0.5, 0.5));
+        }
+    }
+
+    #[test]
     fn samples_depend_on_the_pixel() {
-        assert_ne!(offset(0, 0, 1, 4), offset(1, 0, 1, 4));
-        assert_eq!(offset(3, 5, 2, 4), offset(3, 5, 2, 4));
+        // Over a 16×16 block, the row stratum of sample 0 (of 4) and its
+        // jitter vary from pixel to pixel: every stratum is used, and no two
+        // pixels share an offset (a constant pattern would alias).
+        let mut strata = [0u32; 4];
+        let mut seen = Vec::new();
+        for py in 0..16 {
+            for px in 0..16 {
+                let (x, y) = offset(px, py, 0, 4);
+                strata[(y * 4.0) as usize] += 1;
+                seen.push((x.to_bits(), y.to_bits()));
+            }
+        }
+        assert!(strata.iter().all(|&c| c >= 32), "{strata:?}");
+        seen.sort_unstable();
+        seen.dedup();
+        assert_eq!(seen.len(), 256);
     }
 }

@@ -69,3 +69,31 @@ pub fn files(dir: &Path) -> Vec<String> {
 pub fn stats(dir: &Path, file: &str) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join(file)).unwrap()).unwrap()
 }
+
+/// A small deterministic generator (SplitMix64), so failures reproduce.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// A uniform number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+
+    /// A uniform unit vector.
+    pub fn unit(&mut self) -> glam::DVec3 {
+        loop {
+            let v = glam::DVec3::new(self.next(), self.next(), self.next()) * 2.0 - 1.0;
+            if (1e-3..=1.0).contains(&v.length_squared()) {
+                return v.normalize();
+            }
+        }
+    }
+}
