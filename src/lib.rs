@@ -18,6 +18,8 @@ pub mod error;
 pub mod geometry;
 #[doc(hidden)]
 pub mod harness;
+#[doc(hidden)]
+pub mod mutant;
 pub mod pov;
 pub mod render;
 pub mod scene;

@@ -398,7 +398,11 @@ impl Csg {
         SurfaceHit {
             t: b.t,
             point: ray.at(b.t),
-            normal: if b.flip { -n } else { n },
+            normal: if b.flip && !crate::mutant::active("difference_unflipped") {
+                -n
+            } else {
+                n
+            },
             prim: b.prim,
         }
     }

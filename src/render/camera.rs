@@ -24,7 +24,12 @@ impl Camera {
         let look = spec.lookat - spec.eye;
         let du = look.cross(spec.up).normalize();
         let dv = look.cross(du).normalize();
-        let fl = w / (2.0 * (0.5 * spec.fov).to_radians().tan());
+        let side = if crate::mutant::active("fov_vertical") {
+            h
+        } else {
+            w
+        };
+        let fl = side / (2.0 * (0.5 * spec.fov).to_radians().tan());
         let vp = look.normalize() * fl - 0.5 * (w * du + h * dv);
         Camera {
             eye: spec.eye,

@@ -71,7 +71,11 @@ pub fn trace_line(scene: &Scene, ray: &Ray, st: &mut Stats) -> String {
         None => "miss".to_string(),
         Some(h) => {
             let mut s = String::new();
-            let n = h.normal;
+            let n = if crate::mutant::active("normals_inward") {
+                -h.normal
+            } else {
+                h.normal
+            };
             write!(s, "{} {} {} {}", h.t, n.x, n.y, n.z).unwrap();
             s
         }

@@ -8,6 +8,7 @@ use crate::csg::{Csg, Primitive};
 use crate::error::{Diagnostic, Result, Severity, Source, Span};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Shape, Transform};
+use crate::mutant;
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DMat3, DVec3};
 
@@ -194,7 +195,12 @@ impl Resolver<'_> {
         }
         if TRANSFORMS.contains(&name) {
             let local = self.transform(s)?;
-            let ids = self.children(s, xf * local, mat, depth)?;
+            let world = if mutant::active("compose_reversed") {
+                local * xf
+            } else {
+                xf * local
+            };
+            let ids = self.children(s, world, mat, depth)?;
             return Ok(self.union(ids));
         }
         if APPEARANCE.contains(&name) {
@@ -345,6 +351,11 @@ impl Resolver<'_> {
                     (Some(r), None) => r,
                     (None, None) => 1.0,
                 };
+                let r = if mutant::active("sphere_small") {
+                    0.97 * r
+                } else {
+                    r
+                };
                 if r <= 0.0 {
                     return self.empty(s, "its radius is zero or negative");
                 }
@@ -362,7 +373,8 @@ impl Resolver<'_> {
                     &["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
                 )?;
                 let h = a.number("h")?.unwrap_or(1.0);
-                let center = a.boolean("center")?.unwrap_or(false);
+                let center = a.boolean("center")?.unwrap_or(false)
+                    && !mutant::active("cylinder_center_ignored");
                 // As OpenSCAD: a diameter beats a radius, r1/r2 beat r.
                 let radius = |d: &str, r: &str| -> Result<Option<f64>> {
                     Ok(a.non_negative(d)?.map(|d| d / 2.0).or(a.non_negative(r)?))
@@ -432,9 +444,11 @@ impl Resolver<'_> {
             }
             "scale" => {
                 let a = Args::bind(self.src, s, &["v"])?;
-                Ok(DAffine3::from_scale(
-                    a.scalar_or_vec3("v", 1.0)?.unwrap_or(DVec3::ONE),
-                ))
+                let v = a.scalar_or_vec3("v", 1.0)?.unwrap_or(DVec3::ONE);
+                if mutant::active("scale_ignored") {
+                    return Ok(DAffine3::IDENTITY);
+                }
+                Ok(DAffine3::from_scale(v))
             }
             "mirror" => {
                 let a = Args::bind(self.src, s, &["v"])?;
@@ -466,6 +480,9 @@ impl Resolver<'_> {
                 } else {
                     a.vec3("a", 0.0)?.unwrap_or(DVec3::ZERO)
                 };
+                if mutant::active("rotate_ignored") {
+                    return Ok(DAffine3::IDENTITY);
+                }
                 let m = axis_angle(DVec3::Z, angles.z)
                     * axis_angle(DVec3::Y, angles.y)
                     * axis_angle(DVec3::X, angles.x);
@@ -499,6 +516,8 @@ impl Resolver<'_> {
             match c {
                 // OpenSCAD writes color([-1, -1, -1, -1]) for "no colour".
                 Some(c) if c.iter().any(|x| *x < 0.0) => {}
+                _ if mutant::active("color_ignored") => {}
+                _ if mutant::active("outer_color_wins") && m.color != defaults::MATERIAL.color => {}
                 Some(c) => {
                     m.color = DVec3::new(c[0], c[1], c[2]).clamp(DVec3::ZERO, DVec3::ONE);
                     let alpha = alpha.or(c.get(3).copied()).unwrap_or(1.0).clamp(0.0, 1.0);

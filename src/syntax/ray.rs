@@ -195,8 +195,12 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                     materials.push(defaults::MATERIAL);
                     materials.len() as u32 - 1
                 });
-                let m =
-                    DAffine3::from_translation(v3(&n)) * DAffine3::from_scale(DVec3::splat(n[3]));
+                let r = if crate::mutant::active("sphere_small") {
+                    0.97 * n[3]
+                } else {
+                    n[3]
+                };
+                let m = DAffine3::from_translation(v3(&n)) * DAffine3::from_scale(DVec3::splat(r));
                 let Ok(xf) = Transform::new(m) else {
                     return Err(src.error(
                         span,

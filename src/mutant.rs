@@ -1,0 +1,37 @@
+//! Deliberately wrong builds, so that the oracle and the accuracy tool can
+//! show that they catch real faults (`tools/mutants.py`, run by `.ci/run`).
+//!
+//! Only a build with `--features mutants` has them; there
+//! `CSGRT_MUTANT=NAME` switches on the one fault NAME (see [`NAMES`]). In a
+//! normal build [`active`] is the constant `false` and every hook compiles
+//! away.
+
+/// The faults a mutant build can carry, each a place in the code.
+pub const NAMES: &[&str] = &[
+    "rotate_ignored",
+    "normals_inward",
+    "sphere_small",
+    "compose_reversed",
+    "scale_ignored",
+    "difference_unflipped",
+    "color_ignored",
+    "outer_color_wins",
+    "fov_vertical",
+    "cylinder_center_ignored",
+];
+
+/// Whether the fault `name` is switched on.
+#[cfg(feature = "mutants")]
+pub fn active(name: &str) -> bool {
+    use std::sync::OnceLock;
+    static CHOSEN: OnceLock<String> = OnceLock::new();
+    debug_assert!(NAMES.contains(&name), "unknown mutant {name}");
+    CHOSEN.get_or_init(|| std::env::var("CSGRT_MUTANT").unwrap_or_default()) == name
+}
+
+/// Whether the fault `name` is switched on: never, in a normal build.
+#[cfg(not(feature = "mutants"))]
+#[inline(always)]
+pub fn active(_name: &str) -> bool {
+    false
+}
