@@ -367,7 +367,10 @@ def check(path, binary):
     sc = reader.read(path)
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "s.pov")
-        subprocess.run([binary, path, "--size", f"{WIDTH}x{HEIGHT}", "--export-pov", out, "-q"], check=True)
+        image = os.path.join(work, "s.png")
+        subprocess.run(
+            [binary, path, "--size", f"{WIDTH}x{HEIGHT}", "--export-pov", out, "-o", image, "-q"], check=True
+        )
         with open(out) as f:
             sdl = read_sdl(f.read())
     bad = []

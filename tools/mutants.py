@@ -1,0 +1,141 @@
+#!/usr/bin/env python3
+"""Deliberately wrong builds of csgrt must fail the oracle and the accuracy
+tool; the real build must pass them (that is .ci/run's own oracle line).
+
+The POV-Ray export is read back by tools/pov_check.py for four of them.
+
+A mutant build (`cargo build --release --features mutants --target-dir
+target/mutants`) carries every fault of src/mutant.rs, switched on one at a
+time by CSGRT_MUTANT=NAME. For each fault this runs the oracle on the
+scenes that show it (the oracle's side is computed once a scene and kept),
+and the accuracy tool where it applies, and requires each to fail. It also
+requires the mutant build with no fault switched on to pass those same
+scenes, so a failure means the fault, not the build.
+
+Usage: mutants.py [--csgrt target/mutants/release/csgrt] [--report FILE]
+Exit status 1 unless every mutant is caught.
+"""
+
+import argparse
+import os
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import oracle  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# fault -> (scenes for the oracle, whether tools/accuracy.py must catch it)
+MUTANTS = {
+    "rotate_ignored": (["models/primitives.csg", "models/csg_ops.csg"], True),
+    "normals_inward": (["models/primitives.csg"], True),
+    "sphere_small": (["models/seed.ray", "models/mirrors.csg"], True),
+    "compose_reversed": (["models/csg_ops.csg"], False),
+    "scale_ignored": (["tests/scenes/mirror_scale.csg"], True),
+    "difference_unflipped": (["models/csg_ops.csg"], False),
+    "color_ignored": (["models/csg_ops.csg"], False),
+    "outer_color_wins": (["tests/scenes/nested_colors.csg"], False),
+    "fov_vertical": (["models/csg_ops.csg", "tests/scenes/nested_colors.csg"], False),
+    "cylinder_center_ignored": (["models/csg_ops.csg"], False),
+}
+
+# fault -> a scene tools/pov_check.py must then reject (the export is read
+# back and compared with the file).
+POV = {
+    "rotate_ignored": "models/primitives.csg",
+    "sphere_small": "models/seed.ray",
+    "color_ignored": "models/csg_ops.csg",
+    "compose_reversed": "models/csg_ops.csg",
+}
+
+SIZE, SEGMENTS, RAYS = (160, 120), [64, 128, 256, 512], 400  # as .ci/run's oracle line
+
+
+def oracle_problems(binary, scene, fault):
+    env = dict(os.environ, CSGRT_MUTANT=fault)
+    rows, bad = oracle.check_scene(os.path.join(ROOT, scene), [binary], *SIZE, SEGMENTS, RAYS, env=env)
+    return bad
+
+
+def accuracy_fails(binary, fault):
+    env = dict(os.environ, CSGRT_MUTANT=fault)
+    r = subprocess.run(
+        [sys.executable, os.path.join(ROOT, "tools", "accuracy.py"), "--csgrt", binary, "--check"],
+        env=env,
+        capture_output=True,
+        text=True,
+    )
+    lines = [x for x in r.stdout.splitlines() + r.stderr.splitlines() if x.strip()]
+    return r.returncode != 0, lines[-1] if lines else ""
+
+
+def pov_fails(binary, scene, fault):
+    env = dict(os.environ, CSGRT_MUTANT=fault)
+    r = subprocess.run(
+        [sys.executable, os.path.join(ROOT, "tools", "pov_check.py"), "--csgrt", binary, os.path.join(ROOT, scene)],
+        env=env,
+        capture_output=True,
+        text=True,
+    )
+    lines = r.stdout.splitlines()
+    return r.returncode != 0, lines[0] if lines else r.stderr.strip()[-200:]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--csgrt", default=os.path.join(ROOT, "target/mutants/release/csgrt"))
+    ap.add_argument("--only", default=None, help="comma-separated faults")
+    ap.add_argument("--report", default=None, help="write the table (Markdown) here")
+    a = ap.parse_args()
+    binary = os.path.abspath(a.csgrt)
+    faults = a.only.split(",") if a.only else list(MUTANTS)
+    lines = ["| mutant | scene or tool | caught by |", "|---|---|---|"]
+    escaped = []
+    # The build itself, no fault on, must pass.
+    for scene in sorted({s for f in faults for s in MUTANTS[f][0]}):
+        bad = oracle_problems(binary, scene, "")
+        if bad:
+            escaped.append(f"the mutant build with no fault fails {scene}: {bad[0]}")
+    for fault in faults:
+        scenes, acc = MUTANTS[fault]
+        for scene in scenes:
+            bad = oracle_problems(binary, scene, fault)
+            what = bad[0] if bad else "NOT CAUGHT"
+            lines.append(f"| {fault} | oracle {scene} | {what} |")
+            print(lines[-1], flush=True)
+            if not bad:
+                escaped.append(f"{fault} passes the oracle on {scene}")
+        if fault in POV:
+            failed, first = pov_fails(binary, POV[fault], fault)
+            lines.append(f"| {fault} | pov_check.py {POV[fault]} | {first if failed else 'NOT CAUGHT'} |")
+            print(lines[-1], flush=True)
+            if not failed:
+                escaped.append(f"{fault} passes tools/pov_check.py")
+        if acc:
+            failed, last = accuracy_fails(binary, fault)
+            lines.append(f"| {fault} | accuracy.py | {last if failed else 'NOT CAUGHT'} |")
+            print(lines[-1], flush=True)
+            if not failed:
+                escaped.append(f"{fault} passes tools/accuracy.py")
+    if a.report:
+        head = [
+            "# Deliberately wrong builds, and what catches each",
+            "",
+            "Generated by `cargo build --release --features mutants --target-dir target/mutants &&",
+            "  .venv/bin/python tools/mutants.py --report docs/mutants.md`. Each row: one fault of",
+            "src/mutant.rs switched on, a check run on it, and the first reason that check gave for",
+            "failing it (every one must fail; the same build with no fault passes them all).",
+            "",
+        ]
+        with open(a.report, "w") as f:
+            f.write("\n".join(head + lines) + "\n")
+    for e in escaped:
+        print(f"FAIL: {e}", file=sys.stderr)
+    caught = sum(1 for f in faults if not any(e.startswith(f + " ") for e in escaped))
+    print(f"{caught} passed, {len(faults) - caught} failed")
+    sys.exit(1 if escaped else 0)
+
+
+if __name__ == "__main__":
+    main()
