@@ -3,7 +3,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use csgrt::csg::spans::{combine, Boundary, Op, Span};
-use csgrt::geometry::Shape;
+use csgrt::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus};
 use glam::DVec3;
 
 /// Rays from a sphere of radius 4 towards points near the origin, in
@@ -28,26 +28,26 @@ fn rays() -> Vec<(DVec3, DVec3)> {
 fn primitives(c: &mut Criterion) {
     let rays = rays();
     let shapes = [
-        ("sphere", Shape::Sphere),
-        ("cube", Shape::Cuboid { centered: true }),
+        ("sphere", Shape::Sphere(Sphere)),
+        ("cube", Shape::Cuboid(Cuboid { centered: true })),
         (
             "cylinder",
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 1.0,
                 r1: 1.0,
                 centered: true,
-            },
+            }),
         ),
         (
             "cone",
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 1.0,
                 r1: 0.0,
                 centered: true,
-            },
+            }),
         ),
-        ("torus", Shape::Torus { minor: 0.3 }),
-        ("halfspace", Shape::Halfspace),
+        ("torus", Shape::Torus(Torus { minor: 0.3 })),
+        ("halfspace", Shape::Halfspace(Halfspace)),
     ];
     let mut g = c.benchmark_group("spans");
     for (name, shape) in shapes {

@@ -3,7 +3,7 @@
 //! oracle in `tools/` rebuilds the same solid from.
 
 use crate::csg::{Csg, NodeKind};
-use crate::geometry::Shape;
+use crate::geometry::Param;
 use crate::scene::{CameraSpec, Light, Scene};
 use glam::{DAffine3, DVec3};
 use serde_json::{json, Value};
@@ -39,18 +39,11 @@ fn node(csg: &Csg, id: u32) -> Value {
                 "matrix": matrix(&prim.xf.to_world),
                 "material": prim.material,
             });
-            match prim.shape {
-                Shape::Cuboid { centered } => v["centered"] = json!(centered),
-                Shape::Cone { r0, r1, centered } => {
-                    v["r0"] = json!(r0);
-                    v["r1"] = json!(r1);
-                    v["centered"] = json!(centered);
-                }
-                Shape::Torus { minor } => {
-                    v["major"] = json!(1.0);
-                    v["minor"] = json!(minor);
-                }
-                _ => {}
+            for (key, value) in prim.shape.params() {
+                v[key] = match value {
+                    Param::Bool(b) => json!(b),
+                    Param::Num(x) => json!(x),
+                };
             }
             v
         }

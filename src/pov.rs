@@ -15,7 +15,6 @@
 //!   csgrt's ray tree. Render with `+FN +W… +H… File_Gamma=1.0` to match.
 
 use crate::csg::{Csg, NodeKind};
-use crate::geometry::Shape;
 use crate::scene::{CameraSpec, Light, Scene};
 use glam::{DAffine3, DVec3};
 use std::fmt::Write;
@@ -44,24 +43,7 @@ fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
         NodeKind::Difference(ch) => ("difference", ch),
         NodeKind::Leaf(p) => {
             let prim = &csg.prims[*p as usize];
-            let solid = match prim.shape {
-                Shape::Sphere => "sphere { <0, 0, 0>, 1".to_string(),
-                Shape::Cuboid { centered: true } => "box { <-1, -1, -1>, <1, 1, 1>".to_string(),
-                Shape::Cuboid { centered: false } => "box { <0, 0, 0>, <1, 1, 1>".to_string(),
-                Shape::Cone { r0, r1, centered } => {
-                    let z0 = if centered { -0.5 } else { 0.0 };
-                    if r0 == r1 {
-                        format!("cylinder {{ <0, 0, {z0:?}>, <0, 0, {:?}>, {r0:?}", z0 + 1.0)
-                    } else {
-                        format!(
-                            "cone {{ <0, 0, {z0:?}>, {r0:?}, <0, 0, {:?}>, {r1:?}",
-                            z0 + 1.0
-                        )
-                    }
-                }
-                Shape::Torus { minor } => format!("torus {{ 1, {minor:?} rotate x*90"),
-                Shape::Halfspace => "plane { z, 0".to_string(),
-            };
+            let solid = prim.shape.pov();
             let m = &scene.materials[prim.material as usize];
             let _ = writeln!(
                 out,

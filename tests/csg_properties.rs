@@ -7,35 +7,35 @@
 
 use csgrt::csg::spans::{contains, Op};
 use csgrt::csg::{Csg, Primitive};
-use csgrt::geometry::{Ray, Shape, Transform};
+use csgrt::geometry::{Cone, Cuboid, Halfspace, Ray, Shape, Sphere, Torus, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
 fn arb_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
-        Just(Shape::Sphere),
-        any::<bool>().prop_map(|centered| Shape::Cuboid { centered }),
+        Just(Shape::Sphere(Sphere)),
+        any::<bool>().prop_map(|centered| Shape::Cuboid(Cuboid { centered })),
         (0.0..=1.0f64, any::<bool>(), any::<bool>()).prop_map(|(r, top, centered)| if top {
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 1.0,
                 r1: r,
                 centered,
-            }
+            })
         } else {
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: r,
                 r1: 1.0,
                 centered,
-            }
+            })
         }),
-        any::<bool>().prop_map(|centered| Shape::Cone {
+        any::<bool>().prop_map(|centered| Shape::Cone(Cone {
             r0: 1.0,
             r1: 1.0,
             centered
-        }),
-        (0.1..0.7f64).prop_map(|minor| Shape::Torus { minor }),
-        Just(Shape::Halfspace),
+        })),
+        (0.1..0.7f64).prop_map(|minor| Shape::Torus(Torus { minor })),
+        Just(Shape::Halfspace(Halfspace)),
     ]
 }
 

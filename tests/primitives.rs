@@ -7,7 +7,7 @@
 
 use csgrt::csg::{Csg, Primitive, SurfaceHit};
 use csgrt::geometry::robust::{offset_origin, point_error};
-use csgrt::geometry::{Ray, Shape, Transform};
+use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Torus, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
@@ -16,34 +16,34 @@ use common::Rng;
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
-        ("sphere", Shape::Sphere),
-        ("cube", Shape::Cuboid { centered: false }),
-        ("centred cube", Shape::Cuboid { centered: true }),
+        ("sphere", Shape::Sphere(Sphere)),
+        ("cube", Shape::Cuboid(Cuboid { centered: false })),
+        ("centred cube", Shape::Cuboid(Cuboid { centered: true })),
         (
             "cylinder",
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 1.0,
                 r1: 1.0,
                 centered: false,
-            },
+            }),
         ),
         (
             "cone",
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 1.0,
                 r1: 0.0,
                 centered: true,
-            },
+            }),
         ),
         (
             "frustum",
-            Shape::Cone {
+            Shape::Cone(Cone {
                 r0: 0.4,
                 r1: 1.0,
                 centered: false,
-            },
+            }),
         ),
-        ("torus", Shape::Torus { minor: 0.35 }),
+        ("torus", Shape::Torus(Torus { minor: 0.35 })),
     ]
 }
 
@@ -82,7 +82,7 @@ fn size_of(m: &DAffine3) -> f64 {
 /// A point inside the primitive, in object space.
 fn inner_point(shape: Shape) -> DVec3 {
     match shape {
-        Shape::Torus { .. } => DVec3::new(1.0, 0.0, 0.0),
+        Shape::Torus(_) => DVec3::new(1.0, 0.0, 0.0),
         s => s.object_bounds().center(),
     }
 }
@@ -143,7 +143,7 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                 let away = Ray::new(offset_origin(hit.point, n, err, out), out);
                 match first(&csg, &away) {
                     None => {}
-                    Some(h) if matches!(shape, Shape::Torus { .. }) => {
+                    Some(h) if matches!(shape, Shape::Torus(_)) => {
                         assert!(h.t > 1e-6 * size, "{name}: re-hit at t = {}", h.t)
                     }
                     Some(h) => panic!("{name}: a ray leaving a convex solid hit it at t = {}", h.t),
@@ -159,7 +159,7 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
 fn seams(shape: Shape) -> Option<(Vec<DVec3>, DVec3)> {
     let steps = 16;
     match shape {
-        Shape::Cuboid { centered } => {
+        Shape::Cuboid(Cuboid { centered }) => {
             let lo = if centered { -1.0 } else { 0.0 };
             let mut pts = Vec::new();
             for axis in 0..3 {
@@ -176,7 +176,7 @@ fn seams(shape: Shape) -> Option<(Vec<DVec3>, DVec3)> {
             }
             Some((pts, DVec3::splat((lo + 1.0) / 2.0)))
         }
-        Shape::Cone { r0, r1, centered } => {
+        Shape::Cone(Cone { r0, r1, centered }) => {
             let z0 = if centered { -0.5 } else { 0.0 };
             let mut pts = Vec::new();
             for (z, r) in [(z0, r0), (z0 + 1.0, r1)] {
@@ -290,7 +290,7 @@ fn normals_agree_with_the_inside_test() {
 /// How far an object-space surface point is from an edge of its solid.
 fn seam_distance(shape: Shape, p: DVec3) -> f64 {
     match shape {
-        Shape::Cuboid { centered } => {
+        Shape::Cuboid(Cuboid { centered }) => {
             let lo = if centered { -1.0 } else { 0.0 };
             // Distances to the two nearest faces other than the one hit.
             let mut d: Vec<f64> = (0..3)
@@ -299,7 +299,7 @@ fn seam_distance(shape: Shape, p: DVec3) -> f64 {
             d.sort_by(f64::total_cmp);
             d[1]
         }
-        Shape::Cone { r0, r1, centered } => {
+        Shape::Cone(Cone { r0, r1, centered }) => {
             // The two rims are circles (the apex one of radius 0).
             let z = p.z - if centered { -0.5 } else { 0.0 };
             let rho = p.truncate().length();
@@ -308,4 +308,57 @@ fn seam_distance(shape: Shape, p: DVec3) -> f64 {
         }
         _ => f64::INFINITY,
     }
+}
+
+#[test]
+fn support_points_are_the_farthest_points_of_the_solid() {
+    // The support point lies on the solid (a step inwards is inside), and no
+    // point of the solid lies farther along d: sampled from the object box
+    // by the primitive's own inside test.
+    let mut rng = Rng(11);
+    for (name, shape) in shapes() {
+        let b = shape.object_bounds();
+        let inside: Vec<DVec3> = (0..20000)
+            .map(|_| b.min + (b.max - b.min) * DVec3::new(rng.next(), rng.next(), rng.next()))
+            .filter(|p| shape.contains(*p))
+            .collect();
+        assert!(inside.len() > 1000, "{name}");
+        for _ in 0..200 {
+            let d = rng.unit() * rng.range(0.1, 10.0);
+            let s = shape
+                .support(d)
+                .expect("a bounded solid has a support point");
+            let u = d.normalize();
+            // A step from s towards the inside: the middle of a convex
+            // solid, or the tube's core for the torus.
+            let core = match shape {
+                Shape::Torus(t) => s - t.minor * u,
+                _ => shape.object_bounds().center(),
+            };
+            assert!(
+                shape.contains(s + 1e-9 * (core - s)),
+                "{name}: support {s:?} along {d:?} is not on the solid"
+            );
+            let far = inside
+                .iter()
+                .map(|p| p.dot(u))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!(
+                far <= s.dot(u) + 1e-12,
+                "{name}: a point {far} beyond the support {}",
+                s.dot(u)
+            );
+            // And it is tight: sampled points come close (a corner of the
+            // centred cube is the worst sampled, about 0.1 short).
+            assert!(
+                far >= s.dot(u) - 0.3,
+                "{name}: the support {} is far beyond every point ({far})",
+                s.dot(u)
+            );
+        }
+    }
+    assert_eq!(
+        Shape::Halfspace(csgrt::geometry::Halfspace).support(DVec3::Z),
+        None
+    );
 }

@@ -4,25 +4,25 @@
 
 use csgrt::csg::{Csg, Primitive};
 use csgrt::geometry::robust::{offset_origin, point_error};
-use csgrt::geometry::{Ray, Shape, Transform};
+use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
 fn convex_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
-        Just(Shape::Sphere),
-        any::<bool>().prop_map(|centered| Shape::Cuboid { centered }),
-        any::<bool>().prop_map(|centered| Shape::Cone {
+        Just(Shape::Sphere(Sphere)),
+        any::<bool>().prop_map(|centered| Shape::Cuboid(Cuboid { centered })),
+        any::<bool>().prop_map(|centered| Shape::Cone(Cone {
             r0: 1.0,
             r1: 1.0,
             centered
-        }),
-        (0.0..=1.0f64, any::<bool>()).prop_map(|(r, centered)| Shape::Cone {
+        })),
+        (0.0..=1.0f64, any::<bool>()).prop_map(|(r, centered)| Shape::Cone(Cone {
             r0: 1.0,
             r1: r,
             centered
-        }),
+        })),
     ]
 }
 

@@ -9,9 +9,93 @@
 //! the other nappe of the double cone never leaks in. Parts: 0 = side,
 //! 1 = bottom cap, 2 = top cap.
 
-use super::shape::RawSpan;
-use super::Part;
-use glam::DVec3;
+use super::solid::{Param, RawSpan, Solid};
+use super::{Aabb, Part};
+use glam::{DAffine3, DVec3};
+
+/// A cone frustum: z in [0, 1] (or [-½, ½] when centred), radius `r0` at
+/// the bottom and `r1` at the top, the larger of the two being 1. A
+/// cylinder has both 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cone {
+    pub r0: f64,
+    pub r1: f64,
+    pub centered: bool,
+}
+
+impl Solid for Cone {
+    const NAME: &'static str = "cylinder";
+
+    #[inline]
+    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+        spans(self.r0, self.r1, bottom(self.centered), o, d, emit)
+    }
+
+    fn normal(&self, p: DVec3, part: Part) -> DVec3 {
+        normal(self.r0, self.r1, bottom(self.centered), p, part)
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        let z = p.z - bottom(self.centered);
+        (0.0..=1.0).contains(&z) && p.truncate().length() <= self.r0 + (self.r1 - self.r0) * z
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        let z0 = bottom(self.centered);
+        Aabb::new(DVec3::new(-1.0, -1.0, z0), DVec3::new(1.0, 1.0, z0 + 1.0))
+    }
+
+    /// Exact: the hull of the two elliptic discs the caps become.
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        let col = |i: usize| m.matrix3.col(i);
+        let (u, v) = (col(0), col(1));
+        let e = (u * u + v * v).powf(0.5);
+        let z0 = bottom(self.centered);
+        let c0 = m.transform_point3(DVec3::new(0.0, 0.0, z0));
+        let c1 = m.transform_point3(DVec3::new(0.0, 0.0, z0 + 1.0));
+        Aabb::new(c0 - e * self.r0, c0 + e * self.r0)
+            .union(&Aabb::new(c1 - e * self.r1, c1 + e * self.r1))
+    }
+
+    /// The farther of the two cap discs' supports.
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        let z0 = bottom(self.centered);
+        let flat = d.truncate();
+        let dir = if flat == glam::DVec2::ZERO {
+            glam::DVec2::ZERO
+        } else {
+            flat.normalize()
+        };
+        let bottom = (dir * self.r0).extend(z0);
+        let top = (dir * self.r1).extend(z0 + 1.0);
+        Some(if top.dot(d) > bottom.dot(d) {
+            top
+        } else {
+            bottom
+        })
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![
+            ("r0", Param::Num(self.r0)),
+            ("r1", Param::Num(self.r1)),
+            ("centered", Param::Bool(self.centered)),
+        ]
+    }
+
+    fn pov(&self) -> String {
+        let (r0, r1) = (self.r0, self.r1);
+        let z0 = bottom(self.centered);
+        if r0 == r1 {
+            format!("cylinder {{ <0, 0, {z0:?}>, <0, 0, {:?}>, {r0:?}", z0 + 1.0)
+        } else {
+            format!(
+                "cone {{ <0, 0, {z0:?}>, {r0:?}, <0, 0, {:?}>, {r1:?}",
+                z0 + 1.0
+            )
+        }
+    }
+}
 
 const SIDE: Part = 0;
 const BOTTOM: Part = 1;

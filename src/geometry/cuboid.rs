@@ -6,9 +6,60 @@
 //! only strictly between its planes. Parts: 0/1 = −x/+x, 2/3 = −y/+y,
 //! 4/5 = −z/+z.
 
-use super::shape::RawSpan;
-use super::Part;
+use super::solid::{Param, RawSpan, Solid};
+use super::{Aabb, Part};
 use glam::DVec3;
+
+/// The cube [-1, 1]³ when centred, else [0, 1]³.
+///
+/// Centring lives in the object space, not in the transform, so that a
+/// part's world translation is exactly the one the file gives: a
+/// `cube(0.001)` at 1e6 would otherwise sit at 1e6 + 0.0005, rounded to
+/// an ulp of 1e6, which is 6e-8 of its size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cuboid {
+    pub centered: bool,
+}
+
+impl Solid for Cuboid {
+    const NAME: &'static str = "cube";
+
+    #[inline]
+    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+        spans(low(self.centered), o, d, emit)
+    }
+
+    fn normal(&self, _p: DVec3, part: Part) -> DVec3 {
+        normal(part)
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        let lo = low(self.centered);
+        p.min_element() >= lo && p.max_element() <= 1.0
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        Aabb::new(DVec3::splat(low(self.centered)), DVec3::ONE)
+    }
+
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        let lo = low(self.centered);
+        let pick = |x: f64| if x > 0.0 { 1.0 } else { lo };
+        Some(DVec3::new(pick(d.x), pick(d.y), pick(d.z)))
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![("centered", Param::Bool(self.centered))]
+    }
+
+    fn pov(&self) -> String {
+        if self.centered {
+            "box { <-1, -1, -1>, <1, 1, 1>".to_string()
+        } else {
+            "box { <0, 0, 0>, <1, 1, 1>".to_string()
+        }
+    }
+}
 
 /// The low corner coordinate of the cube.
 pub fn low(centered: bool) -> f64 {

@@ -12,12 +12,19 @@ pub mod halfspace;
 pub mod poly;
 pub mod robust;
 pub mod shape;
+pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
 
 pub use aabb::Aabb;
+pub use cone::Cone;
+pub use cuboid::Cuboid;
+pub use halfspace::Halfspace;
 pub use shape::Shape;
+pub use solid::{Param, Solid};
+pub use sphere::Sphere;
+pub use torus::Torus;
 pub use transform::Transform;
 
 use glam::DVec3;

@@ -5,8 +5,55 @@
 //! ray passes far from the sphere, and the roots as q/a and c/q so that
 //! neither suffers cancellation.
 
-use super::shape::RawSpan;
-use glam::DVec3;
+use super::solid::{Param, RawSpan, Solid};
+use super::{Aabb, Part};
+use glam::{DAffine3, DVec3};
+
+/// The unit sphere at the origin.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere;
+
+impl Solid for Sphere {
+    const NAME: &'static str = "sphere";
+
+    #[inline]
+    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+        spans(o, d, emit)
+    }
+
+    fn normal(&self, p: DVec3, _part: Part) -> DVec3 {
+        p
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        p.length_squared() <= 1.0
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        Aabb::new(DVec3::NEG_ONE, DVec3::ONE)
+    }
+
+    /// Exact: the ellipsoid's half-extent along each world axis is the
+    /// length of that row of the matrix.
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        let col = |i: usize| m.matrix3.col(i);
+        let (a, b, c) = (col(0), col(1), col(2));
+        let e = (a * a + b * b + c * c).powf(0.5);
+        Aabb::new(m.translation - e, m.translation + e)
+    }
+
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        Some(d.normalize())
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![]
+    }
+
+    fn pov(&self) -> String {
+        "sphere { <0, 0, 0>, 1".to_string()
+    }
+}
 
 pub fn spans(o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     let a = d.length_squared();

@@ -8,8 +8,70 @@
 //! closed form.
 
 use super::poly::{eval, roots_in, Poly};
-use super::shape::RawSpan;
-use glam::DVec3;
+use super::solid::{Param, RawSpan, Solid};
+use super::{Aabb, Part};
+use glam::{DAffine3, DVec3};
+
+/// A torus around the z axis, major radius 1, tube radius `minor` < 1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Torus {
+    pub minor: f64,
+}
+
+impl Solid for Torus {
+    const NAME: &'static str = "torus";
+
+    #[inline]
+    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+        spans(self.minor, o, d, emit)
+    }
+
+    fn normal(&self, p: DVec3, _part: Part) -> DVec3 {
+        normal(p)
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        let q = p.truncate().length() - 1.0;
+        q * q + p.z * p.z <= self.minor * self.minor
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        let e = DVec3::new(1.0 + self.minor, 1.0 + self.minor, self.minor);
+        Aabb::new(-e, e)
+    }
+
+    /// The torus is the core circle ⊕ a ball of radius `minor`, and a
+    /// linear map keeps Minkowski sums: the half-extents add, the
+    /// ellipse's √(u² + v²) and the ellipsoid's minor·|row|.
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        let col = |i: usize| m.matrix3.col(i);
+        let (u, v, w) = (col(0), col(1), col(2));
+        let e = (u * u + v * v).powf(0.5) + self.minor * (u * u + v * v + w * w).powf(0.5);
+        Aabb::new(m.translation - e, m.translation + e)
+    }
+
+    /// Of its hull: the core circle's support plus the ball's.
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        let flat = d.truncate();
+        let ring = if flat == glam::DVec2::ZERO {
+            DVec3::X
+        } else {
+            flat.normalize().extend(0.0)
+        };
+        Some(ring + self.minor * d.normalize())
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![
+            ("major", Param::Num(1.0)),
+            ("minor", Param::Num(self.minor)),
+        ]
+    }
+
+    fn pov(&self) -> String {
+        format!("torus {{ 1, {:?} rotate x*90", self.minor)
+    }
+}
 
 pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     // Clip the line to the box [-(1+r), 1+r]² × [-r, r].

@@ -7,7 +7,7 @@ use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
 use crate::error::{Diagnostic, Result, Severity, Source, Span};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
-use crate::geometry::{Shape, Transform};
+use crate::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus, Transform};
 use crate::mutant;
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DMat3, DVec3};
@@ -341,7 +341,7 @@ impl Resolver<'_> {
                 }
                 // Centring is the shape's, so the translation stays exact.
                 let scale = if center { 0.5 * size } else { size };
-                let shape = Shape::Cuboid { centered: center };
+                let shape = Shape::Cuboid(Cuboid { centered: center });
                 self.leaf(s, shape, xf * DAffine3::from_scale(scale), mat)
             }
             "sphere" => {
@@ -361,7 +361,7 @@ impl Resolver<'_> {
                 }
                 self.leaf(
                     s,
-                    Shape::Sphere,
+                    Shape::Sphere(Sphere),
                     xf * DAffine3::from_scale(DVec3::splat(r)),
                     mat,
                 )
@@ -389,11 +389,11 @@ impl Resolver<'_> {
                 if rmax <= 0.0 {
                     return self.empty(s, "both its radii are zero");
                 }
-                let shape = Shape::Cone {
+                let shape = Shape::Cone(Cone {
                     r0: r1 / rmax,
                     r1: r2 / rmax,
                     centered: center,
-                };
+                });
                 let local = DAffine3::from_scale(DVec3::new(rmax, rmax, h));
                 self.leaf(s, shape, xf * local, mat)
             }
@@ -411,7 +411,7 @@ impl Resolver<'_> {
                         format!("expected a number < {big}"),
                     ));
                 }
-                let shape = Shape::Torus { minor: small / big };
+                let shape = Shape::Torus(Torus { minor: small / big });
                 self.leaf(s, shape, xf * DAffine3::from_scale(DVec3::splat(big)), mat)
             }
             "halfspace" => {
@@ -428,7 +428,7 @@ impl Resolver<'_> {
                 }
                 let z = n / len;
                 let local = DAffine3::from_mat3_translation(basis_from_z(z), z * (offset / len));
-                self.leaf(s, Shape::Halfspace, xf * local, mat)
+                self.leaf(s, Shape::Halfspace(Halfspace), xf * local, mat)
             }
             _ => unreachable!("not a solid: {}", s.name),
         }

@@ -211,7 +211,11 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                         ),
                     ));
                 };
-                spheres.push(csg.add_prim(Primitive::new(Shape::Sphere, xf, material)));
+                spheres.push(csg.add_prim(Primitive::new(
+                    Shape::Sphere(crate::geometry::Sphere),
+                    xf,
+                    material,
+                )));
             }
             _ => {}
         }

@@ -1,0 +1,70 @@
+//! What every primitive answers about itself, in its own object space.
+//!
+//! A primitive is one module of `geometry/` with a struct that implements
+//! [`Solid`]; [`super::Shape`] lists them and only dispatches. Everything
+//! about a primitive — its spans, normal, inside test, bounds, support
+//! function, its fields in `--dump-scene` and its POV-Ray object — lives in
+//! its module.
+
+use super::{Aabb, Part};
+use glam::{DAffine3, DVec3};
+
+/// Where the line enters and leaves a solid: `(t_in, part_in, t_out, part_out)`.
+pub type RawSpan = (f64, Part, f64, Part);
+
+/// A value a primitive reports about itself (for `--dump-scene`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Param {
+    Bool(bool),
+    Num(f64),
+}
+
+pub trait Solid {
+    /// The OpenSCAD statement it comes from.
+    const NAME: &'static str;
+
+    /// Calls `emit` for each span of the line `o + t·d` inside the solid, in
+    /// increasing `t`. Spans are never empty (`t_in < t_out`); unbounded
+    /// ends are ±∞ with part [`super::NO_PART`].
+    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan));
+
+    /// The outward (not unit) normal at object-space point `p` on `part`.
+    fn normal(&self, p: DVec3, part: Part) -> DVec3;
+
+    /// Whether object-space point `p` is inside (boundary counts as inside).
+    fn contains(&self, p: DVec3) -> bool;
+
+    /// A box around the solid in object space.
+    fn object_bounds(&self) -> Aabb;
+
+    /// A world box of the solid under `m`; by default the box of the
+    /// transformed corners of the object box.
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        corner_box(&self.object_bounds(), m)
+    }
+
+    /// The point of the solid's convex hull farthest along `d` (object
+    /// space, `d` not zero), or `None` for an unbounded solid.
+    fn support(&self, d: DVec3) -> Option<DVec3>;
+
+    /// The fields `--dump-scene` writes besides the matrix.
+    fn params(&self) -> Vec<(&'static str, Param)>;
+
+    /// The POV-Ray 3.7 object in the same object space, up to (not
+    /// including) its transform and texture: `sphere { <0, 0, 0>, 1`.
+    fn pov(&self) -> String;
+}
+
+/// The box of the eight transformed corners of `b`.
+pub fn corner_box(b: &Aabb, m: &DAffine3) -> Aabb {
+    let mut out = Aabb::EMPTY;
+    for i in 0..8 {
+        let p = DVec3::new(
+            if i & 1 == 0 { b.min.x } else { b.max.x },
+            if i & 2 == 0 { b.min.y } else { b.max.y },
+            if i & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        out = out.include(m.transform_point3(p));
+    }
+    out
+}
