@@ -28,9 +28,7 @@ fn node(csg: &Csg, id: u32) -> Value {
     let n = &csg.nodes[id as usize];
     let kids = |ch: &Vec<u32>| Value::Array(ch.iter().map(|&c| node(csg, c)).collect());
     match &n.kind {
-        NodeKind::Union(ch) => json!({"op": "union", "children": kids(ch)}),
-        NodeKind::Intersection(ch) => json!({"op": "intersection", "children": kids(ch)}),
-        NodeKind::Difference(ch) => json!({"op": "difference", "children": kids(ch)}),
+        NodeKind::Op(op, ch) => json!({"op": op.name(), "children": kids(ch)}),
         NodeKind::Leaf(p) => {
             let prim = &csg.prims[*p as usize];
             let mut v = json!({

@@ -38,9 +38,8 @@ fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
     let pad = "  ".repeat(depth);
     let n = &csg.nodes[id as usize];
     let (word, kids) = match &n.kind {
-        NodeKind::Union(ch) => ("union", ch),
-        NodeKind::Intersection(ch) => ("intersection", ch),
-        NodeKind::Difference(ch) => ("difference", ch),
+        // POV-Ray's union, intersection and difference mean the same.
+        NodeKind::Op(op, ch) => (op.name(), ch),
         NodeKind::Leaf(p) => {
             let prim = &csg.prims[*p as usize];
             let solid = prim.shape.pov();

@@ -44,10 +44,9 @@ impl Primitive {
 #[derive(Clone, Debug, PartialEq)]
 pub enum NodeKind {
     Leaf(u32),
-    Union(Vec<u32>),
-    Intersection(Vec<u32>),
-    /// The first child minus the rest.
-    Difference(Vec<u32>),
+    /// An operation over two or more children; a difference is the first
+    /// child minus the rest.
+    Op(Op, Vec<u32>),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -107,7 +106,7 @@ impl Csg {
             children = children
                 .into_iter()
                 .flat_map(|c| match &self.nodes[c as usize].kind {
-                    NodeKind::Union(ch) => ch.clone(),
+                    NodeKind::Op(Op::Union, ch) => ch.clone(),
                     _ => vec![c],
                 })
                 .collect();
@@ -131,11 +130,7 @@ impl Csg {
         } else {
             None
         };
-        let kind = match op {
-            Op::Union => NodeKind::Union(children),
-            Op::Intersection => NodeKind::Intersection(children),
-            Op::Difference => NodeKind::Difference(children),
-        };
+        let kind = NodeKind::Op(op, children);
         let mut node = Node {
             kind,
             bounds,
@@ -233,7 +228,7 @@ impl Csg {
         let base = sc.stack.len();
         match &n.kind {
             NodeKind::Leaf(p) => self.push_prim_spans(*p, ray, st, sc),
-            NodeKind::Union(ch) => {
+            NodeKind::Op(Op::Union, ch) => {
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
                 let ch: &[u32] = match &n.index {
                     Some(ix) => {
@@ -249,12 +244,7 @@ impl Csg {
                     sc.merge(Op::Union, base, top, ray);
                 }
             }
-            NodeKind::Intersection(ch) | NodeKind::Difference(ch) => {
-                let op = if matches!(n.kind, NodeKind::Intersection(_)) {
-                    Op::Intersection
-                } else {
-                    Op::Difference
-                };
+            &NodeKind::Op(op, ref ch) => {
                 self.push_spans(ch[0], ray, tmin, tmax, st, sc);
                 for &c in &ch[1..] {
                     let acc = &sc.stack[base..];
@@ -303,7 +293,7 @@ impl Csg {
         let root = self.root?;
         with_scratch(st, |sc, st| {
             match &self.nodes[root as usize].kind {
-                NodeKind::Union(ch) => self.union_first(root, ch, ray, tmin, tmax, st, sc),
+                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, ray, tmin, tmax, st, sc),
                 _ => self.push_spans(root, ray, tmin, tmax, st, sc),
             };
             first_surface(&sc.stack, tmin).filter(|b| b.t < tmax)
@@ -414,9 +404,9 @@ impl Csg {
                 let prim = &self.prims[*i as usize];
                 prim.shape.contains(prim.xf.point_to_object(p))
             }
-            NodeKind::Union(ch) => ch.iter().any(|&c| self.contains(c, p)),
-            NodeKind::Intersection(ch) => ch.iter().all(|&c| self.contains(c, p)),
-            NodeKind::Difference(ch) => {
+            NodeKind::Op(Op::Union, ch) => ch.iter().any(|&c| self.contains(c, p)),
+            NodeKind::Op(Op::Intersection, ch) => ch.iter().all(|&c| self.contains(c, p)),
+            NodeKind::Op(Op::Difference, ch) => {
                 self.contains(ch[0], p) && !ch[1..].iter().any(|&c| self.contains(c, p))
             }
         }

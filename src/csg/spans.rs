@@ -67,6 +67,15 @@ pub enum Op {
 }
 
 impl Op {
+    /// The statement's name, in OpenSCAD and in POV-Ray alike.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Op::Union => "union",
+            Op::Intersection => "intersection",
+            Op::Difference => "difference",
+        }
+    }
+
     pub fn apply(self, a: bool, b: bool) -> bool {
         match self {
             Op::Union => a || b,
