@@ -444,37 +444,28 @@ impl Scratch {
         }
     }
 
-    /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`.
+    /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`,
+    /// in place where [`spans::quick`] allows.
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         let (a, b) = self.stack[base..].split_at(top - base);
-        match spans::quick(op, a, b) {
-            // Nothing to do: A stays, or B is the whole result and, A being
-            // empty, already sits where A would be.
-            Some(Quick::A | Quick::B) => return,
+        let scale = ray.origin.abs().max_element();
+        match spans::quick(op, a, b, scale) {
+            // Nothing to do: A stays, B is the whole result and, A being
+            // empty, already sits where A would be, or B follows A.
+            Some(Quick::A | Quick::B | Quick::AThenB) => return,
             Some(Quick::Empty) => {
                 self.stack.truncate(base);
                 return;
             }
-            None => {}
-        }
-        let scale = ray.origin.abs().max_element();
-        // A union of lists apart by more than the coincidence bound is the
-        // two lists one after the other, in either order: the common case.
-        if op == Op::Union {
-            let gap_after =
-                |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
-            if gap_after(&a[a.len() - 1], &b[0]) {
-                return;
-            }
-            // B wholly before A (a part in front of a floor): swap the two.
-            if gap_after(&b[b.len() - 1], &a[0]) {
+            Some(Quick::BThenA) => {
                 let nb = b.len();
                 self.stack[base..].rotate_right(nb);
                 return;
             }
+            None => {}
         }
         self.out.clear();
-        spans::combine_into(op, a, b, scale, &mut self.out);
+        spans::sweep_into(op, a, b, scale, &mut self.out);
         self.stack.truncate(base);
         self.stack.extend_from_slice(&self.out);
     }

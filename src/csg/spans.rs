@@ -105,7 +105,8 @@ pub fn combine(op: Op, a: &[Span], b: &[Span], scale: f64) -> Vec<Span> {
     out
 }
 
-/// What `a op b` is when a side is empty, with no sweep.
+/// What `a op b` is, without a sweep, when a side is empty or a union's
+/// lists lie apart.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Quick {
     /// `a` itself.
@@ -113,28 +114,60 @@ pub enum Quick {
     /// `b` itself (`a` is empty).
     B,
     Empty,
+    /// `a` then `b`: a union whose `b` begins after `a` ends, farther than
+    /// the coincidence bound.
+    AThenB,
+    /// `b` then `a`: a union whose `b` ends before `a` begins (a part in
+    /// front of a floor).
+    BThenA,
 }
 
-/// The answer to `a op b` that needs no sweep, or `None` when both lists
-/// hold spans.
-pub fn quick(op: Op, a: &[Span], b: &[Span]) -> Option<Quick> {
+/// The answer to `a op b` that needs no sweep, or `None`; `scale` as for
+/// [`combine`].
+#[inline]
+pub fn quick(op: Op, a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
     match op {
         Op::Union if a.is_empty() => Some(Quick::B),
         Op::Union | Op::Difference if b.is_empty() => Some(Quick::A),
         Op::Intersection | Op::Difference if a.is_empty() => Some(Quick::Empty),
         Op::Intersection if b.is_empty() => Some(Quick::Empty),
+        Op::Union => {
+            // Lists apart by more than the coincidence bound are the two
+            // lists one after the other: the common case of a wide union.
+            let gap_after =
+                |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
+            if gap_after(&a[a.len() - 1], &b[0]) {
+                Some(Quick::AThenB)
+            } else if gap_after(&b[b.len() - 1], &a[0]) {
+                Some(Quick::BThenA)
+            } else {
+                None
+            }
+        }
         _ => None,
     }
 }
 
 /// [`combine`], appending the result to `out`.
 pub fn combine_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span>) {
-    match quick(op, a, b) {
-        Some(Quick::A) => return out.extend_from_slice(a),
-        Some(Quick::B) => return out.extend_from_slice(b),
-        Some(Quick::Empty) => return,
-        None => {}
+    match quick(op, a, b, scale) {
+        Some(Quick::A) => out.extend_from_slice(a),
+        Some(Quick::B) => out.extend_from_slice(b),
+        Some(Quick::Empty) => {}
+        Some(Quick::AThenB) => {
+            out.extend_from_slice(a);
+            out.extend_from_slice(b);
+        }
+        Some(Quick::BThenA) => {
+            out.extend_from_slice(b);
+            out.extend_from_slice(a);
+        }
+        None => sweep_into(op, a, b, scale, out),
     }
+}
+
+/// `a op b` by one sweep over both lists, whatever they hold.
+pub fn sweep_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span>) {
     let (mut ia, mut ib) = (0usize, 0usize);
     let (mut in_a, mut in_b) = (false, false);
     let mut inside = false;
@@ -369,7 +402,27 @@ mod tests {
         prop_oneof![Just(U), Just(I), Just(D)]
     }
 
+    /// Like [`arb_list`], but its spans may sit anywhere from -20 to 40, so
+    /// that two lists often lie wholly apart.
+    fn arb_shifted() -> impl Strategy<Value = Vec<(f64, f64)>> {
+        (arb_list(), -40i32..40).prop_map(|(l, k)| {
+            l.into_iter()
+                .map(|(x, y)| (x + k as f64 * 0.5, y + k as f64 * 0.5))
+                .collect()
+        })
+    }
+
     proptest! {
+        /// The shortcuts give exactly what a sweep gives.
+        #[test]
+        fn shortcuts_agree_with_the_sweep(a in arb_shifted(), bb in arb_shifted(), op in arb_op(), scale in prop_oneof![Just(0.0), Just(1e3), Just(1e15)]) {
+            let la = list(0, &a);
+            let lb = list(1, &bb);
+            let mut swept = Vec::new();
+            sweep_into(op, &la, &lb, scale, &mut swept);
+            prop_assert_eq!(combine(op, &la, &lb, scale), swept);
+        }
+
         /// Membership of any t in `a op b` equals `op(member(a), member(b))`,
         /// tested at every endpoint's neighbourhood and between them (the
         /// endpoints themselves sit on the boundary, where either answer is
