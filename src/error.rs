@@ -18,22 +18,23 @@ use std::path::PathBuf;
 /// How many characters of a long source line a diagnostic shows.
 pub const WINDOW: usize = 100;
 
-/// A byte range in a source text.
+/// A byte range in a source text (named so as not to be confused with
+/// `csg::spans::Span`, an interval of a ray parameter).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Span {
+pub struct TextRange {
     pub start: usize,
     pub end: usize,
 }
 
-impl Span {
-    pub fn new(start: usize, end: usize) -> Span {
-        Span { start, end }
+impl TextRange {
+    pub fn new(start: usize, end: usize) -> TextRange {
+        TextRange { start, end }
     }
 }
 
-impl From<pest::Span<'_>> for Span {
-    fn from(s: pest::Span<'_>) -> Span {
-        Span::new(s.start(), s.end())
+impl From<pest::Span<'_>> for TextRange {
+    fn from(s: pest::Span<'_>) -> TextRange {
+        TextRange::new(s.start(), s.end())
     }
 }
 
@@ -129,7 +130,7 @@ impl Source {
     pub fn diagnostic(
         &self,
         severity: Severity,
-        span: Span,
+        span: TextRange,
         message: impl Into<String>,
         label: impl Into<String>,
     ) -> Diagnostic {
@@ -155,7 +156,12 @@ impl Source {
     }
 
     /// An error pointing at `span`.
-    pub fn error(&self, span: Span, message: impl Into<String>, label: impl Into<String>) -> Error {
+    pub fn error(
+        &self,
+        span: TextRange,
+        message: impl Into<String>,
+        label: impl Into<String>,
+    ) -> Error {
         Error::Scene(Box::new(self.diagnostic(
             Severity::Error,
             span,
@@ -218,7 +224,7 @@ mod tests {
         let src = Source::new("a.csg", "sphere(1);\ncube(sise = 2);\n");
         let d = src.diagnostic(
             Severity::Error,
-            Span::new(16, 20),
+            TextRange::new(16, 20),
             "unknown argument `sise` for `cube`",
             "expected one of `size`, `center`",
         );
@@ -237,7 +243,7 @@ mod tests {
         );
         let src = Source::new("l.csg", line.clone());
         let at = line.find('x').unwrap();
-        let d = src.diagnostic(Severity::Error, Span::new(at, at + 1), "bad", "here");
+        let d = src.diagnostic(Severity::Error, TextRange::new(at, at + 1), "bad", "here");
         let text = d.to_string();
         let lines: Vec<&str> = text.lines().collect();
         let shown = lines[3].strip_prefix("1 | ").unwrap();

@@ -6,7 +6,7 @@
 //! outward normal there, each printed as the shortest decimal that reads
 //! back to the same f64 — or `miss`.
 
-use crate::error::{Result, Source, Span};
+use crate::error::{Result, Source, TextRange};
 use crate::geometry::Ray;
 use crate::scene::Scene;
 use crate::stats::Stats;
@@ -26,7 +26,7 @@ pub fn parse_rays(src: &Source) -> Result<Vec<Ray>> {
         for word in body.split_ascii_whitespace() {
             let at = start + body[pos - start..].find(word).unwrap() + (pos - start);
             pos = at + word.len();
-            let span = Span::new(at, pos);
+            let span = TextRange::new(at, pos);
             match word.parse::<f64>() {
                 Ok(x) if x.is_finite() => nums.push((x, span)),
                 _ => {
@@ -42,7 +42,7 @@ pub fn parse_rays(src: &Source) -> Result<Vec<Ray>> {
             0 => continue,
             6 => {}
             n => {
-                let span = Span::new(start, start + line.trim_end().len());
+                let span = TextRange::new(start, start + line.trim_end().len());
                 return Err(src.error(
                     span,
                     format!("a ray needs 6 numbers, this line has {n}"),
@@ -53,7 +53,7 @@ pub fn parse_rays(src: &Source) -> Result<Vec<Ray>> {
         let v = |i: usize| DVec3::new(nums[i].0, nums[i + 1].0, nums[i + 2].0);
         let dir = v(3);
         if dir.length_squared() == 0.0 || !dir.length_squared().is_finite() {
-            let span = Span::new(nums[3].1.start, nums[5].1.end);
+            let span = TextRange::new(nums[3].1.start, nums[5].1.end);
             return Err(src.error(
                 span,
                 "a ray's direction must not be zero",

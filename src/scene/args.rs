@@ -1,7 +1,7 @@
 //! Binding a statement's arguments to its parameters, with typed getters
 //! that report problems at the argument's place in the file.
 
-use crate::error::{Error, Result, Source, Span};
+use crate::error::{Error, Result, Source, TextRange};
 use crate::syntax::ast::{Statement, Value, ValueKind};
 use crate::syntax::one_of;
 use glam::DVec3;
@@ -104,11 +104,16 @@ impl<'a> Args<'a> {
     }
 
     /// The span to blame for a missing argument: the argument list.
-    pub fn list_span(&self) -> Span {
+    pub fn list_span(&self) -> TextRange {
         self.stmt.args_span
     }
 
-    pub fn error(&self, span: Span, message: impl Into<String>, label: impl Into<String>) -> Error {
+    pub fn error(
+        &self,
+        span: TextRange,
+        message: impl Into<String>,
+        label: impl Into<String>,
+    ) -> Error {
         self.src.error(span, message, label)
     }
 
@@ -257,7 +262,7 @@ impl<'a> Args<'a> {
     }
 
     /// The span of an argument's value (for semantic errors about it).
-    pub fn span_of(&self, name: &str) -> Span {
+    pub fn span_of(&self, name: &str) -> TextRange {
         self.get(name).map_or(self.stmt.args_span, |v| v.span)
     }
 

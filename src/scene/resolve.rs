@@ -5,7 +5,7 @@ use super::args::Args;
 use super::{defaults, CameraSpec, Light, Material, Scene};
 use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
-use crate::error::{Diagnostic, Result, Severity, Source, Span};
+use crate::error::{Diagnostic, Result, Severity, Source, TextRange};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus, Transform};
 use crate::mutant;
@@ -77,7 +77,7 @@ pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
     }
     r.csg.root = r.union(ids);
     if r.csg.root.is_none() {
-        let span = stmts.first().map_or(Span::default(), |s| s.span);
+        let span = stmts.first().map_or(TextRange::default(), |s| s.span);
         r.warn(
             span,
             "the scene has no solids",
@@ -125,13 +125,13 @@ struct Resolver<'a> {
     csg: Csg,
     materials: Vec<Material>,
     lights: Vec<Light>,
-    camera: Option<(CameraSpec, Span)>,
+    camera: Option<(CameraSpec, TextRange)>,
     background: Option<DVec3>,
     warnings: Vec<Diagnostic>,
 }
 
 impl Resolver<'_> {
-    fn warn(&mut self, span: Span, message: &str, label: &str) {
+    fn warn(&mut self, span: TextRange, message: &str, label: &str) {
         let d = self.src.diagnostic(Severity::Warning, span, message, label);
         self.warnings.push(d);
     }

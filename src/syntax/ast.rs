@@ -1,7 +1,7 @@
 //! The typed syntax tree of a `.csg` file. Every node keeps its span so that
 //! later stages can report problems at their place in the file.
 
-use crate::error::Span;
+use crate::error::TextRange;
 
 /// OpenSCAD's statement modifiers.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -21,27 +21,27 @@ pub struct Modifiers {
 pub struct Statement {
     pub modifiers: Modifiers,
     pub name: String,
-    pub name_span: Span,
+    pub name_span: TextRange,
     pub args: Vec<Arg>,
-    /// Span of the argument list, parentheses included.
-    pub args_span: Span,
+    /// TextRange of the argument list, parentheses included.
+    pub args_span: TextRange,
     pub children: Vec<Statement>,
-    pub span: Span,
+    pub span: TextRange,
 }
 
 /// One argument: `key = value` or a positional value.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arg {
-    pub name: Option<(String, Span)>,
+    pub name: Option<(String, TextRange)>,
     pub value: Value,
-    pub span: Span,
+    pub span: TextRange,
 }
 
 /// A literal value with its span.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Value {
     pub kind: ValueKind,
-    pub span: Span,
+    pub span: TextRange,
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -7,7 +7,7 @@
 pub mod ast;
 pub mod ray;
 
-use crate::error::{Error, Result, Source, Span};
+use crate::error::{Error, Result, Source, TextRange};
 use ast::{Arg, Modifiers, Statement, Value, ValueKind};
 use pest::iterators::Pair;
 use pest::Parser;
@@ -33,7 +33,7 @@ pub fn parse_csg(src: &Source) -> Result<Vec<Statement>> {
     Ok(out)
 }
 
-fn too_deep(src: &Source, span: Span) -> Error {
+fn too_deep(src: &Source, span: TextRange) -> Error {
     src.error(
         span,
         format!("nesting deeper than {MAX_NESTING} levels"),
@@ -42,7 +42,7 @@ fn too_deep(src: &Source, span: Span) -> Error {
 }
 
 fn statement(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Statement> {
-    let span = Span::from(pair.as_span());
+    let span = TextRange::from(pair.as_span());
     if depth > MAX_NESTING {
         // Point at the statement's name, not at everything it holds.
         let at = pair
@@ -102,7 +102,7 @@ fn statement(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Stateme
 }
 
 fn argument(src: &Source, pair: Pair<'_, Rule>) -> Result<Arg> {
-    let span = Span::from(pair.as_span());
+    let span = TextRange::from(pair.as_span());
     let mut name = None;
     let mut value = None;
     for p in pair.into_inner() {
@@ -117,7 +117,7 @@ fn argument(src: &Source, pair: Pair<'_, Rule>) -> Result<Arg> {
 }
 
 fn value(src: &Source, pair: Pair<'_, Rule>, depth: usize) -> Result<Value> {
-    let span = Span::from(pair.as_span());
+    let span = TextRange::from(pair.as_span());
     if depth > MAX_NESTING {
         return Err(too_deep(src, span));
     }
@@ -247,7 +247,7 @@ fn syntax_error(src: &Source, e: pest::error::Error<Rule>) -> Error {
     } else {
         "the parser stopped here"
     };
-    src.error(Span::new(pos, pos + span_len), message, label)
+    src.error(TextRange::new(pos, pos + span_len), message, label)
 }
 
 /// Names what stands at the error position, and how many bytes to underline.

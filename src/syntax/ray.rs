@@ -9,7 +9,7 @@
 
 use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
-use crate::error::{Error, Result, Source, Span};
+use crate::error::{Error, Result, Source, TextRange};
 use crate::geometry::transform::MAX_MAGNITUDE;
 use crate::geometry::{Shape, Transform};
 use crate::scene::{defaults, CameraSpec, Light, Material, Scene};
@@ -63,7 +63,7 @@ fn syntax_error(src: &Source, e: pest::error::Error<Rule>) -> Error {
         super::one_of(&names)
     };
     src.error(
-        Span::new(pos, pos + len),
+        TextRange::new(pos, pos + len),
         format!("expected {expected}, found {found}"),
         "",
     )
@@ -101,7 +101,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
     let mut camera_span = None;
     for st in file.into_inner() {
         let rule = st.as_rule();
-        let span = Span::from(st.as_span());
+        let span = TextRange::from(st.as_span());
         match rule {
             Rule::eye | Rule::lookat | Rule::up | Rule::fov => {
                 camera_span.get_or_insert(span);
@@ -237,7 +237,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
     if csg.root.is_none() {
         warnings.push(src.diagnostic(
             crate::error::Severity::Warning,
-            Span::default(),
+            TextRange::default(),
             "the scene has no solids",
             "only the background will show",
         ));
