@@ -7,13 +7,12 @@
 //! its subtracted children. The normal and material are looked up only for
 //! the boundary that wins ([`Csg::surface`]).
 
-pub mod bvh;
 pub mod spans;
 
+use crate::geometry::bvh::Bvh;
 use crate::geometry::robust::coincidence;
 use crate::geometry::{Aabb, Ray, Shape, Transform};
 use crate::stats::Stats;
-use bvh::Bvh;
 use glam::DVec3;
 use smallvec::SmallVec;
 use spans::{Boundary, Op, Quick, Span};
@@ -58,6 +57,11 @@ pub struct Node {
     /// For a union of many children: a hierarchy over the bounded ones.
     pub index: Option<Box<UnionIndex>>,
 }
+
+/// A union gets a hierarchy over its children from this many bounded ones.
+pub const UNION_INDEX_MIN: usize = 8;
+/// Children a leaf of a union's hierarchy holds: two, tested together.
+pub const UNION_LEAF: usize = 2;
 
 /// How a wide union finds the children a ray may meet.
 #[derive(Clone, Debug, PartialEq)]
@@ -144,7 +148,7 @@ impl Csg {
         let (bounded, unbounded): (Vec<u32>, Vec<u32>) = children
             .iter()
             .partition(|&&c| self.nodes[c as usize].bounds.is_bounded());
-        if bounded.len() < bvh::MIN_CHILDREN {
+        if bounded.len() < UNION_INDEX_MIN {
             return None;
         }
         let items: Vec<(u32, Aabb)> = bounded
@@ -152,7 +156,7 @@ impl Csg {
             .map(|&c| (c, self.nodes[c as usize].bounds))
             .collect();
         Some(Box::new(UnionIndex {
-            bvh: Bvh::build(&items),
+            bvh: Bvh::build(&items, UNION_LEAF),
             unbounded,
         }))
     }

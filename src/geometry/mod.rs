@@ -6,6 +6,7 @@
 //! direction, so the ray parameter `t` is the same in both spaces.
 
 pub mod aabb;
+pub mod bvh;
 pub mod cone;
 pub mod cuboid;
 pub mod halfspace;

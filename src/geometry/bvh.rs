@@ -1,21 +1,18 @@
-//! A bounding volume hierarchy over the children of a wide CSG node (the
-//! 400 holes of a plate, the 1000 spheres of a pile), so that a ray looks
-//! only at the children whose boxes it meets: O(log n + hits) box tests
-//! instead of n.
+//! A bounding volume hierarchy over boxed items named by ids — the children
+//! of a wide CSG node (the 400 holes of a plate, the 1000 spheres of a
+//! pile), a mesh's triangles, a polygon's edges — so that a ray looks only
+//! at the items whose boxes it meets: O(log n + hits) box tests instead of
+//! n.
 //!
-//! Built once, top down, splitting the children where the surface-area
-//! heuristic is least, down to leaves of at most [`LEAF`].
+//! Built once, top down, splitting the items where the surface-area
+//! heuristic is least, down to leaves of at most `leaf` items (a
+//! parameter: 2 for a union's children, whose own tests are dear; more
+//! where an item is cheap).
 
 use crate::geometry::aabb::AabbPair;
 use crate::geometry::{Aabb, Ray};
 use crate::stats::Stats;
 use smallvec::SmallVec;
-
-/// A node gets a hierarchy from this many bounded children on.
-pub const MIN_CHILDREN: usize = 8;
-/// The most children a leaf holds.
-pub const LEAF: usize = 2;
-const _: () = assert!(LEAF <= 2, "the traversal keeps at most two boxes a node");
 
 #[derive(Clone, Debug, PartialEq)]
 struct BvhNode {
@@ -33,20 +30,26 @@ pub struct Bvh {
     items: Vec<u32>,
     /// Their boxes, in the same order.
     item_bounds: Vec<Aabb>,
-    /// For each node, the boxes of its two children (inner) or items
-    /// (leaf; the second lane unused in a leaf of one), tested together.
+    /// For each node, the boxes of its two children (inner) or items (a
+    /// leaf of one or two; the second lane unused in a leaf of one), tested
+    /// together. Larger leaves test their items one by one.
     pairs: Vec<AabbPair>,
+    /// The most items a leaf holds.
+    leaf: usize,
 }
 
 impl Bvh {
-    /// A hierarchy over `(id, bounds)` pairs, all bounded.
-    pub fn build(children: &[(u32, Aabb)]) -> Bvh {
+    /// A hierarchy over `(id, bounds)` pairs, all bounded, with at most
+    /// `leaf` (≥ 1) items a leaf.
+    pub fn build(children: &[(u32, Aabb)], leaf: usize) -> Bvh {
+        assert!(leaf >= 1, "a leaf holds at least one item");
         let mut items: Vec<(u32, Aabb)> = children.to_vec();
         let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * items.len() / LEAF + 1),
+            nodes: Vec::with_capacity(2 * items.len() / leaf + 1),
             items: Vec::with_capacity(items.len()),
             item_bounds: Vec::with_capacity(items.len()),
             pairs: Vec::new(),
+            leaf,
         };
         bvh.nodes.push(BvhNode {
             bounds: Aabb::EMPTY,
@@ -62,7 +65,8 @@ impl Bvh {
                 match c {
                     0 => AabbPair::new(&bvh.nodes[s].bounds, &bvh.nodes[s + 1].bounds),
                     1 => AabbPair::new(&bvh.item_bounds[s], &Aabb::EMPTY),
-                    _ => AabbPair::new(&bvh.item_bounds[s], &bvh.item_bounds[s + 1]),
+                    2 => AabbPair::new(&bvh.item_bounds[s], &bvh.item_bounds[s + 1]),
+                    _ => AabbPair::new(&Aabb::EMPTY, &Aabb::EMPTY),
                 }
             })
             .collect();
@@ -72,7 +76,7 @@ impl Bvh {
     fn split(&mut self, at: usize, items: &mut [(u32, Aabb)]) {
         let bounds = items.iter().fold(Aabb::EMPTY, |a, (_, b)| a.union(b));
         self.nodes[at].bounds = bounds;
-        if items.len() <= LEAF {
+        if items.len() <= self.leaf {
             self.nodes[at].start = self.items.len() as u32;
             self.nodes[at].count = items.len() as u32;
             self.items.extend(items.iter().map(|(id, _)| *id));
@@ -171,10 +175,28 @@ impl Bvh {
                     continue;
                 }
                 let n = &self.nodes[i as usize];
-                // At most two boxes (LEAF = 2), tested together; then the
-                // farther is pushed first so that the nearer pops first,
-                // and those beginning beyond the cut go straight to the
-                // skipped.
+                if n.count > 2 {
+                    // A large leaf: its items' boxes one by one, the
+                    // farthest pushed first.
+                    let mut found: SmallVec<[(f64, u32, bool); 16]> = SmallVec::new();
+                    for k in n.start..n.start + n.count {
+                        if let Some(e) = test(&self.item_bounds[k as usize], st) {
+                            found.push((e, k, true));
+                        }
+                    }
+                    found.sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(b.1.cmp(&a.1)));
+                    for f in found {
+                        if f.0 > cut {
+                            skipped.push(f);
+                        } else {
+                            stack.push(f);
+                        }
+                    }
+                    continue;
+                }
+                // Two boxes at most, tested together; then the farther is
+                // pushed first so that the nearer pops first, and those
+                // beginning beyond the cut go straight to the skipped.
                 let entries = self.pairs[i as usize].entries(ray, tmin, tmax);
                 let boxes = if n.count > 0 { n.count as usize } else { 2 };
                 st.bound_tests += boxes as u64;
@@ -288,7 +310,7 @@ mod tests {
                 (i, Aabb::new(p, p + DVec3::ONE))
             })
             .collect();
-        let bvh = Bvh::build(&kids);
+        let bvh = Bvh::build(&kids, 2);
         let ray = Ray::new(DVec3::new(-5.0, 6.5, 0.5), DVec3::X);
         let mut seen = Vec::new();
         let mut st = Stats::default();
