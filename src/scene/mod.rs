@@ -5,7 +5,7 @@ mod args;
 pub mod defaults;
 mod resolve;
 
-pub use resolve::resolve;
+pub use resolve::{resolve, unsupported};
 
 use crate::csg::Csg;
 use crate::error::Diagnostic;

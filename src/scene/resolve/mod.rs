@@ -1,0 +1,325 @@
+//! Syntax tree → [`Scene`]: transforms composed, materials inherited,
+//! defaults applied, every problem reported at its place in the file.
+//!
+//! The walk over the tree is here; each kind of statement is read in its
+//! own file: `solids` (the table of solid statements and their binders),
+//! `transforms`, `appearance` and `statements` (camera, lights).
+
+mod appearance;
+mod solids;
+mod statements;
+mod transforms;
+
+pub use solids::unsupported;
+
+use super::args::Args;
+use super::{defaults, CameraSpec, Light, Material, Scene};
+use crate::csg::spans::Op;
+use crate::csg::{Csg, Primitive};
+use crate::error::{Diagnostic, Result, Severity, Source, TextRange};
+use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
+use crate::geometry::{Shape, Transform};
+use crate::mutant;
+use crate::syntax::ast::Statement;
+use glam::{DAffine3, DVec3};
+
+const TRANSFORMS: &[&str] = &["multmatrix", "translate", "rotate", "scale", "mirror"];
+const OPERATIONS: &[&str] = &["union", "intersection", "difference", "group", "render"];
+const APPEARANCE: &[&str] = &["color", "material"];
+const SCENE: &[&str] = &[
+    "camera",
+    "background",
+    "ambient_light",
+    "directional_light",
+    "point_light",
+];
+
+pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
+    let mut r = Resolver {
+        src,
+        csg: Csg::default(),
+        materials: Vec::new(),
+        lights: Vec::new(),
+        camera: None,
+        background: None,
+        warnings: Vec::new(),
+    };
+    // Scene statements are read first, wherever they stand at the top level.
+    for s in stmts {
+        if SCENE.contains(&s.name.as_str()) && !skipped(s) {
+            r.scene_statement(s)?;
+        }
+    }
+    // `!` makes the first subtree that carries it the whole design.
+    let root = find_root(stmts);
+    let solids: Vec<&Statement> = match root {
+        Some(s) => vec![s],
+        None => stmts
+            .iter()
+            .filter(|s| !SCENE.contains(&s.name.as_str()))
+            .collect(),
+    };
+    let mut ids = Vec::new();
+    for s in solids {
+        if let Some(id) = r.statement(s, DAffine3::IDENTITY, defaults::MATERIAL, 0)? {
+            ids.push(id);
+        }
+    }
+    r.csg.root = r.union(ids);
+    if r.csg.root.is_none() {
+        let span = stmts.first().map_or(TextRange::default(), |s| s.span);
+        r.warn(
+            span,
+            "the scene has no solids",
+            "only the background will show",
+        );
+    }
+    if r.materials.is_empty() {
+        r.materials.push(defaults::MATERIAL);
+    }
+    Ok(Scene {
+        camera: r.camera.map(|(c, _)| c),
+        background: r.background.unwrap_or(defaults::BACKGROUND),
+        lights: if r.lights.is_empty() {
+            defaults::lights()
+        } else {
+            r.lights
+        },
+        materials: r.materials,
+        csg: r.csg,
+        warnings: r.warnings,
+    })
+}
+
+fn skipped(s: &Statement) -> bool {
+    s.modifiers.disable || s.modifiers.background
+}
+
+fn find_root(stmts: &[Statement]) -> Option<&Statement> {
+    for s in stmts {
+        if skipped(s) {
+            continue;
+        }
+        if s.modifiers.root {
+            return Some(s);
+        }
+        if let Some(r) = find_root(&s.children) {
+            return Some(r);
+        }
+    }
+    None
+}
+
+pub(crate) struct Resolver<'a> {
+    src: &'a Source,
+    csg: Csg,
+    materials: Vec<Material>,
+    lights: Vec<Light>,
+    camera: Option<(CameraSpec, TextRange)>,
+    background: Option<DVec3>,
+    warnings: Vec<Diagnostic>,
+}
+
+impl Resolver<'_> {
+    fn warn(&mut self, span: TextRange, message: &str, label: &str) {
+        let d = self.src.diagnostic(Severity::Warning, span, message, label);
+        self.warnings.push(d);
+    }
+
+    fn union(&mut self, ids: Vec<u32>) -> Option<u32> {
+        match ids.len() {
+            0 => None,
+            1 => Some(ids[0]),
+            _ => Some(self.csg.add_op(Op::Union, ids)),
+        }
+    }
+
+    fn children(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Vec<u32>> {
+        let mut ids = Vec::new();
+        for c in &s.children {
+            if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
+                ids.push(id);
+            }
+        }
+        Ok(ids)
+    }
+
+    fn material_id(&mut self, m: Material) -> u32 {
+        match self.materials.iter().position(|x| *x == m) {
+            Some(i) => i as u32,
+            None => {
+                self.materials.push(m);
+                self.materials.len() as u32 - 1
+            }
+        }
+    }
+
+    /// One statement under the world transform `xf` and material `mat`;
+    /// `None` when it adds no solid.
+    fn statement(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        if skipped(s) {
+            return Ok(None);
+        }
+        let name = s.name.as_str();
+        match solids::binder(name) {
+            Some(Some(bind)) => {
+                if let Some(c) = s.children.first() {
+                    return Err(self.src.error(
+                        c.span,
+                        format!("`{name}` takes no children"),
+                        "a solid stands alone; end it with `;`",
+                    ));
+                }
+                return bind(self, s, xf, mat);
+            }
+            Some(None) => {
+                return Err(self.src.error(
+                    s.name_span,
+                    format!("`{name}` is not supported yet"),
+                    "csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace",
+                ))
+            }
+            None => {}
+        }
+        if TRANSFORMS.contains(&name) {
+            let local = self.transform(s)?;
+            let world = if mutant::active("compose_reversed") {
+                local * xf
+            } else {
+                xf * local
+            };
+            let ids = self.children(s, world, mat, depth)?;
+            return Ok(self.union(ids));
+        }
+        if APPEARANCE.contains(&name) {
+            let m = self.appearance(s, mat)?;
+            let ids = self.children(s, xf, m, depth)?;
+            return Ok(self.union(ids));
+        }
+        if OPERATIONS.contains(&name) {
+            let params: &'static [&'static str] = if name == "render" {
+                &["convexity"]
+            } else {
+                &[]
+            };
+            Args::bind(self.src, s, params)?;
+            return match name {
+                "difference" => self.difference(s, xf, mat, depth),
+                "intersection" => {
+                    // Every operand is built (so errors in any are reported);
+                    // an empty operand makes the intersection empty.
+                    let mut ids = Vec::new();
+                    let mut empty = false;
+                    for c in s.children.iter().filter(|c| !skipped(c)) {
+                        match self.statement(c, xf, mat, depth + 1)? {
+                            Some(id) => ids.push(id),
+                            None => empty = true,
+                        }
+                    }
+                    Ok(match ids.len() {
+                        _ if empty => None,
+                        0 => None,
+                        1 => Some(ids[0]),
+                        _ => Some(self.csg.add_op(Op::Intersection, ids)),
+                    })
+                }
+                _ => {
+                    let ids = self.children(s, xf, mat, depth)?;
+                    Ok(self.union(ids))
+                }
+            };
+        }
+        if SCENE.contains(&name) {
+            let label = if depth == 0 {
+                "a scene statement takes no modifiers here"
+            } else {
+                "move it to the top level of the file"
+            };
+            return Err(self.src.error(
+                s.name_span,
+                format!("`{name}` must stand at the top level"),
+                label,
+            ));
+        }
+        Err(self.src.error(
+            s.name_span,
+            format!("unknown statement `{name}`"),
+            "expected a solid, a transform, a CSG operation, color, material or a scene statement",
+        ))
+    }
+
+    /// The first child minus the union of the others; empty if the first
+    /// child is.
+    fn difference(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        let mut kids = s.children.iter().filter(|c| !skipped(c));
+        let Some(first) = kids.next() else {
+            return Ok(None);
+        };
+        let Some(a) = self.statement(first, xf, mat, depth + 1)? else {
+            return Ok(None);
+        };
+        let mut ids = vec![a];
+        for c in kids {
+            if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
+                ids.push(id);
+            }
+        }
+        Ok(Some(if ids.len() == 1 {
+            a
+        } else {
+            self.csg.add_op(Op::Difference, ids)
+        }))
+    }
+
+    pub(super) fn leaf(
+        &mut self,
+        s: &Statement,
+        shape: Shape,
+        world: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let xf = match Transform::new(world) {
+            Ok(xf) => xf,
+            Err(Degenerate::Flat) => {
+                self.warn(
+                    s.name_span,
+                    &format!("this `{}` is flattened by a singular transform", s.name),
+                    "it has no volume and is left out, as in OpenSCAD",
+                );
+                return Ok(None);
+            }
+            Err(Degenerate::OutOfRange) => {
+                return Err(self.src.error(
+                    s.name_span,
+                    format!("this `{}` is out of range", s.name),
+                    format!("expected sizes and positions within ±{MAX_MAGNITUDE:e}"),
+                ));
+            }
+        };
+        let material = self.material_id(mat);
+        Ok(Some(self.csg.add_prim(Primitive::new(shape, xf, material))))
+    }
+
+    pub(super) fn empty(&mut self, s: &Statement, why: &str) -> Result<Option<u32>> {
+        self.warn(s.args_span, &format!("this `{}` is empty", s.name), why);
+        Ok(None)
+    }
+}

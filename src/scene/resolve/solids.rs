@@ -1,0 +1,163 @@
+//! The solids: each statement's binder, from its arguments to a leaf.
+
+use super::transforms::basis_from_z;
+use super::Resolver;
+use crate::error::Result;
+use crate::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus};
+use crate::mutant;
+use crate::scene::args::Args;
+use crate::scene::Material;
+use crate::syntax::ast::Statement;
+use glam::{DAffine3, DVec3};
+
+/// Binds a solid statement's arguments under the world transform and
+/// material: its leaf's id, or `None` when it is empty.
+pub(crate) type Binder = fn(&mut Resolver, &Statement, DAffine3, Material) -> Result<Option<u32>>;
+
+/// Every OpenSCAD solid statement csgrt knows: its binder (arguments →
+/// a leaf, or empty), or `None` while it is not supported yet — an error at
+/// its place, never skipped. The resolver, the "not supported yet" list
+/// and its tests all read this table; a new solid is one module in
+/// `geometry/` and one line here.
+pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
+    ("cube", Some(cube)),
+    ("sphere", Some(sphere)),
+    ("cylinder", Some(cylinder)),
+    ("torus", Some(torus)),
+    ("halfspace", Some(halfspace)),
+    ("linear_extrude", None),
+    ("rotate_extrude", None),
+    ("square", None),
+    ("circle", None),
+    ("polygon", None),
+    ("text", None),
+    ("import", None),
+    ("surface", None),
+    ("projection", None),
+    ("offset", None),
+    ("hull", None),
+    ("minkowski", None),
+    ("resize", None),
+    ("polyhedron", None),
+    ("roof", None),
+    ("fill", None),
+];
+
+/// The OpenSCAD solids csgrt does not render yet.
+pub fn unsupported() -> impl Iterator<Item = &'static str> {
+    SOLIDS.iter().filter(|(_, b)| b.is_none()).map(|(n, _)| *n)
+}
+
+/// The binder of a solid statement, if `name` is one (`Some(None)`: known,
+/// not supported yet).
+pub(crate) fn binder(name: &str) -> Option<Option<Binder>> {
+    SOLIDS.iter().find(|(n, _)| *n == name).map(|(_, b)| *b)
+}
+
+fn cube(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+    let a = Args::bind(res.src, s, &["size", "center"])?;
+    let size = a.scalar_or_vec3("size", 1.0)?.unwrap_or(DVec3::ONE);
+    let center = a.boolean("center")?.unwrap_or(false);
+    if size.min_element() <= 0.0 {
+        return res.empty(s, "a size is zero or negative");
+    }
+    // Centring is the shape's, so the translation stays exact.
+    let scale = if center { 0.5 * size } else { size };
+    let shape = Shape::Cuboid(Cuboid { centered: center });
+    res.leaf(s, shape, xf * DAffine3::from_scale(scale), mat)
+}
+
+fn sphere(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+    let a = Args::bind(res.src, s, &["r", "d"])?;
+    let r = match (a.number("r")?, a.number("d")?) {
+        (_, Some(d)) => d / 2.0,
+        (Some(r), None) => r,
+        (None, None) => 1.0,
+    };
+    let r = if mutant::active("sphere_small") {
+        0.97 * r
+    } else {
+        r
+    };
+    if r <= 0.0 {
+        return res.empty(s, "its radius is zero or negative");
+    }
+    res.leaf(
+        s,
+        Shape::Sphere(Sphere),
+        xf * DAffine3::from_scale(DVec3::splat(r)),
+        mat,
+    )
+}
+
+fn cylinder(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+    let a = Args::bind(
+        res.src,
+        s,
+        &["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
+    )?;
+    let h = a.number("h")?.unwrap_or(1.0);
+    let center =
+        a.boolean("center")?.unwrap_or(false) && !mutant::active("cylinder_center_ignored");
+    // As OpenSCAD: a diameter beats a radius, r1/r2 beat r.
+    let radius = |d: &str, r: &str| -> Result<Option<f64>> {
+        Ok(a.non_negative(d)?.map(|d| d / 2.0).or(a.non_negative(r)?))
+    };
+    let r = radius("d", "r")?.unwrap_or(1.0);
+    let r1 = radius("d1", "r1")?.unwrap_or(r);
+    let r2 = radius("d2", "r2")?.unwrap_or(r);
+    if h <= 0.0 {
+        return res.empty(s, "its height is zero or negative");
+    }
+    let rmax = r1.max(r2);
+    if rmax <= 0.0 {
+        return res.empty(s, "both its radii are zero");
+    }
+    let shape = Shape::Cone(Cone {
+        r0: r1 / rmax,
+        r1: r2 / rmax,
+        centered: center,
+    });
+    let local = DAffine3::from_scale(DVec3::new(rmax, rmax, h));
+    res.leaf(s, shape, xf * local, mat)
+}
+
+fn torus(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+    let a = Args::bind(res.src, s, &["R", "r"])?;
+    let big = a.non_negative("R")?.unwrap_or(2.0);
+    let small = a.non_negative("r")?.unwrap_or(0.5);
+    if big <= 0.0 || small <= 0.0 {
+        return res.empty(s, "a radius is zero");
+    }
+    if small >= big {
+        return Err(a.error(
+            a.span_of("r"),
+            "the tube radius `r` of a torus must be smaller than `R`",
+            format!("expected a number < {big}"),
+        ));
+    }
+    let shape = Shape::Torus(Torus { minor: small / big });
+    res.leaf(s, shape, xf * DAffine3::from_scale(DVec3::splat(big)), mat)
+}
+
+fn halfspace(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+) -> Result<Option<u32>> {
+    let a = Args::bind(res.src, s, &["normal", "offset"])?;
+    let n = a.vec3("normal", 0.0)?.unwrap_or(DVec3::Z);
+    let offset = a.number("offset")?.unwrap_or(0.0);
+    let len = n.length();
+    if len == 0.0 {
+        return Err(a.error(
+            a.span_of("normal"),
+            "the normal of a halfspace must not be zero",
+            "expected a non-zero vector",
+        ));
+    }
+    let z = n / len;
+    let local = DAffine3::from_mat3_translation(basis_from_z(z), z * (offset / len));
+    res.leaf(s, Shape::Halfspace(Halfspace), xf * local, mat)
+}
