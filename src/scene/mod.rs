@@ -2,6 +2,7 @@
 //! every default applied. Built from the syntax tree by [`resolve`].
 
 mod args;
+pub mod builder;
 pub mod defaults;
 mod resolve;
 

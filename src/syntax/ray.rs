@@ -1,17 +1,17 @@
 //! The seed's display list (`.ray`, `grammar/ray.pest`) → [`Scene`].
 //!
-//! The format is flat, so it is read straight into a scene: the camera and
+//! The format is flat, so it is read straight into a scene (through the one
+//! [`SceneBuilder`](crate::scene::builder::SceneBuilder)): the camera and
 //! background statements set the view, `light` adds a light, `surface`
 //! sets the material of the spheres after it, `sphere` adds one. All the
 //! spheres form a union. Colours and coefficients are in [0, 1] (the
 //! lecture's applet divided kr and kt by 255 because its colours were
 //! bytes; csgrt's are not).
 
-use crate::csg::spans::Op;
-use crate::csg::{Csg, Primitive};
 use crate::error::{Error, Result, Source, TextRange};
 use crate::geometry::transform::MAX_MAGNITUDE;
 use crate::geometry::{Shape, Transform};
+use crate::scene::builder::SceneBuilder;
 use crate::scene::{defaults, CameraSpec, Light, Material, Scene};
 use glam::{DAffine3, DVec3};
 use pest::iterators::Pair;
@@ -92,11 +92,8 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
         up: DVec3::Y,
         fov: 30.0,
     };
-    let mut background = DVec3::ZERO;
-    let mut lights = Vec::new();
-    let mut materials: Vec<Material> = Vec::new();
+    let mut b = SceneBuilder::new();
     let mut current: Option<u32> = None;
-    let mut csg = Csg::default();
     let mut spheres = Vec::new();
     let mut camera_span = None;
     for st in file.into_inner() {
@@ -122,7 +119,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                     }
                 }
             }
-            Rule::background => background = v3(&numbers(st)),
+            Rule::background => b.background = Some(v3(&numbers(st))),
             Rule::light => {
                 let mut inner = st.into_inner();
                 let c: Vec<f64> = inner
@@ -153,7 +150,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                         position: v3(&numbers(kind)),
                     },
                 };
-                lights.push(light);
+                b.lights.push(light);
             }
             Rule::surface => {
                 let n = numbers(st);
@@ -174,13 +171,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                     kt: n[8],
                     ior: n[9],
                 };
-                current = Some(match materials.iter().position(|x| *x == m) {
-                    Some(i) => i as u32,
-                    None => {
-                        materials.push(m);
-                        materials.len() as u32 - 1
-                    }
-                });
+                current = Some(b.material_id(m));
             }
             Rule::sphere => {
                 let n = numbers(st);
@@ -191,10 +182,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                         "expected `sphere x y z r` with r > 0",
                     ));
                 }
-                let material = *current.get_or_insert_with(|| {
-                    materials.push(defaults::MATERIAL);
-                    materials.len() as u32 - 1
-                });
+                let material = *current.get_or_insert_with(|| b.material_id(defaults::MATERIAL));
                 let r = if crate::mutant::active("sphere_small") {
                     0.97 * n[3]
                 } else {
@@ -211,11 +199,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                         ),
                     ));
                 };
-                spheres.push(csg.add_prim(Primitive::new(
-                    Shape::Sphere(crate::geometry::Sphere),
-                    xf,
-                    material,
-                )));
+                spheres.push(b.leaf(Shape::Sphere(crate::geometry::Sphere), xf, material));
             }
             _ => {}
         }
@@ -228,33 +212,8 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
             "expected `eye` apart from `lookat`, and `up` not along the view",
         ));
     }
-    csg.root = match spheres.len() {
-        0 => None,
-        1 => Some(spheres[0]),
-        _ => Some(csg.add_op(Op::Union, spheres)),
-    };
-    let mut warnings = Vec::new();
-    if csg.root.is_none() {
-        warnings.push(src.diagnostic(
-            crate::error::Severity::Warning,
-            TextRange::default(),
-            "the scene has no solids",
-            "only the background will show",
-        ));
-    }
-    if materials.is_empty() {
-        materials.push(defaults::MATERIAL);
-    }
-    Ok(Scene {
-        camera: Some(cam),
-        background,
-        lights: if lights.is_empty() {
-            defaults::lights()
-        } else {
-            lights
-        },
-        materials,
-        csg,
-        warnings,
-    })
+    b.camera = Some(cam);
+    let root = b.union(spheres);
+    // The lecture's display lists have a black background by default.
+    Ok(b.finish(src, root, TextRange::default(), DVec3::ZERO))
 }

@@ -13,15 +13,15 @@ mod transforms;
 pub use solids::unsupported;
 
 use super::args::Args;
-use super::{defaults, CameraSpec, Light, Material, Scene};
+use super::builder::SceneBuilder;
+use super::{defaults, Material, Scene};
 use crate::csg::spans::Op;
-use crate::csg::{Csg, Primitive};
-use crate::error::{Diagnostic, Result, Severity, Source, TextRange};
+use crate::error::{Result, Source, TextRange};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Shape, Transform};
 use crate::mutant;
 use crate::syntax::ast::Statement;
-use glam::{DAffine3, DVec3};
+use glam::DAffine3;
 
 const TRANSFORMS: &[&str] = &["multmatrix", "translate", "rotate", "scale", "mirror"];
 const OPERATIONS: &[&str] = &["union", "intersection", "difference", "group", "render"];
@@ -37,12 +37,8 @@ const SCENE: &[&str] = &[
 pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
     let mut r = Resolver {
         src,
-        csg: Csg::default(),
-        materials: Vec::new(),
-        lights: Vec::new(),
-        camera: None,
-        background: None,
-        warnings: Vec::new(),
+        b: SceneBuilder::new(),
+        camera_at: None,
     };
     // Scene statements are read first, wherever they stand at the top level.
     for s in stmts {
@@ -65,30 +61,9 @@ pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
             ids.push(id);
         }
     }
-    r.csg.root = r.union(ids);
-    if r.csg.root.is_none() {
-        let span = stmts.first().map_or(TextRange::default(), |s| s.span);
-        r.warn(
-            span,
-            "the scene has no solids",
-            "only the background will show",
-        );
-    }
-    if r.materials.is_empty() {
-        r.materials.push(defaults::MATERIAL);
-    }
-    Ok(Scene {
-        camera: r.camera.map(|(c, _)| c),
-        background: r.background.unwrap_or(defaults::BACKGROUND),
-        lights: if r.lights.is_empty() {
-            defaults::lights()
-        } else {
-            r.lights
-        },
-        materials: r.materials,
-        csg: r.csg,
-        warnings: r.warnings,
-    })
+    let root = r.b.union(ids);
+    let place = stmts.first().map_or(TextRange::default(), |s| s.span);
+    Ok(r.b.finish(src, root, place, defaults::BACKGROUND))
 }
 
 fn skipped(s: &Statement) -> bool {
@@ -112,26 +87,18 @@ fn find_root(stmts: &[Statement]) -> Option<&Statement> {
 
 pub(crate) struct Resolver<'a> {
     src: &'a Source,
-    csg: Csg,
-    materials: Vec<Material>,
-    lights: Vec<Light>,
-    camera: Option<(CameraSpec, TextRange)>,
-    background: Option<DVec3>,
-    warnings: Vec<Diagnostic>,
+    b: SceneBuilder,
+    /// Where the camera statement stands, once read.
+    camera_at: Option<TextRange>,
 }
 
 impl Resolver<'_> {
-    fn warn(&mut self, span: TextRange, message: &str, label: &str) {
-        let d = self.src.diagnostic(Severity::Warning, span, message, label);
-        self.warnings.push(d);
+    fn warn(&mut self, place: TextRange, message: &str, label: &str) {
+        self.b.warn(self.src, place, message, label);
     }
 
     fn union(&mut self, ids: Vec<u32>) -> Option<u32> {
-        match ids.len() {
-            0 => None,
-            1 => Some(ids[0]),
-            _ => Some(self.csg.add_op(Op::Union, ids)),
-        }
+        self.b.union(ids)
     }
 
     fn children(
@@ -148,16 +115,6 @@ impl Resolver<'_> {
             }
         }
         Ok(ids)
-    }
-
-    fn material_id(&mut self, m: Material) -> u32 {
-        match self.materials.iter().position(|x| *x == m) {
-            Some(i) => i as u32,
-            None => {
-                self.materials.push(m);
-                self.materials.len() as u32 - 1
-            }
-        }
     }
 
     /// One statement under the world transform `xf` and material `mat`;
@@ -232,7 +189,7 @@ impl Resolver<'_> {
                         _ if empty => None,
                         0 => None,
                         1 => Some(ids[0]),
-                        _ => Some(self.csg.add_op(Op::Intersection, ids)),
+                        _ => Some(self.b.csg.add_op(Op::Intersection, ids)),
                     })
                 }
                 _ => {
@@ -285,7 +242,7 @@ impl Resolver<'_> {
         Ok(Some(if ids.len() == 1 {
             a
         } else {
-            self.csg.add_op(Op::Difference, ids)
+            self.b.csg.add_op(Op::Difference, ids)
         }))
     }
 
@@ -314,8 +271,8 @@ impl Resolver<'_> {
                 ));
             }
         };
-        let material = self.material_id(mat);
-        Ok(Some(self.csg.add_prim(Primitive::new(shape, xf, material))))
+        let material = self.b.material_id(mat);
+        Ok(Some(self.b.leaf(shape, xf, material)))
     }
 
     pub(super) fn empty(&mut self, s: &Statement, why: &str) -> Result<Option<u32>> {

@@ -25,7 +25,7 @@ impl Resolver<'_> {
                 let lookat = a.require("lookat", lookat)?;
                 let up = a.vec3("up", 0.0)?.unwrap_or(DVec3::Z);
                 let fov = a.number("fov")?.unwrap_or(30.0);
-                if let Some((_, first)) = self.camera {
+                if let Some(first) = self.camera_at {
                     let (line, _) = self.src.line_col(first.start);
                     return Err(self.src.error(
                         s.name_span,
@@ -57,25 +57,23 @@ impl Resolver<'_> {
                         "expected degrees strictly between 0 and 180",
                     ));
                 }
-                self.camera = Some((
-                    CameraSpec {
-                        eye,
-                        lookat,
-                        up,
-                        fov,
-                    },
-                    s.span,
-                ));
+                self.b.camera = Some(CameraSpec {
+                    eye,
+                    lookat,
+                    up,
+                    fov,
+                });
+                self.camera_at = Some(s.span);
             }
             "background" => {
                 let a = Args::bind(self.src, s, &["color"])?;
                 let c = a.vec3("color", 0.0)?;
-                self.background = Some(a.require("color", c)?);
+                self.b.background = Some(a.require("color", c)?);
             }
             "ambient_light" => {
                 let a = Args::bind(self.src, s, &["color"])?;
                 let color = a.scalar_or_vec3("color", 0.0)?.unwrap_or(DVec3::ONE);
-                self.lights.push(Light::Ambient { color });
+                self.b.lights.push(Light::Ambient { color });
             }
             "directional_light" => {
                 let a = Args::bind(self.src, s, &["color", "direction"])?;
@@ -89,7 +87,7 @@ impl Resolver<'_> {
                         "expected a non-zero vector",
                     ));
                 }
-                self.lights.push(Light::Directional {
+                self.b.lights.push(Light::Directional {
                     color,
                     direction: d.normalize(),
                 });
@@ -99,7 +97,7 @@ impl Resolver<'_> {
                 let color = a.scalar_or_vec3("color", 0.0)?.unwrap_or(DVec3::ONE);
                 let p = a.vec3("position", 0.0)?;
                 let position = a.require("position", p)?;
-                self.lights.push(Light::Point { color, position });
+                self.b.lights.push(Light::Point { color, position });
             }
             _ => unreachable!("not a scene statement: {}", s.name),
         }
