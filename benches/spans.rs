@@ -65,12 +65,7 @@ fn primitives(c: &mut Criterion) {
 }
 
 fn list(prim: u32, v: &[(f64, f64)]) -> Vec<Span> {
-    let b = |t| Boundary {
-        t,
-        prim,
-        part: 0,
-        flip: false,
-    };
+    let b = |t| Boundary::new(t, prim, 0);
     v.iter()
         .map(|&(x, y)| Span {
             enter: b(x),

@@ -273,12 +273,7 @@ impl Csg {
         let (o, d) = p.xf.ray_to_object(ray);
         let stack = &mut sc.stack;
         p.shape.spans(o, d, &mut |(t0, p0, t1, p1)| {
-            let b = |t, part| Boundary {
-                t,
-                prim: id,
-                part,
-                flip: false,
-            };
+            let b = |t, part| Boundary::new(t, id, part);
             stack.push(Span {
                 enter: b(t0, p0),
                 exit: b(t1, p1),
@@ -387,12 +382,12 @@ impl Csg {
         st.normals_computed += 1;
         let p = &self.prims[b.prim as usize];
         let (o, d) = p.xf.ray_to_object(ray);
-        let n_obj = p.shape.normal(o + b.t * d, b.part);
+        let n_obj = p.shape.normal(o + b.t * d, b.part());
         let n = p.xf.normal_to_world(n_obj);
         SurfaceHit {
             t: b.t,
             point: ray.at(b.t),
-            normal: if b.flip && !crate::mutant::active("difference_unflipped") {
+            normal: if b.flip() && !crate::mutant::active("difference_unflipped") {
                 -n
             } else {
                 n
@@ -452,8 +447,15 @@ impl Scratch {
     /// in place where [`spans::quick`] allows.
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         let (a, b) = self.stack[base..].split_at(top - base);
-        let scale = ray.origin.abs().max_element();
-        match spans::quick(op, a, b, scale) {
+        // The ray's scale only once a side is known to hold spans.
+        let mut scale = 0.0;
+        let quick = spans::quick_empty(op, a, b).or_else(|| {
+            scale = ray.origin.abs().max_element();
+            (op == Op::Union)
+                .then(|| spans::apart(a, b, scale))
+                .flatten()
+        });
+        match quick {
             // Nothing to do: A stays, B is the whole result and, A being
             // empty, already sits where A would be, or B follows A.
             Some(Quick::A | Quick::B | Quick::AThenB) => return,

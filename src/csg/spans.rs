@@ -22,26 +22,56 @@ use crate::geometry::robust::coincidence;
 use crate::geometry::{Part, NO_PART};
 
 /// One end of a span: where a ray crosses a primitive's surface.
+///
+/// Sixteen bytes: the part (a cube face, a mesh's triangle, a polygon's
+/// edge: up to 2³¹ − 1 of them) and the flip share one word.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Boundary {
     pub t: f64,
     /// Index of the primitive whose surface this is.
     pub prim: u32,
-    /// Which part of that surface (a cube face, a cylinder cap, …).
-    pub part: Part,
-    /// The primitive's outward normal points *into* the solid here: set for
-    /// surfaces taken from the subtracted children of a difference.
-    pub flip: bool,
+    /// The part in the low 31 bits, the flip in the top one.
+    bits: u32,
 }
 
+const FLIP: u32 = 1 << 31;
+
 impl Boundary {
-    /// An open end at ±∞, or the unknown edge of a clipped span.
-    pub const fn open(t: f64) -> Boundary {
+    /// A crossing of primitive `prim`'s surface at `t`, on `part`.
+    #[inline]
+    pub const fn new(t: f64, prim: u32, part: Part) -> Boundary {
         Boundary {
             t,
-            prim: u32::MAX,
-            part: NO_PART,
-            flip: false,
+            prim,
+            bits: part & !FLIP,
+        }
+    }
+
+    /// An open end at ±∞, or the unknown edge of a clipped span.
+    pub const fn open(t: f64) -> Boundary {
+        Boundary::new(t, u32::MAX, NO_PART)
+    }
+
+    /// Which part of the primitive's surface this is.
+    #[inline]
+    pub const fn part(&self) -> Part {
+        self.bits & !FLIP
+    }
+
+    /// Whether the primitive's outward normal points *into* the solid
+    /// here: set for surfaces taken from the subtracted children of a
+    /// difference.
+    #[inline]
+    pub const fn flip(&self) -> bool {
+        self.bits & FLIP != 0
+    }
+
+    /// The same crossing with its normal turned the other way.
+    #[inline]
+    pub const fn flipped(self) -> Boundary {
+        Boundary {
+            bits: self.bits ^ FLIP,
+            ..self
         }
     }
 
@@ -126,25 +156,39 @@ pub enum Quick {
 /// [`combine`].
 #[inline]
 pub fn quick(op: Op, a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
+    quick_empty(op, a, b).or_else(|| {
+        if op == Op::Union {
+            apart(a, b, scale)
+        } else {
+            None
+        }
+    })
+}
+
+/// The answer when a side is empty.
+#[inline]
+pub fn quick_empty(op: Op, a: &[Span], b: &[Span]) -> Option<Quick> {
     match op {
         Op::Union if a.is_empty() => Some(Quick::B),
         Op::Union | Op::Difference if b.is_empty() => Some(Quick::A),
         Op::Intersection | Op::Difference if a.is_empty() => Some(Quick::Empty),
         Op::Intersection if b.is_empty() => Some(Quick::Empty),
-        Op::Union => {
-            // Lists apart by more than the coincidence bound are the two
-            // lists one after the other: the common case of a wide union.
-            let gap_after =
-                |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
-            if gap_after(&a[a.len() - 1], &b[0]) {
-                Some(Quick::AThenB)
-            } else if gap_after(&b[b.len() - 1], &a[0]) {
-                Some(Quick::BThenA)
-            } else {
-                None
-            }
-        }
         _ => None,
+    }
+}
+
+/// The union of two non-empty lists apart by more than the coincidence
+/// bound: the two lists one after the other, the common case of a wide
+/// union.
+#[inline]
+pub fn apart(a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
+    let gap_after = |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
+    if gap_after(&a[a.len() - 1], &b[0]) {
+        Some(Quick::AThenB)
+    } else if gap_after(&b[b.len() - 1], &a[0]) {
+        Some(Quick::BThenA)
+    } else {
+        None
     }
 }
 
@@ -214,7 +258,7 @@ pub fn sweep_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span
         let mut bound = if from_b {
             let mut y = step_b.expect("B changed here");
             if op == Op::Difference {
-                y.flip = !y.flip;
+                y = y.flipped();
             }
             y
         } else {
@@ -241,12 +285,19 @@ mod tests {
     use proptest::prelude::*;
 
     fn b(t: f64, prim: u32) -> Boundary {
-        Boundary {
-            t,
-            prim,
-            part: 0,
-            flip: false,
+        Boundary::new(t, prim, 0)
+    }
+
+    #[test]
+    fn a_boundary_keeps_its_part_and_flip_apart() {
+        for part in [0, 1, 5, 123_456_789, crate::geometry::NO_PART] {
+            let x = Boundary::new(2.5, 7, part);
+            assert_eq!((x.part(), x.flip()), (part, false));
+            let y = x.flipped();
+            assert_eq!((y.t, y.prim, y.part(), y.flip()), (2.5, 7, part, true));
+            assert_eq!(y.flipped(), x);
         }
+        assert_eq!(std::mem::size_of::<Boundary>(), 16);
     }
 
     /// A list from (enter, exit) pairs; A's surfaces are prim 0, B's prim 1.
@@ -268,10 +319,10 @@ mod tests {
                 (
                     s.enter.t,
                     s.enter.prim,
-                    s.enter.flip,
+                    s.enter.flip(),
                     s.exit.t,
                     s.exit.prim,
-                    s.exit.flip,
+                    s.exit.flip(),
                 )
             })
             .collect()
@@ -456,7 +507,7 @@ mod tests {
                 for e in [s.enter, s.exit] {
                     let src = if e.prim == 0 { &la } else { &lb };
                     prop_assert!(src.iter().any(|x| x.enter.t == e.t || x.exit.t == e.t));
-                    prop_assert_eq!(e.flip, op == D && e.prim == 1);
+                    prop_assert_eq!(e.flip(), op == D && e.prim == 1);
                 }
             }
         }

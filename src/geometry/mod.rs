@@ -54,6 +54,7 @@ impl Ray {
 }
 
 /// Which part of a primitive's surface a crossing lies on (a cube face, a
-/// cylinder cap, …); [`NO_PART`] marks the open end of an unbounded span.
-pub type Part = u8;
-pub const NO_PART: Part = u8::MAX;
+/// cylinder cap, a mesh's triangle, a polygon's edge: 31 bits);
+/// [`NO_PART`] marks the open end of an unbounded span.
+pub type Part = u32;
+pub const NO_PART: Part = (1 << 31) - 1;
