@@ -20,6 +20,7 @@ pub mod geometry;
 pub mod harness;
 #[doc(hidden)]
 pub mod mutant;
+pub mod plane;
 pub mod pov;
 pub mod render;
 pub mod scene;
