@@ -190,88 +190,79 @@ impl Csg {
         f: impl FnOnce(&[Span]) -> R,
     ) -> R {
         with_scratch(st, |sc, st| {
-            self.push_spans(node, ray, tmin, tmax, st, sc);
-            f(&sc.stack)
+            let mut q = Query {
+                ray,
+                tmin,
+                tmax,
+                st,
+                sc,
+            };
+            self.push_spans(node, &mut q);
+            f(&q.sc.stack)
         })
     }
 
     /// Pushes the spans of `node` onto the scratch stack (after what is
     /// there), testing its box first.
-    fn push_spans(
-        &self,
-        node: u32,
-        ray: &Ray,
-        tmin: f64,
-        tmax: f64,
-        st: &mut Stats,
-        sc: &mut Scratch,
-    ) {
+    fn push_spans(&self, node: u32, q: &mut Query) {
         // Every box is tested, unbounded ones too: a half-space's box still
         // culls rays that never reach its side, and a box that is empty
         // (a disjoint intersection) at worst lets the spans be computed.
-        st.bound_tests += 1;
-        if !self.nodes[node as usize].bounds.hit(ray, tmin, tmax) {
-            st.bound_culled += 1;
+        q.st.bound_tests += 1;
+        if !self.nodes[node as usize].bounds.hit(q.ray, q.tmin, q.tmax) {
+            q.st.bound_culled += 1;
             return;
         }
-        self.push_spans_within(node, ray, tmin, tmax, st, sc)
+        self.push_spans_within(node, q)
     }
 
     /// [`Csg::push_spans`] for a node whose box the caller has already found
     /// the ray to meet.
-    fn push_spans_within(
-        &self,
-        node: u32,
-        ray: &Ray,
-        tmin: f64,
-        tmax: f64,
-        st: &mut Stats,
-        sc: &mut Scratch,
-    ) {
+    fn push_spans_within(&self, node: u32, q: &mut Query) {
         let n = &self.nodes[node as usize];
-        let base = sc.stack.len();
+        let base = q.sc.stack.len();
         match &n.kind {
-            NodeKind::Leaf(p) => self.push_prim_spans(*p, ray, st, sc),
+            NodeKind::Leaf(p) => self.push_prim_spans(*p, q),
             NodeKind::Op(Op::Union, ch) => {
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
                 let ch: &[u32] = match &n.index {
                     Some(ix) => {
                         hit.extend_from_slice(&ix.unbounded);
-                        ix.bvh.visit(ray, tmin, tmax, st, |c| hit.push(c));
+                        ix.bvh.visit(q.ray, q.tmin, q.tmax, q.st, |c| hit.push(c));
                         &hit
                     }
                     None => ch,
                 };
                 for &c in ch {
-                    let top = sc.stack.len();
-                    self.push_spans(c, ray, tmin, tmax, st, sc);
-                    sc.merge(Op::Union, base, top, ray);
+                    let top = q.sc.stack.len();
+                    self.push_spans(c, q);
+                    q.sc.merge(Op::Union, base, top, q.ray);
                 }
             }
             &NodeKind::Op(op, ref ch) => {
-                self.push_spans(ch[0], ray, tmin, tmax, st, sc);
+                self.push_spans(ch[0], q);
                 for &c in &ch[1..] {
-                    let acc = &sc.stack[base..];
+                    let acc = &q.sc.stack[base..];
                     let (Some(first), Some(last)) = (acc.first(), acc.last()) else {
                         break;
                     };
                     // Later children matter only where the result may be.
-                    let lo = tmin.max(first.enter.t);
-                    let hi = tmax.min(last.exit.t);
-                    let top = sc.stack.len();
-                    self.push_spans(c, ray, lo, hi, st, sc);
-                    sc.merge(op, base, top, ray);
+                    let lo = q.tmin.max(first.enter.t);
+                    let hi = q.tmax.min(last.exit.t);
+                    let top = q.sc.stack.len();
+                    self.push_spans(c, &mut q.within(lo, hi));
+                    q.sc.merge(op, base, top, q.ray);
                 }
             }
         }
-        st.max_spans = st.max_spans.max((sc.stack.len() - base) as u64);
+        q.st.max_spans = q.st.max_spans.max((q.sc.stack.len() - base) as u64);
     }
 
-    fn push_prim_spans(&self, id: u32, ray: &Ray, st: &mut Stats, sc: &mut Scratch) {
-        st.primitive_tests += 1;
+    fn push_prim_spans(&self, id: u32, q: &mut Query) {
+        q.st.primitive_tests += 1;
         let p = &self.prims[id as usize];
-        let (o, d) = p.xf.ray_to_object(ray);
-        let stack = &mut sc.stack;
+        let (o, d) = p.xf.ray_to_object(q.ray);
+        let stack = &mut q.sc.stack;
         p.shape.spans(o, d, &mut |(t0, p0, t1, p1)| {
             let b = |t, part| Boundary::new(t, id, part);
             stack.push(Span {
@@ -291,11 +282,18 @@ impl Csg {
     ) -> Option<Boundary> {
         let root = self.root?;
         with_scratch(st, |sc, st| {
-            match &self.nodes[root as usize].kind {
-                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, ray, tmin, tmax, st, sc),
-                _ => self.push_spans(root, ray, tmin, tmax, st, sc),
+            let mut q = Query {
+                ray,
+                tmin,
+                tmax,
+                st,
+                sc,
             };
-            first_surface(&sc.stack, tmin).filter(|b| b.t < tmax)
+            match &self.nodes[root as usize].kind {
+                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, &mut q),
+                _ => self.push_spans(root, &mut q),
+            };
+            first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
         })
     }
 
@@ -304,25 +302,16 @@ impl Csg {
     /// Children are taken in the order the ray enters their boxes; once the
     /// next box begins beyond the first boundary found, no child left can
     /// change the result before that boundary, and the walk stops.
-    #[allow(clippy::too_many_arguments)]
-    fn union_first(
-        &self,
-        node: u32,
-        ch: &[u32],
-        ray: &Ray,
-        tmin: f64,
-        tmax: f64,
-        st: &mut Stats,
-        sc: &mut Scratch,
-    ) {
+    fn union_first(&self, node: u32, ch: &[u32], q: &mut Query) {
         let n = &self.nodes[node as usize];
+        let (ray, tmin, tmax) = (q.ray, q.tmin, q.tmax);
         let scale = ray.origin.abs().max_element();
-        let base = sc.stack.len();
+        let base = q.sc.stack.len();
         // Every child reaching `add` has had its box tested already.
-        let add = |c, st: &mut Stats, sc: &mut Scratch| {
-            let top = sc.stack.len();
-            self.push_spans_within(c, ray, tmin, tmax, st, sc);
-            sc.merge(Op::Union, base, top, ray);
+        let add = |c, q: &mut Query| {
+            let top = q.sc.stack.len();
+            self.push_spans_within(c, q);
+            q.sc.merge(Op::Union, base, top, ray);
         };
         // A child whose box begins at the first boundary may touch it and
         // merge it away (a part standing on a floor), and boundaries within
@@ -336,20 +325,30 @@ impl Csg {
         // and 0.19 s.
         if let Some(ix) = n.index.as_ref().filter(|_| ch.len() > BEST_FIRST_MIN) {
             for &c in &ix.unbounded {
-                add(c, st, sc);
+                add(c, q);
             }
-            ix.bvh.visit_near_first(ray, tmin, tmax, st, |c, st| {
-                add(c, st, sc);
-                cut(&sc.stack[base..])
+            // The walk keeps the counters; each visit gets them back for
+            // the child's own query.
+            let sc = &mut *q.sc;
+            ix.bvh.visit_near_first(ray, tmin, tmax, q.st, |c, st| {
+                let mut child = Query {
+                    ray,
+                    tmin,
+                    tmax,
+                    st,
+                    sc: &mut *sc,
+                };
+                add(c, &mut child);
+                cut(&child.sc.stack[base..])
             });
             return;
         }
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
         for &c in ch {
-            st.bound_tests += 1;
+            q.st.bound_tests += 1;
             match self.nodes[c as usize].bounds.entry(ray, tmin, tmax) {
                 Some(t) => order.push((t, c)),
-                None => st.bound_culled += 1,
+                None => q.st.bound_culled += 1,
             }
         }
         // Entries are never NaN (the box test keeps `tmin` over NaN).
@@ -359,10 +358,10 @@ impl Csg {
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
         for (entry, c) in order {
-            if entry > cut(&sc.stack[base..]) {
+            if entry > cut(&q.sc.stack[base..]) {
                 break;
             }
-            add(c, st, sc);
+            add(c, q);
         }
     }
 
@@ -426,6 +425,30 @@ fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
 /// Spans a thread reserves for its queries before any query runs; a query
 /// that needs more grows the buffer once (counted in `span_allocations`).
 pub const SCRATCH_SPANS: usize = 256;
+
+/// One span query in flight: the ray, the range of t it asks about, the
+/// counters and the scratch stack its lists are built on.
+struct Query<'a> {
+    ray: &'a Ray,
+    tmin: f64,
+    tmax: f64,
+    st: &'a mut Stats,
+    sc: &'a mut Scratch,
+}
+
+impl Query<'_> {
+    /// The same query over [lo, hi] only (the later children of an
+    /// intersection or a difference).
+    fn within(&mut self, lo: f64, hi: f64) -> Query<'_> {
+        Query {
+            ray: self.ray,
+            tmin: lo,
+            tmax: hi,
+            st: &mut *self.st,
+            sc: &mut *self.sc,
+        }
+    }
+}
 
 /// A thread's working space for span queries. Nodes push their results on
 /// `stack`, each above its parent's; a combination is written to `out` and
