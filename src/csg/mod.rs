@@ -189,15 +189,8 @@ impl Csg {
         st: &mut Stats,
         f: impl FnOnce(&[Span]) -> R,
     ) -> R {
-        with_scratch(st, |sc, st| {
-            let mut q = Query {
-                ray,
-                tmin,
-                tmax,
-                st,
-                sc,
-            };
-            self.push_spans(node, &mut q);
+        query(ray, tmin, tmax, st, |q| {
+            self.push_spans(node, q);
             f(&q.sc.stack)
         })
     }
@@ -281,17 +274,10 @@ impl Csg {
         st: &mut Stats,
     ) -> Option<Boundary> {
         let root = self.root?;
-        with_scratch(st, |sc, st| {
-            let mut q = Query {
-                ray,
-                tmin,
-                tmax,
-                st,
-                sc,
-            };
+        query(ray, tmin, tmax, st, |q| {
             match &self.nodes[root as usize].kind {
-                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, &mut q),
-                _ => self.push_spans(root, &mut q),
+                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q),
+                _ => self.push_spans(root, q),
             };
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
         })
@@ -434,6 +420,19 @@ struct Query<'a> {
     tmax: f64,
     st: &'a mut Stats,
     sc: &'a mut Scratch,
+}
+
+/// Runs `f` on a query over (tmin, tmax) built on this thread's scratch.
+fn query<R>(ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats, f: impl FnOnce(&mut Query) -> R) -> R {
+    with_scratch(st, |sc, st| {
+        f(&mut Query {
+            ray,
+            tmin,
+            tmax,
+            st,
+            sc,
+        })
+    })
 }
 
 impl Query<'_> {
