@@ -243,7 +243,7 @@ class Caster:
                 raise ValueError("a halfspace below the top-level union is not supported by the oracle")
         # The whole solid inside the box; the halfspaces alone beyond it.
         self.solid = self.mesh(root, n) if root else mf.Manifold()
-        self.outside = self.build(halves, n, mf.OpType.Add) if halves else None
+        self.outside = self.combine(halves, n, mf.OpType.Add) if halves else None
 
     def mesh(self, node, n):
         if isinstance(node, reader.Leaf):
@@ -259,9 +259,6 @@ class Caster:
     def combine(self, nodes, n, op):
         kids = [self.mesh(c, n) for c in nodes]
         return kids[0] if len(kids) == 1 else mf.Manifold.batch_boolean(kids, op) if kids else mf.Manifold()
-
-    def build(self, nodes, n, op):
-        return self.combine(nodes, n, op)
 
     def owner(self, x, v, nrm):
         """The leaf whose own mesh holds the hit at x: a boolean keeps the

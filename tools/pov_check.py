@@ -26,7 +26,6 @@ Usage: pov_check.py [--csgrt BIN] SCENE...   (exit 1 if any differs)
 """
 
 import argparse
-import math
 import os
 import re
 import subprocess

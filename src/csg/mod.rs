@@ -469,7 +469,7 @@ impl Scratch {
     /// in place where [`spans::quick`] allows.
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         let (a, b) = self.stack[base..].split_at(top - base);
-        // The ray's scale only once a side is known to hold spans.
+        // The ray's scale is needed only once both sides hold spans.
         let mut scale = 0.0;
         let quick = spans::quick_empty(op, a, b).or_else(|| {
             scale = ray.origin.abs().max_element();
