@@ -1,6 +1,7 @@
 //! `--dump-scene`: the resolved scene as JSON — camera, lights, materials
-//! and the CSG tree with each primitive's world matrix — the input the
-//! oracle in `tools/` rebuilds the same solid from.
+//! and the CSG tree with each primitive's world matrix — csgrt's own
+//! reading, for a person to inspect. The oracle in `tools/` does not use
+//! it: it reads the model file itself.
 
 use crate::csg::{Csg, NodeKind};
 use crate::geometry::Param;
