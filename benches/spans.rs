@@ -3,7 +3,7 @@
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
 use csgrt::csg::spans::{combine, Boundary, Op, Span};
-use csgrt::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus};
+use csgrt::geometry::{Cone, Cuboid, Halfspace, Probe, Shape, Sphere, Torus};
 use glam::DVec3;
 
 /// Rays from a sphere of radius 4 towards points near the origin, in
@@ -52,10 +52,18 @@ fn primitives(c: &mut Criterion) {
     let mut g = c.benchmark_group("spans");
     for (name, shape) in shapes {
         g.bench_function(name, |b| {
+            let mut st = csgrt::stats::Stats::default();
             b.iter(|| {
                 let mut n = 0usize;
                 for &(o, d) in &rays {
-                    shape.spans(black_box(o), black_box(d), &mut |s| n += s.0 as usize & 1);
+                    let mut q = Probe {
+                        o: black_box(o),
+                        d: black_box(d),
+                        tmin: f64::NEG_INFINITY,
+                        tmax: f64::INFINITY,
+                        st: &mut st,
+                    };
+                    shape.spans(&mut q, &mut |s| n += s.0 as usize & 1);
                 }
                 n
             })

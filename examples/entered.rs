@@ -9,6 +9,7 @@
 //!
 //! Usage: cargo run --release --example entered -- SCENE [WxH] [STEP]
 
+use csgrt::geometry::Probe;
 use csgrt::render::camera::Camera;
 use csgrt::stats::Stats;
 use std::path::Path;
@@ -46,7 +47,14 @@ fn main() {
                 .filter(|p| {
                     let (o, d) = p.xf.ray_to_object(&ray);
                     let mut any = false;
-                    p.shape.spans(o, d, &mut |(_, _, t1, _)| any |= t1 > 0.0);
+                    let mut q = Probe {
+                        o,
+                        d,
+                        tmin: 0.0,
+                        tmax: f64::INFINITY,
+                        st: &mut Stats::default(),
+                    };
+                    p.shape.spans(&mut q, &mut |(_, _, t1, _)| any |= t1 > 0.0);
                     any
                 })
                 .count() as u64;

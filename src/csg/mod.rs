@@ -11,7 +11,7 @@ pub mod spans;
 
 use crate::geometry::bvh::Bvh;
 use crate::geometry::robust::coincidence;
-use crate::geometry::{Aabb, Ray, Shape, Transform};
+use crate::geometry::{Aabb, Probe, Ray, Shape, Transform};
 use crate::stats::Stats;
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -255,8 +255,15 @@ impl Csg {
         q.st.primitive_tests += 1;
         let p = &self.prims[id as usize];
         let (o, d) = p.xf.ray_to_object(q.ray);
+        let mut probe = Probe {
+            o,
+            d,
+            tmin: q.tmin,
+            tmax: q.tmax,
+            st: &mut *q.st,
+        };
         let stack = &mut q.sc.stack;
-        p.shape.spans(o, d, &mut |(t0, p0, t1, p1)| {
+        p.shape.spans(&mut probe, &mut |(t0, p0, t1, p1)| {
             let b = |t, part| Boundary::new(t, id, part);
             stack.push(Span {
                 enter: b(t0, p0),

@@ -9,7 +9,7 @@
 //! the other nappe of the double cone never leaks in. Parts: 0 = side,
 //! 1 = bottom cap, 2 = top cap.
 
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::{DAffine3, DVec3};
 
@@ -27,8 +27,8 @@ impl Solid for Cone {
     const NAME: &'static str = "cylinder";
 
     #[inline]
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        spans(self.r0, self.r1, bottom(self.centered), o, d, emit)
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        spans(self.r0, self.r1, bottom(self.centered), q.o, q.d, emit)
     }
 
     fn normal(&self, p: DVec3, part: Part) -> DVec3 {

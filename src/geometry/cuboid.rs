@@ -6,7 +6,7 @@
 //! only strictly between its planes. Parts: 0/1 = −x/+x, 2/3 = −y/+y,
 //! 4/5 = −z/+z.
 
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::DVec3;
 
@@ -25,8 +25,8 @@ impl Solid for Cuboid {
     const NAME: &'static str = "cube";
 
     #[inline]
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        spans(low(self.centered), o, d, emit)
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        spans(low(self.centered), q.o, q.d, emit)
     }
 
     fn normal(&self, _p: DVec3, part: Part) -> DVec3 {

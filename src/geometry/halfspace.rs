@@ -2,7 +2,7 @@
 //! rotated so that z points along `normal` and moved out by `offset`.
 //! Unbounded: its spans have infinite ends.
 
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
 use glam::{DAffine3, DVec3};
 
@@ -14,8 +14,8 @@ impl Solid for Halfspace {
     const NAME: &'static str = "halfspace";
 
     #[inline]
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        spans(o, d, emit)
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        spans(q.o, q.d, emit)
     }
 
     fn normal(&self, _p: DVec3, _part: Part) -> DVec3 {

@@ -23,7 +23,7 @@ pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use halfspace::Halfspace;
 pub use shape::Shape;
-pub use solid::{Param, Solid};
+pub use solid::{Param, Probe, Solid};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;

@@ -1,7 +1,7 @@
 //! The closed set of primitive shapes, matched rather than boxed: this file
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Cone, Cuboid, Halfspace, Part, Sphere, Torus};
 use glam::{DAffine3, DVec3};
 
@@ -39,8 +39,8 @@ impl Shape {
 
     /// See [`Solid::spans`].
     #[inline]
-    pub fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        each!(self, s => s.spans(o, d, emit))
+    pub fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        each!(self, s => s.spans(q, emit))
     }
 
     /// See [`Solid::normal`].

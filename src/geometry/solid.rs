@@ -7,10 +7,23 @@
 //! its module.
 
 use super::{Aabb, Part};
+use crate::stats::Stats;
 use glam::{DAffine3, DVec3};
 
 /// Where the line enters and leaves a solid: `(t_in, part_in, t_out, part_out)`.
 pub type RawSpan = (f64, Part, f64, Part);
+
+/// What a primitive is asked for its spans: the line `o + t·d` in its
+/// object space (d not normalised, so t is the world ray's), the range of t
+/// the caller needs — spans may reach past it, a primitive with many parts
+/// (a mesh) may stop there — and the counters of the work done.
+pub struct Probe<'a> {
+    pub o: DVec3,
+    pub d: DVec3,
+    pub tmin: f64,
+    pub tmax: f64,
+    pub st: &'a mut Stats,
+}
 
 /// A value a primitive reports about itself (for `--dump-scene`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,10 +36,11 @@ pub trait Solid {
     /// The OpenSCAD statement it comes from.
     const NAME: &'static str;
 
-    /// Calls `emit` for each span of the line `o + t·d` inside the solid, in
-    /// increasing `t`. Spans are never empty (`t_in < t_out`); unbounded
-    /// ends are ±∞ with part [`super::NO_PART`].
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan));
+    /// Calls `emit` for each span of the probe's line inside the solid, in
+    /// increasing `t`, at least those that meet (tmin, tmax). Spans are
+    /// never empty (`t_in < t_out`); unbounded ends are ±∞ with part
+    /// [`super::NO_PART`].
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan));
 
     /// The outward (not unit) normal at object-space point `p` on `part`.
     fn normal(&self, p: DVec3, part: Part) -> DVec3;

@@ -5,7 +5,7 @@
 //! ray passes far from the sphere, and the roots as q/a and c/q so that
 //! neither suffers cancellation.
 
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::{DAffine3, DVec3};
 
@@ -17,8 +17,8 @@ impl Solid for Sphere {
     const NAME: &'static str = "sphere";
 
     #[inline]
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        spans(o, d, emit)
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        spans(q.o, q.d, emit)
     }
 
     fn normal(&self, p: DVec3, _part: Part) -> DVec3 {

@@ -8,7 +8,7 @@
 //! closed form.
 
 use super::poly::{eval, roots_in, Poly};
-use super::solid::{Param, RawSpan, Solid};
+use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::{DAffine3, DVec3};
 
@@ -22,8 +22,8 @@ impl Solid for Torus {
     const NAME: &'static str = "torus";
 
     #[inline]
-    fn spans(&self, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
-        spans(self.minor, o, d, emit)
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        spans(self.minor, q.o, q.d, emit)
     }
 
     fn normal(&self, p: DVec3, _part: Part) -> DVec3 {
