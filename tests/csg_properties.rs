@@ -12,6 +12,9 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
+mod common;
+use common::l_prism;
+
 fn arb_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
         Just(Shape::Sphere(Sphere)),
@@ -36,6 +39,7 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
         })),
         (0.1..0.7f64).prop_map(|minor| Shape::Torus(Torus { minor })),
         Just(Shape::Halfspace(Halfspace)),
+        Just(l_prism()),
     ]
 }
 
@@ -93,7 +97,7 @@ fn build(csg: &mut Csg, t: &Tree) -> u32 {
     match t {
         Tree::Leaf(s, m) => {
             let id = csg.prims.len() as u32;
-            csg.add_prim(Primitive::new(*s, Transform::new(*m).unwrap(), id))
+            csg.add_prim(Primitive::new(s.clone(), Transform::new(*m).unwrap(), id))
         }
         Tree::Node(op, kids) => {
             let ids = kids.iter().map(|k| build(csg, k)).collect();

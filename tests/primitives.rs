@@ -12,10 +12,11 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::Rng;
+use common::{l_prism, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
+        ("prism", l_prism()),
         ("sphere", Shape::Sphere(Sphere)),
         ("cube", Shape::Cuboid(Cuboid { centered: false })),
         ("centred cube", Shape::Cuboid(Cuboid { centered: true })),
@@ -64,9 +65,9 @@ fn placements() -> Vec<DAffine3> {
     ]
 }
 
-fn single(shape: Shape, m: DAffine3) -> Csg {
+fn single(shape: &Shape, m: DAffine3) -> Csg {
     let mut csg = Csg::default();
-    let root = csg.add_prim(Primitive::new(shape, Transform::new(m).unwrap(), 0));
+    let root = csg.add_prim(Primitive::new(shape.clone(), Transform::new(m).unwrap(), 0));
     csg.root = Some(root);
     csg
 }
@@ -80,9 +81,10 @@ fn size_of(m: &DAffine3) -> f64 {
 }
 
 /// A point inside the primitive, in object space.
-fn inner_point(shape: Shape) -> DVec3 {
+fn inner_point(shape: &Shape) -> DVec3 {
     match shape {
         Shape::Torus(_) => DVec3::new(1.0, 0.0, 0.0),
+        Shape::Prism(_) => DVec3::new(0.5, 0.5, 0.5),
         s => s.object_bounds().center(),
     }
 }
@@ -90,7 +92,7 @@ fn inner_point(shape: Shape) -> DVec3 {
 /// Hits on the primitive from rays aimed at inner points from all around.
 fn surface_hits(
     csg: &Csg,
-    shape: Shape,
+    shape: &Shape,
     m: &DAffine3,
     rng: &mut Rng,
     n: usize,
@@ -112,9 +114,9 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
     let mut rng = Rng(1);
     for (name, shape) in shapes() {
         for m in placements() {
-            let csg = single(shape, m);
+            let csg = single(&shape, m);
             let size = size_of(&m);
-            for (ray, hit) in surface_hits(&csg, shape, &m, &mut rng, 200) {
+            for (ray, hit) in surface_hits(&csg, &shape, &m, &mut rng, 200) {
                 let n = hit.normal;
                 let err = point_error(hit.point, ray.origin, hit.t * ray.dir);
                 // Going on along the ray: the next crossing is the far side,
@@ -143,7 +145,7 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                 let away = Ray::new(offset_origin(hit.point, n, err, out), out);
                 match first(&csg, &away) {
                     None => {}
-                    Some(h) if matches!(shape, Shape::Torus(_)) => {
+                    Some(h) if matches!(shape, Shape::Torus(_) | Shape::Prism(_)) => {
                         assert!(h.t > 1e-6 * size, "{name}: re-hit at t = {}", h.t)
                     }
                     Some(h) => panic!("{name}: a ray leaving a convex solid hit it at t = {}", h.t),
@@ -156,9 +158,9 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
 /// Points exactly on the cube's 12 edges and 8 corners, and on the
 /// cylinder's, frustum's and cone's cap rims, in object space, with a
 /// point well inside.
-fn seams(shape: Shape) -> Option<(Vec<DVec3>, DVec3)> {
+fn seams(shape: &Shape) -> Option<(Vec<DVec3>, DVec3)> {
     let steps = 16;
-    match shape {
+    match shape.clone() {
         Shape::Cuboid(Cuboid { centered }) => {
             let lo = if centered { -1.0 } else { 0.0 };
             let mut pts = Vec::new();
@@ -194,11 +196,11 @@ fn seams(shape: Shape) -> Option<(Vec<DVec3>, DVec3)> {
 #[test]
 fn no_cracks_at_cube_edges_and_cap_rims() {
     for (name, shape) in shapes() {
-        let Some((points, middle)) = seams(shape) else {
+        let Some((points, middle)) = seams(&shape) else {
             continue;
         };
         for m in placements() {
-            let csg = single(shape, m);
+            let csg = single(&shape, m);
             let size = size_of(&m);
             let mid = m.transform_point3(middle);
             for p in points.iter().map(|p| m.transform_point3(*p)) {
@@ -245,10 +247,10 @@ fn normals_agree_with_the_inside_test() {
     let tilt = 1f64.to_radians();
     for (name, shape) in shapes() {
         for m in placements() {
-            let csg = single(shape, m);
+            let csg = single(&shape, m);
             let root = csg.root.unwrap();
             let size = size_of(&m);
-            for (_, hit) in surface_hits(&csg, shape, &m, &mut rng, 100) {
+            for (_, hit) in surface_hits(&csg, &shape, &m, &mut rng, 100) {
                 let n = hit.normal;
                 assert!(
                     (n.length() - 1.0).abs() < 1e-12,
@@ -259,7 +261,7 @@ fn normals_agree_with_the_inside_test() {
                 // Points near edges see two faces: only judge the smooth part.
                 let near_edge = |q: DVec3| {
                     let o = csg.prims[0].xf.point_to_object(q);
-                    seam_distance(shape, o) < 4.0 * step / size
+                    seam_distance(&shape, o) < 4.0 * step / size
                 };
                 if near_edge(hit.point) {
                     continue;
@@ -288,8 +290,8 @@ fn normals_agree_with_the_inside_test() {
 }
 
 /// How far an object-space surface point is from an edge of its solid.
-fn seam_distance(shape: Shape, p: DVec3) -> f64 {
-    match shape {
+fn seam_distance(shape: &Shape, p: DVec3) -> f64 {
+    match shape.clone() {
         Shape::Cuboid(Cuboid { centered }) => {
             let lo = if centered { -1.0 } else { 0.0 };
             // Distances to the two nearest faces other than the one hit.
@@ -305,6 +307,31 @@ fn seam_distance(shape: Shape, p: DVec3) -> f64 {
             let rho = p.truncate().length();
             let rim = |zk: f64, rk: f64| (rho - rk).hypot(z - zk);
             rim(0.0, r0).min(rim(1.0, r1))
+        }
+        Shape::Prism(prism) => {
+            // The cap rims and the vertical edges over the vertices.
+            let q = p.truncate();
+            let to_outline = prism
+                .region
+                .edges
+                .iter()
+                .map(|&(a, b)| {
+                    let t = ((q - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+                    (a + (b - a) * t - q).length()
+                })
+                .fold(f64::INFINITY, f64::min);
+            let to_vertex = prism
+                .region
+                .edges
+                .iter()
+                .map(|(a, _)| (*a - q).length())
+                .fold(f64::INFINITY, f64::min);
+            let to_cap = p.z.abs().min((p.z - 1.0).abs());
+            if to_cap < to_outline {
+                to_outline.max(to_cap)
+            } else {
+                to_cap.min(to_vertex)
+            }
         }
         _ => f64::INFINITY,
     }
@@ -331,8 +358,9 @@ fn support_points_are_the_farthest_points_of_the_solid() {
             let u = d.normalize();
             // A step from s towards the inside: the middle of a convex
             // solid, or the tube's core for the torus.
-            let core = match shape {
+            let core = match &shape {
                 Shape::Torus(t) => s - t.minor * u,
+                Shape::Prism(_) => inner_point(&shape),
                 _ => shape.object_bounds().center(),
             };
             assert!(

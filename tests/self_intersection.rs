@@ -53,7 +53,7 @@ proptest! {
         let m = DAffine3::from_scale_rotation_translation(
             DVec3::from(stretch) * size, DQuat::from_axis_angle(axis, angle), center);
         let mut csg = Csg::default();
-        let root = csg.add_prim(Primitive::new(shape, Transform::new(m).unwrap(), 0));
+        let root = csg.add_prim(Primitive::new(shape.clone(), Transform::new(m).unwrap(), 0));
         csg.root = Some(root);
         let mut st = Stats::default();
         // A ray from outside towards the middle of the solid.

@@ -2,16 +2,18 @@
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Cone, Cuboid, Halfspace, Part, Sphere, Torus};
+use super::{Aabb, Cone, Cuboid, Halfspace, Part, Prism, Sphere, Torus};
 use glam::{DAffine3, DVec3};
 
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Not `Copy`: a leaf may carry shared data (a prism's region).
+#[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
     Sphere(Sphere),
     Cuboid(Cuboid),
     Cone(Cone),
     Torus(Torus),
     Halfspace(Halfspace),
+    Prism(Prism),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -23,6 +25,7 @@ macro_rules! each {
             Shape::Cone($s) => $e,
             Shape::Torus($s) => $e,
             Shape::Halfspace($s) => $e,
+            Shape::Prism($s) => $e,
         }
     };
 }

@@ -58,22 +58,76 @@ impl Outlines {
     /// a vertex counts it once, and a line along an edge holds it when the
     /// region lies to the line's left.
     pub fn spans(&self, o: DVec2, d: DVec2) -> Vec<(f64, f64)> {
-        let n = d.perp(); // the side of the line a point is on: (p − o)·n
-        let mut cuts: Vec<f64> = Vec::new();
-        for (a, b) in self.edges() {
+        Region::new(self.clone())
+            .crossings(o, d)
+            .chunks_exact(2)
+            .map(|c| (c[0].0, c[1].0))
+            .filter(|(s0, s1)| s0 < s1)
+            .collect()
+    }
+}
+
+/// Outlines made ready for ray queries: their edges, each with its unit
+/// outward normal (the side the region is not on, found once at its
+/// middle), and their box.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Region {
+    pub outlines: Outlines,
+    pub edges: Vec<(DVec2, DVec2)>,
+    pub normals: Vec<DVec2>,
+    pub lo: DVec2,
+    pub hi: DVec2,
+}
+
+impl Region {
+    pub fn new(outlines: Outlines) -> Region {
+        let edges: Vec<(DVec2, DVec2)> = outlines.edges().collect();
+        let size = edges
+            .iter()
+            .map(|(a, b)| a.abs().max(b.abs()).max_element())
+            .fold(1e-300, f64::max);
+        let normals = edges
+            .iter()
+            .map(|&(a, b)| {
+                let n = (b - a).perp().normalize_or_zero() * -1.0;
+                let mid = (a + b) * 0.5;
+                // The region lies on one side of a simple edge: the normal
+                // points to the other.
+                if outlines.contains(mid + n * (1e-9 * size)) {
+                    -n
+                } else {
+                    n
+                }
+            })
+            .collect();
+        let (lo, hi) = edges.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), (a, _)| (lo.min(*a), hi.max(*a)),
+        );
+        Region {
+            outlines,
+            edges,
+            normals,
+            lo,
+            hi,
+        }
+    }
+
+    /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
+    /// rule of [`Outlines::spans`].
+    pub fn crossings(&self, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
+        let n = d.perp();
+        let mut cuts: Vec<(f64, u32)> = Vec::new();
+        for (k, &(a, b)) in self.edges.iter().enumerate() {
             let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
             if (sa > 0.0) == (sb > 0.0) {
                 continue;
             }
-            // The crossing point of the edge, then its parameter on the line.
             let p = a + (b - a) * (sa / (sa - sb));
-            cuts.push((p - o).dot(d) / d.length_squared());
+            cuts.push(((p - o).dot(d) / d.length_squared(), k as u32));
         }
-        cuts.sort_by(f64::total_cmp);
-        cuts.chunks_exact(2)
-            .map(|c| (c[0], c[1]))
-            .filter(|(s0, s1)| s0 < s1)
-            .collect()
+        cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        cuts
     }
 }
 

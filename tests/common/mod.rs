@@ -97,3 +97,26 @@ impl Rng {
         }
     }
 }
+
+/// An L-shaped region with a triangular hole in its lower arm, as a prism
+/// (a leaf that carries its region by reference).
+pub fn l_prism() -> csgrt::geometry::Shape {
+    use csgrt::plane::{Outlines, Region};
+    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
+    let outlines = Outlines {
+        loops: vec![
+            vec![
+                p(0.0, 0.0),
+                p(2.0, 0.0),
+                p(2.0, 1.0),
+                p(1.0, 1.0),
+                p(1.0, 2.0),
+                p(0.0, 2.0),
+            ],
+            vec![p(1.3, 0.2), p(1.8, 0.2), p(1.8, 0.7)],
+        ],
+    };
+    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
+        region: std::sync::Arc::new(Region::new(outlines)),
+    })
+}
