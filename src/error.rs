@@ -116,6 +116,21 @@ impl Source {
         }
     }
 
+    /// Where a file the model names (an `import`, a `surface`) lies: an
+    /// absolute path as it is, a relative one against the model's own
+    /// folder, as OpenSCAD resolves them.
+    pub fn beside(&self, file: &str) -> std::path::PathBuf {
+        let file = std::path::Path::new(file);
+        if file.is_absolute() {
+            return file.to_path_buf();
+        }
+        let folder = std::path::Path::new(&self.name)
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
+        folder.join(file)
+    }
+
     /// 1-based line and column (in characters) of a byte offset.
     pub fn line_col(&self, offset: usize) -> (usize, usize) {
         let offset = floor_char_boundary(&self.text, offset.min(self.text.len()));
@@ -218,6 +233,24 @@ pub type Result<T, E = Error> = std::result::Result<T, E>;
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn files_a_model_names_lie_beside_it() {
+        let src = Source::new("parts/bracket.csg", "");
+        assert_eq!(
+            src.beside("logo.stl"),
+            std::path::Path::new("parts/logo.stl")
+        );
+        assert_eq!(
+            src.beside("../m/a.dat"),
+            std::path::Path::new("parts/../m/a.dat")
+        );
+        assert_eq!(src.beside("/abs/a.stl"), std::path::Path::new("/abs/a.stl"));
+        assert_eq!(
+            Source::new("x.csg", "").beside("a.stl"),
+            std::path::Path::new("./a.stl")
+        );
+    }
 
     #[test]
     fn diagnostic_points_at_the_span_with_a_caret() {

@@ -261,6 +261,114 @@ impl<'a> Args<'a> {
         Ok(Some(out))
     }
 
+    /// A list of at least `min` points, each a vector of one of `dims`
+    /// numbers (OpenSCAD's `points = [[x, y], …]`); a point of 2 numbers
+    /// read where 3 are allowed gets z = 0, as in OpenSCAD. Each problem
+    /// is reported at the element it is about.
+    pub fn points(&self, name: &str, dims: &[usize], min: usize) -> Result<Option<Vec<DVec3>>> {
+        let Some(v) = self.get(name) else {
+            return Ok(None);
+        };
+        let want = format!("a list of points of {} numbers", {
+            let n: Vec<String> = dims.iter().map(|n| n.to_string()).collect();
+            n.join(" or ")
+        });
+        let ValueKind::Vector(items) = &v.kind else {
+            return Err(self.wrong_type(name, v, &want));
+        };
+        if items.len() < min {
+            return Err(self.src.error(
+                v.span,
+                format!(
+                    "`{name}` of `{}` needs at least {min} points",
+                    self.stmt.name
+                ),
+                format!("expected {min} or more, found {}", items.len()),
+            ));
+        }
+        let mut out = Vec::with_capacity(items.len());
+        for it in items {
+            let ValueKind::Vector(xs) = &it.kind else {
+                return Err(self.wrong_type(name, it, &format!("a point of {} numbers", dims[0])));
+            };
+            if !dims.contains(&xs.len()) {
+                return Err(self.src.error(
+                    it.span,
+                    format!("`{name}` of `{}` must be {want}", self.stmt.name),
+                    format!(
+                        "expected a point of {} numbers, found {}",
+                        dims[0],
+                        xs.len()
+                    ),
+                ));
+            }
+            let mut p = [0.0; 3];
+            for (k, x) in xs.iter().enumerate() {
+                match x.kind {
+                    ValueKind::Number(n) => p[k] = self.finite(name, x, n)?,
+                    _ => return Err(self.wrong_type(name, x, "a number")),
+                }
+            }
+            out.push(DVec3::from(p));
+        }
+        Ok(Some(out))
+    }
+
+    /// Lists of indices into `count` points (OpenSCAD's `faces` or
+    /// `paths`), each at least `min_len` long; an index out of range, not
+    /// a whole number, or a list too short is an error at its place.
+    pub fn index_lists(
+        &self,
+        name: &str,
+        count: usize,
+        min_len: usize,
+    ) -> Result<Option<Vec<Vec<u32>>>> {
+        let Some(v) = self.get(name) else {
+            return Ok(None);
+        };
+        let ValueKind::Vector(lists) = &v.kind else {
+            return Err(self.wrong_type(name, v, "a list of index lists"));
+        };
+        let mut out = Vec::with_capacity(lists.len());
+        for l in lists {
+            let ValueKind::Vector(ix) = &l.kind else {
+                return Err(self.wrong_type(name, l, "a list of indices"));
+            };
+            if ix.len() < min_len {
+                return Err(self.src.error(
+                    l.span,
+                    format!(
+                        "a list in `{name}` of `{}` has fewer than {min_len} indices",
+                        self.stmt.name
+                    ),
+                    format!("expected {min_len} or more, found {}", ix.len()),
+                ));
+            }
+            let mut row = Vec::with_capacity(ix.len());
+            for i in ix {
+                let ValueKind::Number(n) = i.kind else {
+                    return Err(self.wrong_type(name, i, "an index"));
+                };
+                if n.fract() != 0.0 || n < 0.0 || n >= count as f64 {
+                    return Err(self.src.error(
+                        i.span,
+                        format!(
+                            "index {n} in `{name}` of `{}` is out of range",
+                            self.stmt.name
+                        ),
+                        format!(
+                            "expected a whole number from 0 to {}",
+                            count.saturating_sub(1)
+                        ),
+                    ));
+                }
+                row.push(n as u32);
+            }
+            out.push(row);
+        }
+        Ok(Some(out))
+    }
+
     /// The span of an argument's value (for semantic errors about it).
     pub fn span_of(&self, name: &str) -> TextRange {
         self.get(name).map_or(self.stmt.args_span, |v| v.span)
@@ -275,5 +383,95 @@ impl<'a> Args<'a> {
                 format!("expected `{name} = …`"),
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The message of binding `text`'s first statement with `f`.
+    fn run<T>(
+        text: &str,
+        params: &'static [&'static str],
+        f: impl Fn(&Args) -> Result<T>,
+    ) -> std::result::Result<T, String> {
+        let src = Source::new("t.csg", text);
+        let stmts = crate::syntax::parse_csg(&src).unwrap();
+        let a = Args::bind(&src, &stmts[0], params).unwrap();
+        f(&a).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn points_of_any_length_are_read_with_their_places() {
+        let pts = run(
+            "polygon(points = [[0, 0], [2, 0], [1, 3.5]]);",
+            &["points"],
+            |a| a.points("points", &[2], 3),
+        )
+        .unwrap();
+        assert_eq!(
+            pts.unwrap(),
+            vec![
+                DVec3::ZERO,
+                DVec3::new(2.0, 0.0, 0.0),
+                DVec3::new(1.0, 3.5, 0.0)
+            ]
+        );
+        let e = run("polygon(points = [[0, 0], [2, 0]]);", &["points"], |a| {
+            a.points("points", &[2], 3)
+        })
+        .unwrap_err();
+        assert!(
+            e.contains("needs at least 3 points") && e.contains("t.csg:1:18"),
+            "{e}"
+        );
+        let e = run(
+            "polygon(points = [[0, 0], [2, 0, 1, 4], [1, 1]]);",
+            &["points"],
+            |a| a.points("points", &[2], 3),
+        )
+        .unwrap_err();
+        assert!(
+            e.contains("expected a point of 2 numbers, found 4") && e.contains("t.csg:1:27"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn index_lists_are_checked_against_the_points() {
+        let f = run(
+            "polyhedron(faces = [[0, 1, 2], [2, 1, 3]]);",
+            &["faces"],
+            |a| a.index_lists("faces", 4, 3),
+        )
+        .unwrap();
+        assert_eq!(f.unwrap(), vec![vec![0, 1, 2], vec![2, 1, 3]]);
+        let e = run("polyhedron(faces = [[0, 1, 4]]);", &["faces"], |a| {
+            a.index_lists("faces", 4, 3)
+        })
+        .unwrap_err();
+        assert!(
+            e.contains("index 4 in `faces`")
+                && e.contains("t.csg:1:28")
+                && e.contains("from 0 to 3"),
+            "{e}"
+        );
+        let e = run("polyhedron(faces = [[0, 1]]);", &["faces"], |a| {
+            a.index_lists("faces", 4, 3)
+        })
+        .unwrap_err();
+        assert!(
+            e.contains("fewer than 3 indices") && e.contains("t.csg:1:21"),
+            "{e}"
+        );
+        let e = run("polyhedron(faces = [[0, 1.5, 2]]);", &["faces"], |a| {
+            a.index_lists("faces", 4, 3)
+        })
+        .unwrap_err();
+        assert!(
+            e.contains("out of range") && e.contains("whole number"),
+            "{e}"
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! The resolved scene: camera, lights, materials and the CSG tree, with
 //! every default applied. Built from the syntax tree by [`resolve`].
 
-mod args;
+pub mod args;
 pub mod builder;
 pub mod defaults;
 mod resolve;
