@@ -97,31 +97,28 @@ def silhouette_mismatch(a, scene):
 
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import oracle
+    import scene as reader
 
     w, h = a.size.split("x")
     with tempfile.TemporaryDirectory() as work:
-        dump, mask, img, pov, pimg = (os.path.join(work, f) for f in
-                                      ("d.json", "m.png", "c.png", "s.pov", "p.png"))
-        subprocess.run([a.csgrt, scene, "--size", a.size, "--dump-scene", dump, "--mask", mask,
+        mask, img, pov, pimg = (os.path.join(work, f) for f in ("m.png", "c.png", "s.pov", "p.png"))
+        subprocess.run([a.csgrt, scene, "--size", a.size, "--mask", mask,
                         "-o", img, "--export-pov", pov, "-q"], check=True)
         subprocess.run(["povray", f"+I{pov}", f"+O{pimg}", f"+W{w}", f"+H{h}", "+FN", "-D", "-A",
                         "File_Gamma=1.0"], check=True, capture_output=True)
-        with open(dump) as f:
-            d = json.load(f)
-        bg = np.round(np.clip(np.array(d["background"], dtype=float), 0, 1) * 255)
+        # The oracle's own reading of the file: its camera, background, mesh.
+        sc = reader.read(scene)
+        bg = np.round(np.clip(np.array(sc.background, dtype=float), 0, 1) * 255)
         not_bg = lambda path: np.any(np.asarray(Image.open(path).convert("RGB"), dtype=float) != bg, axis=2)
         cmask = np.asarray(Image.open(mask).convert("L")) == 255
         if not np.array_equal(not_bg(img), cmask):
             raise SystemExit(f"{scene}: object pixels take the background colour; "
                              "the POV-Ray silhouette rule cannot be used on this scene")
-        caster = oracle.Caster(d, ORACLE_SEGMENTS)
-        eye, du, dv, vp, cw, ch = oracle.camera(d)
-        omask = np.zeros((ch, cw), dtype=bool)
-        for j in range(ch):
-            for i in range(cw):
-                v = (i + 0.5) * du + (j + 0.5) * dv + vp
-                omask[j, i] = caster.cast(eye, v / np.linalg.norm(v)) is not None
-        edge = oracle.edge_pixels(omask)
+        cw, ch = int(w), int(h)
+        caster = oracle.Caster(sc, ORACLE_SEGMENTS)
+        rays = oracle.camera_rays(sc.view(cw, ch), cw, ch)
+        omask = np.array([caster.cast(o, v) is not None for o, v in rays]).reshape(ch, cw)
+        edge = oracle.mixed(omask)
         out = {}
         pmask = not_bg(pimg)
         for who, m in (("csgrt", cmask), ("POV-Ray", pmask)):
