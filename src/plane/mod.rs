@@ -58,8 +58,7 @@ impl Outlines {
     /// a vertex counts it once, and a line along an edge holds it when the
     /// region lies to the line's left.
     pub fn spans(&self, o: DVec2, d: DVec2) -> Vec<(f64, f64)> {
-        Region::new(self.clone())
-            .crossings(o, d)
+        crossings(self.edges(), o, d)
             .chunks_exact(2)
             .map(|c| (c[0].0, c[1].0))
             .filter(|(s0, s1)| s0 < s1)
@@ -116,19 +115,27 @@ impl Region {
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
     pub fn crossings(&self, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
-        let n = d.perp();
-        let mut cuts: Vec<(f64, u32)> = Vec::new();
-        for (k, &(a, b)) in self.edges.iter().enumerate() {
-            let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
-            if (sa > 0.0) == (sb > 0.0) {
-                continue;
-            }
-            let p = a + (b - a) * (sa / (sa - sb));
-            cuts.push(((p - o).dot(d) / d.length_squared(), k as u32));
-        }
-        cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        cuts
+        crossings(self.edges.iter().copied(), o, d)
     }
+}
+
+/// Where the line `o + s·d` crosses `edges`, sorted: `(s, edge index)`. An
+/// edge counts when one end lies strictly left of the line and the other
+/// not (see [`Outlines::spans`]).
+fn crossings(edges: impl Iterator<Item = (DVec2, DVec2)>, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
+    let n = d.perp(); // the side of the line a point is on: (p − o)·n
+    let mut cuts: Vec<(f64, u32)> = Vec::new();
+    for (k, (a, b)) in edges.enumerate() {
+        let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
+        if (sa > 0.0) == (sb > 0.0) {
+            continue;
+        }
+        // The crossing point of the edge, then its parameter on the line.
+        let p = a + (b - a) * (sa / (sa - sb));
+        cuts.push(((p - o).dot(d) / d.length_squared(), k as u32));
+    }
+    cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    cuts
 }
 
 #[cfg(test)]
