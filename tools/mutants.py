@@ -58,28 +58,24 @@ def oracle_problems(binary, scene, fault):
     return bad
 
 
-def accuracy_fails(binary, fault):
+def tool_fails(fault, script, *args):
+    """(whether tools/SCRIPT failed with the fault on, a line that says why)."""
     env = dict(os.environ, CSGRT_MUTANT=fault)
     r = subprocess.run(
-        [sys.executable, os.path.join(ROOT, "tools", "accuracy.py"), "--csgrt", binary, "--check"],
-        env=env,
-        capture_output=True,
-        text=True,
+        [sys.executable, os.path.join(ROOT, "tools", script), *args], env=env, capture_output=True, text=True
     )
     lines = [x for x in r.stdout.splitlines() + r.stderr.splitlines() if x.strip()]
-    return r.returncode != 0, lines[-1] if lines else ""
+    return r.returncode != 0, lines
+
+
+def accuracy_fails(binary, fault):
+    failed, lines = tool_fails(fault, "accuracy.py", "--csgrt", binary, "--check")
+    return failed, lines[-1] if lines else ""
 
 
 def pov_fails(binary, scene, fault):
-    env = dict(os.environ, CSGRT_MUTANT=fault)
-    r = subprocess.run(
-        [sys.executable, os.path.join(ROOT, "tools", "pov_check.py"), "--csgrt", binary, os.path.join(ROOT, scene)],
-        env=env,
-        capture_output=True,
-        text=True,
-    )
-    lines = r.stdout.splitlines()
-    return r.returncode != 0, lines[0] if lines else r.stderr.strip()[-200:]
+    failed, lines = tool_fails(fault, "pov_check.py", "--csgrt", binary, os.path.join(ROOT, scene))
+    return failed, lines[0] if lines else ""
 
 
 def main():

@@ -107,8 +107,12 @@ def seed_of(name):
 
 
 def svd(leaf):
-    s = np.linalg.svd(leaf.matrix[:3, :3], compute_uv=False)
-    return float(s[0]), float(s[-1])
+    """The largest and smallest singular values of the leaf's matrix,
+    computed once a leaf (they are asked for at every ray)."""
+    if not hasattr(leaf, "_svd"):
+        s = np.linalg.svd(leaf.matrix[:3, :3], compute_uv=False)
+        leaf._svd = (float(s[0]), float(s[-1]))
+    return leaf._svd
 
 
 def leaf_mesh(leaf, n, big):
@@ -224,12 +228,7 @@ class Caster:
     PIECES = 8
 
     def __init__(self, sc, n):
-        boxes = [reader.leaf_box(x) for x in sc.leaves if x.kind != "halfspace"]
-        if boxes:
-            lo = np.min([b[0] for b in boxes], axis=0)
-            hi = np.max([b[1] for b in boxes], axis=0)
-        else:
-            lo, hi = -np.ones(3), np.ones(3)
+        lo, hi = reader.bounded_box(sc, reader.UNIT)
         size = float(np.linalg.norm(hi - lo))
         self.big = 1e6 * max(size, 1.0)
         margin = 1e-6 * max(size, 1.0)
@@ -352,11 +351,7 @@ def random_rays(sc, count, seed):
     """Rays from a sphere around the bounded solids towards random points
     of their box."""
     rng = np.random.default_rng(seed)
-    boxes = [reader.leaf_box(x) for x in sc.leaves if x.kind != "halfspace"]
-    if boxes:
-        lo, hi = np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
-    else:
-        lo, hi = -np.ones(3), np.ones(3)
+    lo, hi = reader.bounded_box(sc, reader.UNIT)
     c, r = (lo + hi) / 2, max(np.linalg.norm(hi - lo) / 2, 1e-9)
     out = []
     for _ in range(count):
@@ -509,6 +504,21 @@ def compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced
     return row
 
 
+def towards(kind, x, p):
+    """The unit direction from p to a light and its distance."""
+    if kind == "directional":
+        return -x, math.inf
+    d = float(np.linalg.norm(x - p))
+    return (x - p) / d, d
+
+
+def off_surface(p, nrm, ldir, delta, scale):
+    """Where a shadow ray from surface point p starts: beyond the
+    faceting (the exact surface may lie inside the mesh by delta), on the
+    side the light is."""
+    return p + (nrm if nrm @ ldir > 0 else -nrm) * (4 * delta + 1e-7 * scale)
+
+
 def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row):
     """Shade every opaque, non-reflective pixel off the edges; first pass
     the shadow maps (to find ambiguous shadows), then the colours."""
@@ -535,10 +545,8 @@ def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row
         info[k] = (p, nc, leaf, delta, scale)
         for li, L in enumerate(lights):
             kind, _, x = sc.lights[L]
-            ldir, dist = (-x, math.inf) if kind == "directional" else ((x - p) / np.linalg.norm(x - p), float(np.linalg.norm(x - p)))
-            eps = 4 * delta + 1e-7 * scale
-            start = p + (nc if nc @ ldir > 0 else -nc) * eps
-            shadow[li, j, i] = 1 if caster.blocked(start, ldir, dist) else 0
+            ldir, dist = towards(kind, x, p)
+            shadow[li, j, i] = 1 if caster.blocked(off_surface(p, nc, ldir, delta, scale), ldir, dist) else 0
     shadow_edge = np.zeros((len(lights), h, w), dtype=bool)
     for li in range(len(lights)):
         shadow_edge[li] = mixed(shadow[li])
@@ -555,7 +563,7 @@ def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row
                 col += mat["ka"] * il * mat["color"]
                 continue
             li = lights.index(li_all)
-            ldir, dist = (-x, math.inf) if kind == "directional" else ((x - p) / np.linalg.norm(x - p), float(np.linalg.norm(x - p)))
+            ldir, dist = towards(kind, x, p)
             ndl = float(ns @ ldir)
             if ndl <= 0 or (mat["kd"] <= 0 and mat["ks"] <= 0):
                 continue
@@ -566,10 +574,8 @@ def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row
                 if vr > 0:
                     term = term + mat["ks"] * vr ** mat["ns"] * il
             if transparent:
-                eps = 4 * delta + 1e-7 * scale
-                start = p + (nc if nc @ ldir > 0 else -nc) * eps
                 pass_ = 1.0
-                for t, hn, hl in caster.cast_all(start, ldir, dist):
+                for t, hn, hl in caster.cast_all(off_surface(p, nc, ldir, delta, scale), ldir, dist):
                     if hn @ ldir < 0:
                         pass_ *= hl.material["kt"] if hl else 0.0
             else:

@@ -397,9 +397,8 @@ def check(path, binary):
             if not got.get("parallel") or not close(d / np.linalg.norm(d), x / np.linalg.norm(x)):
                 bad.append(f"a directional light along {d}, the file says {x}")
     # The solid and its leaves, at sample points.
-    boxes = [reader.leaf_box(x) for x in sc.leaves]
-    boxes = [b for b in boxes if np.all(np.isfinite(b[0])) and np.all(np.isfinite(b[1]))] or [(-np.ones(3), np.ones(3))]
-    lo, hi = np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+    boxes = reader.bounded_boxes(sc) or [reader.UNIT]
+    lo, hi = reader.bounded_box(sc, reader.UNIT)
     size = float(np.linalg.norm(hi - lo))
     rng = np.random.default_rng(12)
     pts = [lo - 0.1 * size + rng.random((4000, 3)) * (hi - lo + 0.2 * size)]

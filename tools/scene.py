@@ -636,6 +636,7 @@ def read_ray(path, text):
 
 EVERYTHING = (np.full(3, -np.inf), np.full(3, np.inf))
 EMPTY = (np.full(3, np.inf), np.full(3, -np.inf))
+UNIT = (-np.ones(3), np.ones(3))
 
 
 def leaf_box(leaf):
@@ -686,15 +687,25 @@ def box(node):
     return bs[0]
 
 
+def bounded_boxes(scene):
+    """The world boxes of the leaves that have finite ones (not a halfspace)."""
+    boxes = [leaf_box(x) for x in scene.leaves]
+    return [b for b in boxes if np.all(np.isfinite(b[0])) and np.all(np.isfinite(b[1]))]
+
+
+def bounded_box(scene, default=EMPTY):
+    """The union of [`bounded_boxes`], or `default` when there are none."""
+    boxes = bounded_boxes(scene)
+    if not boxes:
+        return default
+    return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+
+
 def framing_box(scene):
     lo, hi = box(scene.root)
     if np.all(np.isfinite(lo)) and np.all(np.isfinite(hi)) or np.any(lo > hi):
         return lo, hi
-    bounded = [leaf_box(x) for x in scene.leaves]
-    bounded = [b for b in bounded if np.all(np.isfinite(b[0])) and np.all(np.isfinite(b[1]))]
-    if not bounded:
-        return EMPTY
-    return np.min([b[0] for b in bounded], axis=0), np.max([b[1] for b in bounded], axis=0)
+    return bounded_box(scene)
 
 
 def framing(scene, width, height, fov=30.0, fill=0.9):
