@@ -39,7 +39,9 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
         })),
         (0.1..0.7f64).prop_map(|minor| Shape::Torus(Torus { minor })),
         Just(Shape::Halfspace(Halfspace)),
-        Just(l_prism()),
+        Just(l_prism(1.0)),
+        Just(l_prism(0.5)),
+        Just(common::l_lathe()),
     ]
 }
 

@@ -12,11 +12,15 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::{l_prism, Rng};
+use common::{l_lathe, l_prism, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
-        ("prism", l_prism()),
+        ("prism", l_prism(1.0)),
+        ("tapered prism", l_prism(0.4)),
+        ("widening prism", l_prism(1.7)),
+        ("pyramid", l_prism(0.0)),
+        ("lathe", l_lathe()),
         ("sphere", Shape::Sphere(Sphere)),
         ("cube", Shape::Cuboid(Cuboid { centered: false })),
         ("centred cube", Shape::Cuboid(Cuboid { centered: true })),
@@ -84,7 +88,13 @@ fn size_of(m: &DAffine3) -> f64 {
 fn inner_point(shape: &Shape) -> DVec3 {
     match shape {
         Shape::Torus(_) => DVec3::new(1.0, 0.0, 0.0),
-        Shape::Prism(_) => DVec3::new(0.5, 0.5, 0.5),
+        // In the L's lower-left square, at a quarter of the height (its
+        // section scaled by the taper there).
+        Shape::Prism(p) => {
+            let w = 1.0 + (p.top - 1.0) * 0.25;
+            DVec3::new(0.5 * w, 0.5 * w, 0.25)
+        }
+        Shape::Lathe(_) => DVec3::new(1.0, 0.0, -0.5),
         s => s.object_bounds().center(),
     }
 }
@@ -145,7 +155,9 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                 let away = Ray::new(offset_origin(hit.point, n, err, out), out);
                 match first(&csg, &away) {
                     None => {}
-                    Some(h) if matches!(shape, Shape::Torus(_) | Shape::Prism(_)) => {
+                    Some(h)
+                        if matches!(shape, Shape::Torus(_) | Shape::Prism(_) | Shape::Lathe(_)) =>
+                    {
                         assert!(h.t > 1e-6 * size, "{name}: re-hit at t = {}", h.t)
                     }
                     Some(h) => panic!("{name}: a ray leaving a convex solid hit it at t = {}", h.t),
@@ -360,7 +372,12 @@ fn support_points_are_the_farthest_points_of_the_solid() {
             // solid, or the tube's core for the torus.
             let core = match &shape {
                 Shape::Torus(t) => s - t.minor * u,
-                Shape::Prism(_) => inner_point(&shape),
+                // Within the support's own section.
+                Shape::Prism(p) => {
+                    let w = 1.0 + (p.top - 1.0) * s.z;
+                    DVec3::new(0.5 * w, 0.5 * w, s.z)
+                }
+                Shape::Lathe(_) => (s.truncate().normalize_or_zero()).extend(-0.5),
                 _ => shape.object_bounds().center(),
             };
             assert!(

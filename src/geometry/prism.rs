@@ -1,15 +1,22 @@
 //! A prism: a plane region swept from z = 0 to z = 1 — OpenSCAD's
-//! `linear_extrude` without twist or taper, in object space (the height is
-//! the transform's). It carries its region by reference, shared by every
-//! leaf made from it.
+//! `linear_extrude` without twist, in object space (the height is the
+//! transform's) — its section at height z the region scaled by
+//! s(z) = 1 + (top − 1)·z about the axis (`top` = 1: no taper). It carries
+//! its region by reference, shared by every leaf made from it.
 //!
-//! A line meets it where its projection on the plane is inside the region
-//! (the region's own line spans, [`Region::crossings`], paired even-odd)
-//! and where it is inside the slab; parts: 0 the bottom cap, 1 the top cap,
-//! 2 + k the side over edge k.
+//! Without taper a line meets it where its projection on the plane is
+//! inside the region (the region's own line spans, [`Region::crossings`],
+//! paired even-odd) and where it is inside the slab. A uniform taper is the
+//! projective map (x, y, z) ↦ (x, y, z)/s(z), under which the prism is
+//! straight and the line is still a line: in homogeneous coordinates the
+//! line's image through the plane is ℓ = (o_xy, s(o)) × (d_xy, s′·d_z), each
+//! edge is crossed where its ends lie on either side of ℓ, and the side over
+//! edge (a, b) is the plane cross(b − a, p_xy) = s(z)·cross(b − a, a), met
+//! at one t. Parts: 0 the bottom cap, 1 the top cap, 2 + k the side over
+//! edge k.
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Part};
+use super::{Aabb, Part, NO_PART};
 use crate::plane::Region;
 use glam::DVec3;
 use std::sync::Arc;
@@ -21,6 +28,86 @@ const SIDE: Part = 2;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Prism {
     pub region: Arc<Region>,
+    /// The scale of the top section (≥ 0; 1 for a straight prism).
+    pub top: f64,
+}
+
+impl Prism {
+    /// The section's scale s(z) at height z.
+    fn scale_at(&self, z: f64) -> f64 {
+        1.0 + (self.top - 1.0) * z
+    }
+
+    /// The spans of a tapered prism inside the slab (t0, p0)–(t1, p1).
+    fn tapered(&self, o: DVec3, d: DVec3, slab: RawSpan, emit: &mut impl FnMut(RawSpan)) {
+        let (z0, zp0, z1, zp1) = slab;
+        let k = self.top - 1.0;
+        let (w0, wd) = (1.0 + k * o.z, k * d.z);
+        let (o2, d2) = (o.truncate(), d.truncate());
+        let h0 = DVec3::new(o2.x, o2.y, w0);
+        let hd = DVec3::new(d2.x, d2.y, wd);
+        let line = h0.cross(hd);
+        if line == DVec3::ZERO {
+            // The line's image is one point: inside everywhere or nowhere.
+            let tm = if z0.is_finite() && z1.is_finite() {
+                0.5 * (z0 + z1)
+            } else {
+                0.0
+            };
+            let w = w0 + tm * wd;
+            if w > 0.0 && self.region.outlines.contains((o2 + tm * d2) / w) {
+                emit(slab);
+            }
+            return;
+        }
+        let mut cuts: Vec<(f64, u32)> = Vec::new();
+        for (e, &(a, b)) in self.region.edges.iter().enumerate() {
+            let (sa, sb) = (line.dot(a.extend(1.0)), line.dot(b.extend(1.0)));
+            if (sa > 0.0) == (sb > 0.0) {
+                continue;
+            }
+            let ed = b - a;
+            let c = ed.perp_dot(a);
+            let f0 = ed.perp_dot(o2) - w0 * c;
+            let f1 = ed.perp_dot(d2) - wd * c;
+            if f1 == 0.0 {
+                continue;
+            }
+            let t = -f0 / f1;
+            if w0 + t * wd > 0.0 {
+                cuts.push((t, e as u32));
+            }
+        }
+        cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        // Outside at the image's far end (the points where s → 0⁺): pair
+        // from that end; an odd crossing out runs to the vanishing point.
+        let mut spans: Vec<(f64, Part, f64, Part)> = Vec::new();
+        let far = f64::INFINITY;
+        if wd >= 0.0 {
+            for pair in cuts.chunks(2) {
+                let (s0, e0) = pair[0];
+                let (s1, e1) = pair.get(1).map_or((far, NO_PART), |&(s, e)| (s, SIDE + e));
+                spans.push((s0, SIDE + e0, s1, e1));
+            }
+        } else {
+            for pair in cuts.rchunks(2).rev() {
+                let (s1, e1) = pair[pair.len() - 1];
+                let (s0, e0) = if pair.len() == 2 {
+                    (pair[0].0, SIDE + pair[0].1)
+                } else {
+                    (-far, NO_PART)
+                };
+                spans.push((s0, e0, s1, SIDE + e1));
+            }
+        }
+        for (s0, e0, s1, e1) in spans {
+            let (t0, p0) = if s0 > z0 { (s0, e0) } else { (z0, zp0) };
+            let (t1, p1) = if s1 < z1 { (s1, e1) } else { (z1, zp1) };
+            if t0 < t1 {
+                emit((t0, p0, t1, p1));
+            }
+        }
+    }
 }
 
 impl Solid for Prism {
@@ -42,6 +129,9 @@ impl Solid for Prism {
                 (tt, TOP, tb, BOTTOM)
             }
         };
+        if self.top != 1.0 {
+            return self.tapered(o, d, (z0, zp0, z1, zp1), emit);
+        }
         let (o2, d2) = (o.truncate(), d.truncate());
         if d2 == glam::DVec2::ZERO {
             // Along z: inside the slab wherever the point is in the region.
@@ -64,33 +154,42 @@ impl Solid for Prism {
         match part {
             BOTTOM => DVec3::NEG_Z,
             TOP => DVec3::Z,
-            k => self.region.normals[(k - SIDE) as usize].extend(0.0),
+            k => {
+                let e = (k - SIDE) as usize;
+                let n = self.region.normals[e];
+                n.extend((1.0 - self.top) * n.dot(self.region.edges[e].0))
+            }
         }
     }
 
     fn contains(&self, p: DVec3) -> bool {
-        (0.0..=1.0).contains(&p.z) && self.region.outlines.contains(p.truncate())
+        let w = self.scale_at(p.z);
+        (0.0..=1.0).contains(&p.z)
+            && (w > 0.0 && self.region.outlines.contains(p.truncate() / w)
+                || w == 0.0 && p.truncate() == glam::DVec2::ZERO)
     }
 
     fn object_bounds(&self) -> Aabb {
         let r = &self.region;
-        Aabb::new(r.lo.extend(0.0), r.hi.extend(1.0))
+        let (lo, hi) = (r.lo.min(r.lo * self.top), r.hi.max(r.hi * self.top));
+        Aabb::new(lo.extend(0.0), hi.extend(1.0))
     }
 
-    /// The farthest vertex, at the farther cap.
+    /// The farthest vertex of either cap.
     fn support(&self, d: DVec3) -> Option<DVec3> {
-        let flat = d.truncate();
-        let v = self
-            .region
+        let caps = [(1.0, 0.0), (self.top, 1.0)];
+        self.region
             .edges
             .iter()
-            .map(|(a, _)| *a)
-            .max_by(|a, b| a.dot(flat).total_cmp(&b.dot(flat)))?;
-        Some(v.extend(if d.z > 0.0 { 1.0 } else { 0.0 }))
+            .flat_map(|(a, _)| caps.iter().map(move |&(s, z)| (*a * s).extend(z)))
+            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
     }
 
     fn params(&self) -> Vec<(&'static str, Param)> {
-        vec![("edges", Param::Num(self.region.edges.len() as f64))]
+        vec![
+            ("edges", Param::Num(self.region.edges.len() as f64)),
+            ("scale", Param::Num(self.top)),
+        ]
     }
 
     /// POV-Ray's prism sweeps along y: turned so that it sweeps along z.

@@ -2,7 +2,7 @@
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Cone, Cuboid, Halfspace, Part, Prism, Sphere, Torus};
+use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Part, Prism, Sphere, Torus};
 use glam::{DAffine3, DVec3};
 
 /// Not `Copy`: a leaf may carry shared data (a prism's region).
@@ -14,6 +14,7 @@ pub enum Shape {
     Torus(Torus),
     Halfspace(Halfspace),
     Prism(Prism),
+    Lathe(Lathe),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -26,6 +27,7 @@ macro_rules! each {
             Shape::Torus($s) => $e,
             Shape::Halfspace($s) => $e,
             Shape::Prism($s) => $e,
+            Shape::Lathe($s) => $e,
         }
     };
 }

@@ -6,6 +6,10 @@ use crate::syntax::ast::{Statement, Value, ValueKind};
 use crate::syntax::one_of;
 use glam::DVec3;
 
+/// The largest explicit `$fn` read as a shape (a hexagon nut) rather than a
+/// smoothness setting.
+pub const MAX_SHAPE_FACETS: usize = 8;
+
 pub struct Args<'a> {
     src: &'a Source,
     stmt: &'a Statement,
@@ -83,6 +87,32 @@ impl<'a> Args<'a> {
             params,
             values,
         })
+    }
+
+    /// An OpenSCAD special variable given to this statement as a number
+    /// (`$fn`, …); `None` when absent or not a finite number.
+    pub fn special(&self, name: &str) -> Option<f64> {
+        self.stmt
+            .args
+            .iter()
+            .rev()
+            .find_map(|a| match (&a.name, &a.value.kind) {
+                (Some((n, _)), ValueKind::Number(x)) if n == name && x.is_finite() => Some(*x),
+                _ => None,
+            })
+    }
+
+    /// OpenSCAD's fragment count when an explicit `$fn` makes a round
+    /// solid a polygon with few sides (`$fn` of 3 to 8, a `$fn` in (0, 3)
+    /// counting as 3, as OpenSCAD's `get_fragments_from_r`); `None`
+    /// otherwise: the exact round surface.
+    pub fn few_facets(&self) -> Option<usize> {
+        let f = self.special("$fn")?;
+        if f <= 0.0 {
+            return None;
+        }
+        let n = (f.max(3.0)) as usize;
+        (n <= MAX_SHAPE_FACETS).then_some(n)
     }
 
     /// Whether the argument was given as a single number.

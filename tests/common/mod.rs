@@ -99,8 +99,32 @@ impl Rng {
 }
 
 /// An L-shaped region with a triangular hole in its lower arm, as a prism
-/// (a leaf that carries its region by reference).
-pub fn l_prism() -> csgrt::geometry::Shape {
+/// (a leaf that carries its region by reference) whose top section is
+/// scaled by `top` (1: straight).
+pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
+    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
+        region: std::sync::Arc::new(l_region()),
+        top,
+    })
+}
+
+/// The same region moved off the axis and turned about it: a lathe.
+pub fn l_lathe() -> csgrt::geometry::Shape {
+    use csgrt::plane::{Outlines, Region};
+    let moved = Outlines {
+        loops: l_region()
+            .outlines
+            .loops
+            .iter()
+            .map(|l| l.iter().map(|p| *p + glam::DVec2::new(0.5, -1.0)).collect())
+            .collect(),
+    };
+    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
+        profile: std::sync::Arc::new(Region::new(moved)),
+    })
+}
+
+fn l_region() -> csgrt::plane::Region {
     use csgrt::plane::{Outlines, Region};
     let p = |x: f64, y: f64| glam::DVec2::new(x, y);
     let outlines = Outlines {
@@ -116,7 +140,5 @@ pub fn l_prism() -> csgrt::geometry::Shape {
             vec![p(1.3, 0.2), p(1.8, 0.2), p(1.8, 0.7)],
         ],
     };
-    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
-        region: std::sync::Arc::new(Region::new(outlines)),
-    })
+    Region::new(outlines)
 }

@@ -6,6 +6,7 @@
 //! `transforms`, `appearance` and `statements` (camera, lights).
 
 mod appearance;
+mod flat;
 mod solids;
 mod statements;
 mod transforms;
@@ -39,6 +40,7 @@ pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
         src,
         b: SceneBuilder::new(),
         camera_at: None,
+        subtracted: false,
     };
     // Scene statements are read first, wherever they stand at the top level.
     for s in stmts {
@@ -90,6 +92,9 @@ pub(crate) struct Resolver<'a> {
     b: SceneBuilder,
     /// Where the camera statement stands, once read.
     camera_at: Option<TextRange>,
+    /// Whether the statement being read is subtracted by a difference (an
+    /// odd number of times), for the preview slab of a 2-D shape.
+    subtracted: bool,
 }
 
 impl Resolver<'_> {
@@ -132,22 +137,12 @@ impl Resolver<'_> {
         let name = s.name.as_str();
         match solids::binder(name) {
             Some(Some(bind)) => {
-                if let Some(c) = s.children.first() {
-                    return Err(self.src.error(
-                        c.span,
-                        format!("`{name}` takes no children"),
-                        "a solid stands alone; end it with `;`",
-                    ));
+                if !solids::WITH_CHILDREN.contains(&name) {
+                    self.no_children(s)?;
                 }
-                return bind(self, s, xf, mat);
+                return bind(self, s, xf, mat, depth);
             }
-            Some(None) => {
-                return Err(self.src.error(
-                    s.name_span,
-                    format!("`{name}` is not supported yet"),
-                    "csgrt renders 3-D CSG of cube, sphere, cylinder, torus and halfspace",
-                ))
-            }
+            Some(None) => return Err(self.not_supported_yet(s)),
             None => {}
         }
         if TRANSFORMS.contains(&name) {
@@ -217,6 +212,28 @@ impl Resolver<'_> {
         ))
     }
 
+    /// The error for a statement of [`solids::SOLIDS`] without a binder.
+    fn not_supported_yet(&self, s: &Statement) -> crate::error::Error {
+        let known: Vec<&str> = solids::supported().collect();
+        self.src.error(
+            s.name_span,
+            format!("`{}` is not supported yet", s.name),
+            format!("csgrt renders {} and {}", known[..known.len() - 1].join(", "), known[known.len() - 1]),
+        )
+    }
+
+    /// An error if the solid `s` has children.
+    fn no_children(&self, s: &Statement) -> Result<()> {
+        match s.children.first() {
+            Some(c) => Err(self.src.error(
+                c.span,
+                format!("`{}` takes no children", s.name),
+                "a solid stands alone; end it with `;`",
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// The first child minus the union of the others; empty if the first
     /// child is.
     fn difference(
@@ -234,11 +251,13 @@ impl Resolver<'_> {
             return Ok(None);
         };
         let mut ids = vec![a];
+        self.subtracted = !self.subtracted;
         for c in kids {
             if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
                 ids.push(id);
             }
         }
+        self.subtracted = !self.subtracted;
         Ok(Some(if ids.len() == 1 {
             a
         } else {

@@ -12,7 +12,8 @@ use glam::{DAffine3, DVec3};
 
 /// Binds a solid statement's arguments under the world transform and
 /// material: its leaf's id, or `None` when it is empty.
-pub(crate) type Binder = fn(&mut Resolver, &Statement, DAffine3, Material) -> Result<Option<u32>>;
+pub(crate) type Binder =
+    fn(&mut Resolver, &Statement, DAffine3, Material, usize) -> Result<Option<u32>>;
 
 /// Every OpenSCAD solid statement csgrt knows: its binder (arguments →
 /// a leaf, or empty), or `None` while it is not supported yet — an error at
@@ -25,11 +26,11 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("cylinder", Some(cylinder)),
     ("torus", Some(torus)),
     ("halfspace", Some(halfspace)),
-    ("linear_extrude", None),
-    ("rotate_extrude", None),
-    ("square", None),
-    ("circle", None),
-    ("polygon", None),
+    ("linear_extrude", Some(linear_extrude)),
+    ("rotate_extrude", Some(rotate_extrude)),
+    ("square", Some(slab)),
+    ("circle", Some(slab)),
+    ("polygon", Some(slab)),
     ("text", None),
     ("import", None),
     ("surface", None),
@@ -43,9 +44,17 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("fill", None),
 ];
 
+/// The statements of [`SOLIDS`] that take children (2-D shapes to lift).
+pub(crate) const WITH_CHILDREN: &[&str] = &["linear_extrude", "rotate_extrude"];
+
 /// The OpenSCAD solids csgrt does not render yet.
 pub fn unsupported() -> impl Iterator<Item = &'static str> {
     SOLIDS.iter().filter(|(_, b)| b.is_none()).map(|(n, _)| *n)
+}
+
+/// The OpenSCAD solids csgrt renders, in the table's order.
+pub fn supported() -> impl Iterator<Item = &'static str> {
+    SOLIDS.iter().filter(|(_, b)| b.is_some()).map(|(n, _)| *n)
 }
 
 /// The binder of a solid statement, if `name` is one (`Some(None)`: known,
@@ -54,7 +63,13 @@ pub(crate) fn binder(name: &str) -> Option<Option<Binder>> {
     SOLIDS.iter().find(|(n, _)| *n == name).map(|(_, b)| *b)
 }
 
-fn cube(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+fn cube(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["size", "center"])?;
     let size = a.scalar_or_vec3("size", 1.0)?.unwrap_or(DVec3::ONE);
     let center = a.boolean("center")?.unwrap_or(false);
@@ -67,7 +82,13 @@ fn cube(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Resul
     res.leaf(s, shape, xf * DAffine3::from_scale(scale), mat)
 }
 
-fn sphere(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+fn sphere(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["r", "d"])?;
     let r = match (a.number("r")?, a.number("d")?) {
         (_, Some(d)) => d / 2.0,
@@ -90,7 +111,13 @@ fn sphere(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Res
     )
 }
 
-fn cylinder(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+fn cylinder(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
     let a = Args::bind(
         res.src,
         s,
@@ -122,7 +149,13 @@ fn cylinder(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> R
     res.leaf(s, shape, xf * local, mat)
 }
 
-fn torus(res: &mut Resolver, s: &Statement, xf: DAffine3, mat: Material) -> Result<Option<u32>> {
+fn torus(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["R", "r"])?;
     let big = a.non_negative("R")?.unwrap_or(2.0);
     let small = a.non_negative("r")?.unwrap_or(0.5);
@@ -145,6 +178,7 @@ fn halfspace(
     s: &Statement,
     xf: DAffine3,
     mat: Material,
+    _depth: usize,
 ) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["normal", "offset"])?;
     let n = a.vec3("normal", 0.0)?.unwrap_or(DVec3::Z);
@@ -160,4 +194,34 @@ fn halfspace(
     let z = n / len;
     let local = DAffine3::from_mat3_translation(basis_from_z(z), z * (offset / len));
     res.leaf(s, Shape::Halfspace(Halfspace), xf * local, mat)
+}
+
+fn slab(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _: usize,
+) -> Result<Option<u32>> {
+    res.slab(s, xf, mat)
+}
+
+fn linear_extrude(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    depth: usize,
+) -> Result<Option<u32>> {
+    res.linear_extrude(s, xf, mat, depth)
+}
+
+fn rotate_extrude(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    depth: usize,
+) -> Result<Option<u32>> {
+    res.rotate_extrude(s, xf, mat, depth)
 }

@@ -84,7 +84,7 @@ impl Resolver<'_> {
 }
 
 /// sin and cos of an angle in degrees, exact at multiples of 90°.
-fn sin_cos_deg(deg: f64) -> (f64, f64) {
+pub(super) fn sin_cos_deg(deg: f64) -> (f64, f64) {
     let r = deg.rem_euclid(360.0);
     if r % 90.0 == 0.0 {
         match (r / 90.0) as u32 {

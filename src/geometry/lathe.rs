@@ -1,0 +1,241 @@
+//! A solid of revolution: a profile region in the (r, z) half-plane r ≥ 0
+//! turned about the z axis — OpenSCAD's `rotate_extrude` of polygons, in
+//! object space. It carries its profile by reference.
+//!
+//! A point is inside when (√(x² + y²), z) is in the profile. Along the line
+//! o + t·d the distance from the axis is ρ(t) = √(A t² + B t + C), so the
+//! line's trace in the half-plane is the curve r = ρ(t), z = z(t) (a
+//! hyperbola's branch), and it crosses the profile's edge from a to b where
+//! g(λ) = r(λ)² − ρ(t(λ))² changes sign, a quadratic in the edge's
+//! parameter λ when z(t) is linear in t. Each vertex is put on one side of
+//! the curve by the same test for both of its edges (g > 0 or not), so a
+//! crossing at a vertex counts once and a touch counts twice or not at all,
+//! as the line–edge rule of [`crate::plane`] does. The crossings, sorted in
+//! t, are paired even-odd from t = −∞ (far from the axis, outside). A line
+//! across the axis at constant z (d_z = 0) traces its half-line twice, in
+//! and out, and a line along z traces a line of the half-plane: both are
+//! read from the plane's own line spans. The side over edge k is a cone, a
+//! cylinder or a disc; parts are the edges' indices.
+
+use super::solid::{Param, Probe, RawSpan, Solid};
+use super::{Aabb, Part};
+use crate::plane::Region;
+use glam::{DVec2, DVec3};
+use std::sync::Arc;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lathe {
+    /// The profile: x is the distance from the axis (all x ≥ 0), y is z.
+    pub profile: Arc<Region>,
+}
+
+impl Lathe {
+    /// The crossings `(t, edge)` of the line with the profile's sides, for
+    /// a line with both d_z ≠ 0 and d_xy ≠ 0.
+    fn crossings(&self, o: DVec3, d: DVec3, cuts: &mut Cuts) {
+        let (oxy, dxy) = (o.truncate(), d.truncate());
+        let (a2, b2, c2) = (
+            dxy.length_squared(),
+            2.0 * oxy.dot(dxy),
+            oxy.length_squared(),
+        );
+        let rho2 = |t: f64| (a2 * t + b2) * t + c2;
+        // Which side of the curve a profile point lies on: farther from
+        // the axis than the line at its height, or not.
+        let side = |v: DVec2| {
+            let t = (v.y - o.z) / d.z;
+            v.x * v.x - rho2(t) > 0.0
+        };
+        for (k, &(a, b)) in self.profile.edges.iter().enumerate() {
+            let (ga, gb) = (side(a), side(b));
+            // The edge's line n·(r, z) = c turned about the axis is a cone:
+            // n_r ρ(t) = c − n_z z(t), squared a quadratic in t (as stable
+            // as the cone's own), its roots kept where ρ ≥ 0 is the nappe.
+            let e = b - a;
+            let n = e.perp();
+            let c = n.dot(a);
+            let w = c - n.y * o.z; // c − n_z z(t) = w − n_z d_z t
+            let (nr2, nzd) = (n.x * n.x, n.y * d.z);
+            let alpha = nr2 * a2 - nzd * nzd;
+            let beta = nr2 * b2 + 2.0 * nzd * w;
+            let gamma = nr2 * c2 - w * w;
+            let on_edge = |t: f64| -> Option<f64> {
+                if n.x * (w - nzd * t) < 0.0 {
+                    return None; // the mirror nappe, at ρ < 0
+                }
+                let p = DVec2::new(rho2(t).max(0.0).sqrt(), o.z + t * d.z);
+                Some((p - a).dot(e) / e.length_squared())
+            };
+            // A flat edge (n_r = 0) is a plane z = const: one double root.
+            let r = if n.x == 0.0 {
+                Roots::One(w / nzd)
+            } else {
+                roots(alpha, beta, gamma)
+            };
+            let found: smallvec::SmallVec<[(f64, f64); 2]> = match r {
+                Roots::None => smallvec::SmallVec::new(),
+                Roots::One(t) => on_edge(t).map(|l| (t, l)).into_iter().collect(),
+                Roots::Two(t0, t1) => [t0, t1]
+                    .into_iter()
+                    .filter_map(|t| on_edge(t).map(|l| (t, l)))
+                    .collect(),
+            };
+            if ga != gb {
+                // One crossing: the root nearest the edge.
+                let off = |l: f64| (l - l.clamp(0.0, 1.0)).abs();
+                if let Some(&(t, _)) = found.iter().min_by(|x, y| off(x.1).total_cmp(&off(y.1))) {
+                    cuts.push((t, k as u32));
+                }
+            } else if found.len() == 2 && found.iter().all(|&(_, l)| l > 0.0 && l < 1.0) {
+                // Both ends on one side: the edge dips across the curve.
+                cuts.push((found[0].0, k as u32));
+                cuts.push((found[1].0, k as u32));
+            }
+        }
+    }
+}
+
+type Cuts = smallvec::SmallVec<[(f64, u32); 16]>;
+
+enum Roots {
+    None,
+    One(f64),
+    Two(f64, f64),
+}
+
+/// The real roots of α x² + β x + γ, sorted, by the stable formula.
+fn roots(alpha: f64, beta: f64, gamma: f64) -> Roots {
+    if alpha == 0.0 {
+        return if beta == 0.0 {
+            Roots::None
+        } else {
+            Roots::One(-gamma / beta)
+        };
+    }
+    let disc = beta * beta - 4.0 * alpha * gamma;
+    if disc < 0.0 {
+        return Roots::None;
+    }
+    let q = -0.5 * (beta + beta.signum() * disc.sqrt());
+    if q == 0.0 {
+        return Roots::Two(0.0, 0.0);
+    }
+    let (x, y) = (q / alpha, gamma / q);
+    Roots::Two(x.min(y), x.max(y))
+}
+
+impl Solid for Lathe {
+    const NAME: &'static str = "rotate_extrude";
+
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        let (o, d) = (q.o, q.d);
+        let (oxy, dxy) = (o.truncate(), d.truncate());
+        let region = &self.profile;
+        if dxy == DVec2::ZERO {
+            // Along the axis: a line of the half-plane at r = ρ.
+            let o2 = DVec2::new(oxy.length(), o.z);
+            for pair in region.crossings(o2, DVec2::new(0.0, d.z)).chunks_exact(2) {
+                if pair[0].0 < pair[1].0 {
+                    emit((pair[0].0, pair[0].1, pair[1].0, pair[1].1));
+                }
+            }
+            return;
+        }
+        if d.z == 0.0 {
+            // At one height: the half-line r ≥ ρ_min, traced in then out.
+            let a2 = dxy.length_squared();
+            let tc = -oxy.dot(dxy) / a2;
+            let rmin = (oxy + tc * dxy).length();
+            let reach = |r: f64| (((r - rmin) * (r + rmin)).max(0.0)).sqrt() / a2.sqrt();
+            let mut out: smallvec::SmallVec<[RawSpan; 8]> = smallvec::SmallVec::new();
+            let cuts = region.crossings(DVec2::new(0.0, o.z), DVec2::X);
+            for pair in cuts.chunks_exact(2) {
+                let ((r0, k0), (r1, k1)) = (pair[0], pair[1]);
+                if r1 <= rmin || r0 >= r1 {
+                    continue;
+                }
+                let (u0, u1) = (reach(r0.max(rmin)), reach(r1));
+                if r0 <= rmin {
+                    out.push((tc - u1, k1, tc + u1, k1));
+                } else {
+                    out.push((tc - u1, k1, tc - u0, k0));
+                    out.push((tc + u0, k0, tc + u1, k1));
+                }
+            }
+            out.sort_by(|x, y| x.0.total_cmp(&y.0));
+            for s in out {
+                if s.0 < s.2 {
+                    emit(s);
+                }
+            }
+            return;
+        }
+        let mut cuts = Cuts::new();
+        self.crossings(o, d, &mut cuts);
+        cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        for pair in cuts.chunks_exact(2) {
+            if pair[0].0 < pair[1].0 {
+                emit((pair[0].0, pair[0].1, pair[1].0, pair[1].1));
+            }
+        }
+    }
+
+    fn normal(&self, p: DVec3, part: Part) -> DVec3 {
+        let n = self.profile.normals[part as usize];
+        let r = p.truncate().length();
+        if r == 0.0 {
+            return DVec3::new(0.0, 0.0, n.y.signum());
+        }
+        (p.truncate() * (n.x / r)).extend(n.y)
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        let q = DVec2::new(p.truncate().length(), p.z);
+        self.profile.outlines.contains(q)
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        let (lo, hi) = (self.profile.lo, self.profile.hi);
+        let r = hi.x.max(0.0);
+        Aabb::new(DVec3::new(-r, -r, lo.y), DVec3::new(r, r, hi.y))
+    }
+
+    /// The farthest point of the circles the profile's vertices turn on.
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        let flat = d.truncate();
+        let u = flat.try_normalize().unwrap_or(DVec2::ZERO);
+        self.profile
+            .edges
+            .iter()
+            .map(|(a, _)| (u * a.x).extend(a.y))
+            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![("edges", Param::Num(self.profile.edges.len() as f64))]
+    }
+
+    /// POV-Ray's lathe turns about y: points <r, z>, turned so that it
+    /// turns about z (one closed outline per lathe, unioned).
+    fn pov(&self) -> String {
+        let mut parts = Vec::new();
+        for l in &self.profile.outlines.loops {
+            let pts: Vec<String> = l
+                .iter()
+                .chain(l.first())
+                .map(|p| format!("<{:?}, {:?}>", p.x, p.y))
+                .collect();
+            parts.push(format!(
+                "lathe {{ linear_spline {}, {} }}",
+                pts.len(),
+                pts.join(", ")
+            ));
+        }
+        let body = if parts.len() == 1 {
+            parts.pop().unwrap_or_default()
+        } else {
+            format!("merge {{ {} }}", parts.join(" "))
+        };
+        format!("object {{ {body} matrix <1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0>")
+    }
+}

@@ -1,0 +1,603 @@
+//! OpenSCAD's 2-D shapes and the extrusions that lift them into space.
+//!
+//! Below `linear_extrude` and `rotate_extrude` the statements live in the
+//! plane: [`Resolver::flat`] reads them into a [`Flat`] tree — polygons
+//! and ellipses (a circle under the plane's part of its transforms, see
+//! [`plane::from_space`]) combined by the 2-D `union`, `intersection` and
+//! `difference`. An extrusion maps every point of the plane one to one
+//! (a straight or uniformly tapered prism at each height, a turn about z
+//! for each angle), so the extrusion of a combination is the combination
+//! of the extrusions: each 2-D leaf becomes one exact 3-D leaf — a prism
+//! or a lathe over its polygon, a cylinder, cone, torus or ellipsoid for
+//! its ellipse — under the same CSG.
+//!
+//! A 2-D shape where a solid is expected (at the top level, or mixed with
+//! solids) is shown as OpenSCAD's preview shows it: a slab 1 thick centred
+//! on its plane (1.1 when it is subtracted, so that a 2-D hole cuts
+//! through), under its full 3-D transform.
+
+use super::transforms::{basis_from_z, sin_cos_deg};
+use super::Resolver;
+use crate::csg::spans::Op;
+use crate::error::Result;
+use crate::geometry::{Cone, Halfspace, Lathe, Prism, Shape, Sphere, Torus};
+use crate::plane::{self, Outlines, Region};
+use crate::scene::args::Args;
+use crate::scene::Material;
+use crate::syntax::ast::Statement;
+use glam::{DAffine2, DAffine3, DMat3, DVec2, DVec3};
+use std::sync::Arc;
+
+/// The 2-D primitives.
+pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon"];
+
+/// A region of the plane, as a tree.
+#[derive(Clone, Debug)]
+pub(crate) enum Flat {
+    /// Outlines filled by the even-odd rule, in the plane's coordinates.
+    Polygon(Outlines),
+    /// The image of the unit disc.
+    Ellipse(DAffine2),
+    Op(Op, Vec<Flat>),
+}
+
+impl Flat {
+    /// The extent in x (exact for leaves; a union joins, an intersection
+    /// meets, a difference keeps its first operand's).
+    fn x_range(&self) -> (f64, f64) {
+        match self {
+            Flat::Polygon(o) => o
+                .loops
+                .iter()
+                .flatten()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                    (a.min(p.x), b.max(p.x))
+                }),
+            Flat::Ellipse(e) => {
+                let h = DVec2::new(e.matrix2.x_axis.x, e.matrix2.y_axis.x).length();
+                (e.translation.x - h, e.translation.x + h)
+            }
+            Flat::Op(op, kids) => {
+                let rs = kids.iter().map(|k| k.x_range());
+                match op {
+                    Op::Union => rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                        (a.min(c), b.max(d))
+                    }),
+                    Op::Intersection => rs
+                        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (c, d)| {
+                            (a.max(c), b.min(d))
+                        }),
+                    Op::Difference => kids[0].x_range(),
+                }
+            }
+        }
+    }
+
+    /// The mirror image in x = 0.
+    fn mirrored_x(&self) -> Flat {
+        let m = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
+        match self {
+            Flat::Polygon(o) => Flat::Polygon(Outlines {
+                loops: o
+                    .loops
+                    .iter()
+                    .map(|l| l.iter().map(|p| DVec2::new(-p.x, p.y)).collect())
+                    .collect(),
+            }),
+            Flat::Ellipse(e) => Flat::Ellipse(m * *e),
+            Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
+        }
+    }
+}
+
+/// The combination of `parts` by `op` (`None` for empty operands, with
+/// OpenSCAD's meaning: an empty operand empties an intersection; a
+/// difference with an empty first operand is empty).
+fn combine<T>(op: Op, parts: Vec<Option<T>>, mut wrap: impl FnMut(Op, Vec<T>) -> T) -> Option<T> {
+    let mut live = Vec::new();
+    for (i, p) in parts.into_iter().enumerate() {
+        match p {
+            Some(p) => live.push(p),
+            None if op == Op::Intersection => return None,
+            None if op == Op::Difference && i == 0 => return None,
+            None => {}
+        }
+    }
+    match live.len() {
+        0 => None,
+        1 => live.pop(),
+        _ => Some(wrap(op, live)),
+    }
+}
+
+/// A regular polygon of `n` vertices on the circle of radius r, vertex i
+/// at 360°·i/n (OpenSCAD's circle and cylinder at an explicit small `$fn`).
+pub(super) fn regular_polygon(n: usize, r: f64) -> Outlines {
+    let pts = (0..n)
+        .map(|i| {
+            let (s, c) = sin_cos_deg(360.0 * i as f64 / n as f64);
+            DVec2::new(r * c, r * s)
+        })
+        .collect();
+    Outlines { loops: vec![pts] }
+}
+
+/// Each loop of `o` cut to the half-plane x ≥ 0 (Sutherland–Hodgman: a
+/// loop stays one loop, with edges along x = 0 where it was cut).
+fn clip_right(o: &Outlines) -> Outlines {
+    let mut loops = Vec::new();
+    for l in &o.loops {
+        let mut out: Vec<DVec2> = Vec::new();
+        for i in 0..l.len() {
+            let (a, b) = (l[i], l[(i + 1) % l.len()]);
+            if a.x >= 0.0 {
+                out.push(a);
+            }
+            if (a.x >= 0.0) != (b.x >= 0.0) {
+                let f = a.x / (a.x - b.x);
+                out.push(DVec2::new(0.0, a.y + f * (b.y - a.y)));
+            }
+        }
+        out.dedup();
+        if out.len() >= 3 {
+            loops.push(out);
+        }
+    }
+    Outlines { loops }
+}
+
+impl Resolver<'_> {
+    /// A 2-D statement under the plane transform `m`; `None` when empty.
+    pub(super) fn flat(
+        &mut self,
+        s: &Statement,
+        m: DAffine2,
+        depth: usize,
+    ) -> Result<Option<Flat>> {
+        if super::skipped(s) {
+            return Ok(None);
+        }
+        let name = s.name.as_str();
+        if SHAPES_2D.contains(&name) {
+            self.no_children(s)?;
+            return self.flat_shape(s, m);
+        }
+        if super::TRANSFORMS.contains(&name) {
+            let local = self.transform(s)?;
+            let Some(l2) = plane::from_space(&local) else {
+                self.warn(
+                    s.name_span,
+                    &format!("this `{name}` flattens its 2-D children"),
+                    "they have no area and are left out, as in OpenSCAD",
+                );
+                return Ok(None);
+            };
+            return self.flat_children(s, Op::Union, m * l2, depth);
+        }
+        if super::APPEARANCE.contains(&name) {
+            // An extrusion is one new solid: colours below it are dropped,
+            // as in OpenSCAD; the arguments are still checked.
+            self.appearance(s, crate::scene::defaults::MATERIAL)?;
+            return self.flat_children(s, Op::Union, m, depth);
+        }
+        if super::OPERATIONS.contains(&name) {
+            let params: &'static [&'static str] = if name == "render" {
+                &["convexity"]
+            } else {
+                &[]
+            };
+            Args::bind(self.src, s, params)?;
+            let op = match name {
+                "intersection" => Op::Intersection,
+                "difference" => Op::Difference,
+                _ => Op::Union,
+            };
+            return self.flat_children(s, op, m, depth);
+        }
+        if super::solids::binder(name) == Some(None) && !is_3d(name) {
+            return Err(self.not_supported_yet(s));
+        }
+        let (message, label) = if super::solids::binder(name).is_some() {
+            (
+                format!("`{name}` is a 3-D solid and cannot stand in a 2-D shape"),
+                "expected a 2-D shape (square, circle, polygon) or a 2-D operation",
+            )
+        } else {
+            (
+                format!("`{name}` cannot stand in a 2-D shape"),
+                "expected a 2-D shape (square, circle, polygon), a transform or a 2-D operation",
+            )
+        };
+        Err(self.src.error(s.name_span, message, label))
+    }
+
+    fn flat_children(
+        &mut self,
+        s: &Statement,
+        op: Op,
+        m: DAffine2,
+        depth: usize,
+    ) -> Result<Option<Flat>> {
+        let mut parts = Vec::new();
+        for c in s.children.iter().filter(|c| !super::skipped(c)) {
+            parts.push(self.flat(c, m, depth + 1)?);
+        }
+        Ok(combine(op, parts, Flat::Op))
+    }
+
+    /// `square`, `circle` or `polygon` under `m`.
+    pub(super) fn flat_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+        let moved = |o: Outlines| Outlines {
+            loops: o
+                .loops
+                .into_iter()
+                .map(|l| l.into_iter().map(|p| m.transform_point2(p)).collect())
+                .collect(),
+        };
+        match s.name.as_str() {
+            "square" => {
+                let a = Args::bind(self.src, s, &["size", "center"])?;
+                let size = if a.is_number("size") {
+                    DVec2::splat(a.number("size")?.unwrap_or(1.0))
+                } else {
+                    a.numbers("size", &[2])?
+                        .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
+                };
+                if size.min_element() <= 0.0 {
+                    self.empty(s, "a size is zero or negative")?;
+                    return Ok(None);
+                }
+                let lo = if a.boolean("center")?.unwrap_or(false) {
+                    -0.5 * size
+                } else {
+                    DVec2::ZERO
+                };
+                let hi = lo + size;
+                let pts = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+                Ok(Some(Flat::Polygon(moved(Outlines { loops: vec![pts] }))))
+            }
+            "circle" => {
+                let a = Args::bind(self.src, s, &["r", "d"])?;
+                let r = match (a.number("r")?, a.number("d")?) {
+                    (_, Some(d)) => d / 2.0,
+                    (Some(r), None) => r,
+                    (None, None) => 1.0,
+                };
+                if r <= 0.0 {
+                    self.empty(s, "its radius is zero or negative")?;
+                    return Ok(None);
+                }
+                Ok(Some(match a.few_facets() {
+                    Some(n) => Flat::Polygon(moved(regular_polygon(n, r))),
+                    None => Flat::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
+                }))
+            }
+            _ => {
+                let a = Args::bind(self.src, s, &["points", "paths", "convexity"])?;
+                let pts = a.points("points", &[2, 3], 0)?;
+                let pts = a.require("points", pts)?;
+                let paths = match a.index_lists("paths", pts.len(), 3)? {
+                    Some(p) => p,
+                    None => {
+                        if pts.len() < 3 {
+                            return Err(a.error(
+                                a.span_of("points"),
+                                "a polygon needs at least 3 points",
+                                format!("expected 3 or more points, found {}", pts.len()),
+                            ));
+                        }
+                        vec![(0..pts.len() as u32).collect()]
+                    }
+                };
+                let loops = paths
+                    .iter()
+                    .map(|p| p.iter().map(|&i| pts[i as usize].truncate()).collect())
+                    .collect();
+                Ok(Some(Flat::Polygon(moved(Outlines { loops }))))
+            }
+        }
+    }
+
+    /// A 2-D shape standing where a solid is expected: OpenSCAD's preview
+    /// slab, 1 thick (1.1 when subtracted), centred on its plane.
+    pub(super) fn slab(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let Some(f) = self.flat_shape(s, DAffine2::IDENTITY)? else {
+            return Ok(None);
+        };
+        let h = if self.subtracted { 1.1 } else { 1.0 };
+        let local = DAffine3::from_translation(DVec3::new(0.0, 0.0, -h / 2.0));
+        self.linear(s, &f, xf * local, mat, h, 1.0)
+    }
+
+    /// The straight or tapered prism of `f` from z = 0 to h under `xf`.
+    fn linear(
+        &mut self,
+        s: &Statement,
+        f: &Flat,
+        xf: DAffine3,
+        mat: Material,
+        h: f64,
+        top: f64,
+    ) -> Result<Option<u32>> {
+        match f {
+            Flat::Polygon(o) => {
+                let shape = Shape::Prism(Prism {
+                    region: Arc::new(Region::new(o.clone())),
+                    top,
+                });
+                let local = DAffine3::from_scale(DVec3::new(1.0, 1.0, h));
+                self.leaf(s, shape, xf * local, mat)
+            }
+            Flat::Ellipse(e) => {
+                // The cone over the ellipse with its apex where s(z) = 0:
+                // (x, y, z) ↦ (E·(x, y) + s(z)·c, h·z) maps the upright
+                // frustum of radii 1 and `top` onto it.
+                let (r0, r1, k) = if top <= 1.0 {
+                    (1.0, top, 1.0)
+                } else {
+                    (1.0 / top, 1.0, top)
+                };
+                let c = e.translation;
+                let m = DMat3::from_cols(
+                    (e.matrix2.x_axis * k).extend(0.0),
+                    (e.matrix2.y_axis * k).extend(0.0),
+                    (c * (top - 1.0)).extend(h),
+                );
+                let local = DAffine3::from_mat3_translation(m, c.extend(0.0));
+                let shape = Shape::Cone(Cone {
+                    r0,
+                    r1,
+                    centered: false,
+                });
+                self.leaf(s, shape, xf * local, mat)
+            }
+            Flat::Op(op, kids) => {
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.push(self.linear(s, k, xf, mat, h, top)?);
+                }
+                Ok(self.op(*op, parts))
+            }
+        }
+    }
+
+    fn op(&mut self, op: Op, parts: Vec<Option<u32>>) -> Option<u32> {
+        let csg = &mut self.b.csg;
+        combine(op, parts, |op, ids| csg.add_op(op, ids))
+    }
+
+    /// `linear_extrude(height, center, convexity, twist, slices, scale)`.
+    pub(super) fn linear_extrude(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        let a = Args::bind(
+            self.src,
+            s,
+            &[
+                "height",
+                "center",
+                "convexity",
+                "twist",
+                "slices",
+                "scale",
+                "file",
+                "layer",
+                "origin",
+            ],
+        )?;
+        for unsupported in ["file", "layer", "origin"] {
+            if a.has(unsupported) {
+                return Err(a.error(
+                    a.span_of(unsupported),
+                    format!("`{unsupported}` of `linear_extrude` is not supported yet"),
+                    "import the drawing as a child instead",
+                ));
+            }
+        }
+        let h = a.number("height")?.unwrap_or(100.0);
+        let center = a.boolean("center")?.unwrap_or(false);
+        if a.number("twist")?.unwrap_or(0.0) != 0.0 {
+            return Err(a.error(
+                a.span_of("twist"),
+                "a twisted `linear_extrude` is not supported yet",
+                "csgrt extrudes straight and uniformly tapered prisms",
+            ));
+        }
+        a.number("slices")?;
+        let scale = if a.is_number("scale") {
+            let k = a.number("scale")?.unwrap_or(1.0);
+            DVec2::splat(k)
+        } else {
+            a.numbers("scale", &[2])?
+                .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
+        }
+        .max(DVec2::ZERO);
+        if scale.x != scale.y {
+            return Err(a.error(
+                a.span_of("scale"),
+                "a `linear_extrude` scaled differently in x and y is not supported yet",
+                "csgrt tapers by one scale in both directions",
+            ));
+        }
+        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+            return Ok(None);
+        };
+        if h <= 0.0 {
+            return self.empty(s, "its height is zero or negative");
+        }
+        let z0 = if center { -h / 2.0 } else { 0.0 };
+        let xf = xf * DAffine3::from_translation(DVec3::new(0.0, 0.0, z0));
+        self.linear(s, &f, xf, mat, h, scale.x)
+    }
+
+    /// `rotate_extrude(angle, convexity)`.
+    pub(super) fn rotate_extrude(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        let a = Args::bind(
+            self.src,
+            s,
+            &["angle", "convexity", "file", "layer", "origin"],
+        )?;
+        for unsupported in ["file", "layer", "origin"] {
+            if a.has(unsupported) {
+                return Err(a.error(
+                    a.span_of(unsupported),
+                    format!("`{unsupported}` of `rotate_extrude` is not supported yet"),
+                    "import the drawing as a child instead",
+                ));
+            }
+        }
+        let mut angle = a.number("angle")?.unwrap_or(360.0);
+        if angle <= -360.0 || angle > 360.0 {
+            angle = 360.0;
+        }
+        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+            return Ok(None);
+        };
+        if angle == 0.0 {
+            return self.empty(s, "its angle is zero");
+        }
+        let (lo, hi) = f.x_range();
+        if lo < 0.0 && hi > 0.0 {
+            return Err(self.src.error(
+                s.name_span,
+                format!(
+                    "all points for rotate_extrude() must have the same X coordinate sign \
+                     (range is {lo:.2} -> {hi:.2})"
+                ),
+                "expected a 2-D shape on one side of the axis x = 0",
+            ));
+        }
+        // A shape at x ≤ 0 turns as its mirror image, half a turn on.
+        let (f, flip) = if hi <= 0.0 {
+            (f.mirrored_x(), true)
+        } else {
+            (f, false)
+        };
+        let Some(body) = self.revolve(s, &f, xf, mat)? else {
+            return Ok(None);
+        };
+        if angle == 360.0 {
+            return Ok(Some(body));
+        }
+        // The wedge from 0 to `angle` (from 180° on for a flipped shape):
+        // two half-spaces through the axis, met below 180°, joined above.
+        let (sa, ca) = sin_cos_deg(angle.abs());
+        let sign = if angle < 0.0 { -1.0 } else { 1.0 };
+        let turn = if flip { -1.0 } else { 1.0 };
+        let normals = [
+            DVec3::new(0.0, -sign, 0.0) * turn,
+            DVec3::new(-sa, ca * sign, 0.0) * turn,
+        ];
+        let mut sides = Vec::new();
+        for n in normals {
+            let local = DAffine3::from_mat3(basis_from_z(n));
+            sides.push(self.leaf(s, Shape::Halfspace(Halfspace), xf * local, mat)?);
+        }
+        let wedge_op = if angle.abs() <= 180.0 {
+            Op::Intersection
+        } else {
+            Op::Union
+        };
+        let wedge = self.op(wedge_op, sides);
+        Ok(self.op(Op::Intersection, vec![Some(body), wedge]))
+    }
+
+    /// The full turn of `f` (all of it at x ≥ 0 but for leaves a
+    /// combination cuts away).
+    fn revolve(
+        &mut self,
+        s: &Statement,
+        f: &Flat,
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        match f {
+            Flat::Polygon(o) => {
+                let clipped = clip_right(o);
+                if clipped.loops.is_empty() {
+                    return Ok(None);
+                }
+                let shape = Shape::Lathe(Lathe {
+                    profile: Arc::new(Region::new(clipped)),
+                });
+                self.leaf(s, shape, xf, mat)
+            }
+            Flat::Ellipse(e) => {
+                let m = e.matrix2;
+                if m.x_axis.y != 0.0 || m.y_axis.x != 0.0 {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "turning a slanted ellipse is not supported yet",
+                        "csgrt turns circles scaled along x and y, not rotated ellipses",
+                    ));
+                }
+                let (ra, rz, c) = (m.x_axis.x.abs(), m.y_axis.y.abs(), e.translation);
+                if c.x + ra <= 0.0 {
+                    return Ok(None);
+                }
+                if c.x == 0.0 {
+                    let local = DAffine3::from_scale_rotation_translation(
+                        DVec3::new(ra, ra, rz),
+                        glam::DQuat::IDENTITY,
+                        DVec3::new(0.0, 0.0, c.y),
+                    );
+                    return self.leaf(s, Shape::Sphere(Sphere), xf * local, mat);
+                }
+                if c.x <= ra {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "turning a circle across the axis is not supported yet",
+                        "csgrt turns circles that stay on one side of x = 0, or centred on it",
+                    ));
+                }
+                let local = DAffine3::from_scale_rotation_translation(
+                    DVec3::new(c.x, c.x, c.x * rz / ra),
+                    glam::DQuat::IDENTITY,
+                    DVec3::new(0.0, 0.0, c.y),
+                );
+                let shape = Shape::Torus(Torus { minor: ra / c.x });
+                self.leaf(s, shape, xf * local, mat)
+            }
+            Flat::Op(op, kids) => {
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.push(self.revolve(s, k, xf, mat)?);
+                }
+                Ok(self.op(*op, parts))
+            }
+        }
+    }
+}
+
+/// Whether `name` is a 3-D statement (a solid or an extrusion).
+fn is_3d(name: &str) -> bool {
+    matches!(
+        name,
+        "cube"
+            | "sphere"
+            | "cylinder"
+            | "torus"
+            | "halfspace"
+            | "linear_extrude"
+            | "rotate_extrude"
+            | "polyhedron"
+            | "surface"
+            | "hull"
+            | "minkowski"
+    )
+}
