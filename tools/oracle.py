@@ -115,9 +115,45 @@ def svd(leaf):
     return leaf._svd
 
 
+def cross_section(f, n):
+    """manifold's cross-section of a 2-D tree of scene.py (circles as
+    n-gons inscribed in them)."""
+    if f[0] == "poly":
+        return mf.CrossSection([l.tolist() for l in f[1]], mf.FillRule.EvenOdd)
+    if f[0] == "ellipse":
+        A, c = f[1], f[2]
+        return mf.CrossSection.circle(1.0, n).transform([[A[0, 0], A[0, 1], c[0]], [A[1, 0], A[1, 1], c[1]]])
+    kids = [cross_section(k, n) for k in f[2]]
+    if f[1] == "union":
+        return mf.CrossSection.batch_boolean(kids, mf.OpType.Add)
+    if f[1] == "intersection":
+        return mf.CrossSection.batch_boolean(kids, mf.OpType.Intersect)
+    return kids[0] - mf.CrossSection.batch_boolean(kids[1:], mf.OpType.Add)
+
+
+def extrusion_mesh(leaf, n):
+    p = leaf.params
+    if leaf.kind == "linear_extrude":
+        cs = cross_section(p["flat"], n)
+        m = mf.Manifold.extrude(cs, p["h"], 0, 0.0, (p["scale"], p["scale"]))
+        return m.translate([0.0, 0.0, p["z0"]])
+    f, flip = reader.revolve_setup(p)
+    cs = cross_section(f, n)
+    angle = p["angle"]
+    segs = max(3, int(math.ceil(n * abs(angle) / 360.0)))
+    m = mf.Manifold.revolve(cs, segs, abs(angle))
+    if angle < 0:
+        m = m.mirror([0.0, 1.0, 0.0])
+    if flip:
+        m = m.rotate([0.0, 0.0, 180.0])
+    return m
+
+
 def leaf_mesh(leaf, n, big):
     p = leaf.params
     k = leaf.kind
+    if k in reader.EXTRUSIONS:
+        return extrusion_mesh(leaf, n).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k == "sphere":
         m = mf.Manifold.sphere(p["r"], n)
     elif k == "cube":
@@ -142,9 +178,59 @@ def leaf_mesh(leaf, n, big):
     return m.transform(leaf.matrix[:3, :].tolist()).as_original()
 
 
+def ellipses(f):
+    """The ellipses (A, c) of a 2-D tree."""
+    if f[0] == "ellipse":
+        return [(f[1], f[2])]
+    if f[0] == "poly":
+        return []
+    return [e for k in f[2] for e in ellipses(k)]
+
+
+def flat_extent(f):
+    """The largest |coordinate| of a 2-D tree's leaves."""
+    if f[0] == "poly":
+        return float(max(np.abs(l).max() for l in f[1]))
+    if f[0] == "ellipse":
+        return float(np.abs(f[2]).max() + np.linalg.norm(f[1], 2))
+    return max(flat_extent(k) for k in f[2])
+
+
+def extrusion_facets(leaf, n):
+    """(distance, angle, smallest object-space curvature radius) of an
+    extrusion's mesh: circles are inscribed n-gons (an ellipse's distance
+    and angle grow with its matrix's singular values and condition); a
+    turn is cut in n steps about the axis, within R (1 - cos(pi/n)) of the
+    surface at distance R, its normals within pi/n, doubled where a
+    circle's facets add their own."""
+    if not hasattr(leaf, "_facets"):
+        p = leaf.params
+        b = 1 - math.cos(math.pi / n)
+        es = ellipses(p["flat"])
+        sv = [np.linalg.svd(A, compute_uv=False) for A, _ in es]
+        if leaf.kind == "linear_extrude":
+            k = max(1.0, p["scale"])
+            dist = max((s[0] * k * b for s in sv), default=0.0)
+            ang = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
+            rho = min((s[1] * max(p["scale"], 1e-300) for s in sv), default=math.inf)
+        else:
+            R = flat_extent(p["flat"])
+            emax = max((s[0] for s in sv), default=0.0)
+            dist = (R + emax) * b + emax * b
+            ang = (2 if es else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
+            rho = min((s[1] for s in sv), default=math.inf)
+        leaf._facets = (n, dist, ang, rho)
+    if leaf._facets[0] != n:
+        del leaf._facets
+        return extrusion_facets(leaf, n)
+    return leaf._facets[1:]
+
+
 def facet_distance(leaf, n):
     p, (smax, _) = leaf.params, svd(leaf)
     b = 1 - math.cos(math.pi / n)
+    if leaf.kind in reader.EXTRUSIONS:
+        return extrusion_facets(leaf, n)[0] * smax
     if leaf.kind == "sphere":
         return SPHERE_FACTOR * p["r"] * b * smax
     if leaf.kind == "cylinder":
@@ -158,6 +244,8 @@ def facet_angle(leaf, n):
     b = 1 - math.cos(math.pi / n)
     smax, smin = svd(leaf)
     kappa = smax / smin
+    if leaf.kind in reader.EXTRUSIONS:
+        return kappa * extrusion_facets(leaf, n)[1]
     if leaf.kind == "sphere":
         return kappa * math.acos(max(-1.0, 1 - SPHERE_FACTOR * b))
     if leaf.kind == "cylinder":
@@ -173,6 +261,8 @@ def largest_radius(leaf):
         "sphere": lambda: p["r"],
         "cylinder": lambda: max(p["r1"], p["r2"], p["h"]),
         "torus": lambda: p["R"] + p["r"],
+        "linear_extrude": lambda: max(flat_extent(p["flat"]) * max(1.0, p["scale"]), p["h"]),
+        "rotate_extrude": lambda: flat_extent(p["flat"]),
     }.get(leaf.kind, lambda: 0.0)()
     return r * smax
 
@@ -184,6 +274,11 @@ def object_point(leaf, x):
 def curvature_radius(leaf, x):
     """The smallest object-space curvature radius near world point x."""
     p = leaf.params
+    if leaf.kind == "linear_extrude":
+        return extrusion_facets(leaf, 64)[2]
+    if leaf.kind == "rotate_extrude":
+        q = object_point(leaf, x)
+        return max(min(math.hypot(q[0], q[1]), extrusion_facets(leaf, 64)[2]), 1e-300)
     if leaf.kind == "sphere":
         return p["r"]
     if leaf.kind == "torus":
@@ -212,7 +307,53 @@ def face_class(leaf, x):
         rz = p["r1"] + (p["r2"] - p["r1"]) * f
         d = [abs(q[2] - z0), abs(q[2] - z1), abs(math.hypot(q[0], q[1]) - rz)]
         return int(np.argmin(d))
+    if leaf.kind in reader.EXTRUSIONS:
+        return extrusion_face(leaf, object_point(leaf, x))
     return 0
+
+
+def features(f):
+    """The smooth pieces of a 2-D tree's boundary: ("seg", a, b) per
+    polygon edge, ("ellipse", A, c) per circle."""
+    if f[0] == "poly":
+        return [("seg", l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
+    if f[0] == "ellipse":
+        return [f]
+    return [x for k in f[2] for x in features(k)]
+
+
+def feature_distance(ft, q):
+    if ft[0] == "seg":
+        a, b = ft[1], ft[2]
+        e = b - a
+        u = min(1.0, max(0.0, float((q - a) @ e / (e @ e))))
+        return float(np.linalg.norm(q - a - u * e))
+    A, c = ft[1], ft[2]
+    r = float(np.linalg.norm(np.linalg.solve(A, q - c)))
+    return abs(r - 1) * float(np.linalg.svd(A, compute_uv=False)[-1])
+
+
+def extrusion_face(leaf, q):
+    """Caps 0 and 1 (or the cuts of a partial turn), 2 + k the boundary
+    piece k of the 2-D tree that the side over it comes from."""
+    p = leaf.params
+    if leaf.kind == "linear_extrude":
+        h, z0 = p["h"], p["z0"]
+        w = 1 + (p["scale"] - 1) * (q[2] - z0) / h
+        fts = features(p["flat"])
+        q2 = q[:2] / w if w > 0 else q[:2] * 0
+        cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + [feature_distance(ft, q2) for ft in fts]
+        return int(np.argmin(cand))
+    f, flip = reader.revolve_setup(p)
+    fts = [("seg", *x[1:]) if x[0] == "seg" else x for x in features(f)]
+    if f[0] == "poly":
+        fts = features(("poly", reader.clip_right(f[1])))
+    q2 = np.array([math.hypot(q[0], q[1]), q[2]])
+    cuts = [math.inf, math.inf]
+    if p["angle"] != 360:
+        cuts = [abs(float(n @ q)) for n in reader.wedge_normals(p["angle"], flip)]
+    cand = cuts + [feature_distance(ft, q2) for ft in fts]
+    return int(np.argmin(cand))
 
 
 class Caster:
@@ -448,7 +589,7 @@ class Side:
             self.pixels.append(m)
             if m is not None:
                 self.hit[j, i] = True
-                surf[j, i] = (m[2].id * 8 + face_class(m[2], o + m[0] * v)) if m[2] else -2
+                surf[j, i] = (m[2].id * 1_000_000 + face_class(m[2], o + m[0] * v)) if m[2] else -2
         self.edge = mixed(surf)
         self.rays = [self.caster.cast(o, v) for o, v in rays]
 

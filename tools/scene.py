@@ -208,6 +208,11 @@ PARAMS = {
     "cylinder": ["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
     "torus": ["R", "r"],
     "halfspace": ["normal", "offset"],
+    "square": ["size", "center"],
+    "circle": ["r", "d"],
+    "polygon": ["points", "paths", "convexity"],
+    "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
+    "rotate_extrude": ["angle", "convexity", "file", "layer", "origin"],
     "translate": ["v"],
     "rotate": ["a", "v"],
     "scale": ["v"],
@@ -227,6 +232,8 @@ PARAMS = {
     "point_light": ["color", "position"],
 }
 SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace")
+SHAPES_2D = ("square", "circle", "polygon")
+EXTRUSIONS = ("linear_extrude", "rotate_extrude")
 TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
 SCENE = ("camera", "background", "ambient_light", "directional_light", "point_light")
 
@@ -271,8 +278,10 @@ def bind(path, s):
             key = names[k]
             k += 1
         elif key.startswith("$"):
-            if key == "$fn" and isinstance(v, float) and 3 <= v <= 8 and s.name in ("sphere", "cylinder"):
+            if key == "$fn" and isinstance(v, float) and 0 < v < 9 and s.name in ("sphere", "cylinder"):
                 raise ReadError(path, s.line, s.col, f"$fn = {v:g} makes {s.name} a polyhedron; not in the oracle yet")
+            if key == "$fn" and isinstance(v, float):
+                out["$fn"] = v
             continue
         elif key not in names:
             raise ReadError(path, s.line, s.col, f"unknown argument {key} for {s.name}")
@@ -342,6 +351,7 @@ class Reader:
     def __init__(self, path):
         self.path = path
         self.scene = Scene()
+        self.subtracted = False
 
     def err(self, s, msg):
         return ReadError(self.path, s.line, s.col, msg)
@@ -395,6 +405,16 @@ class Reader:
             if s.children:
                 raise self.err(s, f"{name} takes no children")
             return self.solid(s, a, xf, mat)
+        if name in SHAPES_2D:
+            # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
+            # centred on its plane, 1.1 when subtracted.
+            f = self.flat(s, np.eye(3))
+            if f is None:
+                return None
+            h = 1.1 if self.subtracted else 1.0
+            return self.leaf(s, "linear_extrude", dict(flat=f, h=h, z0=-h / 2, scale=1.0), xf, mat)
+        if name in EXTRUSIONS:
+            return self.extrusion(s, a, xf, mat)
         kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
         if name in TRANSFORMS:
             return self.union(kids(xf @ self.transform(s, a), mat))
@@ -412,7 +432,9 @@ class Reader:
             first = self.node(live[0], xf, mat)
             if first is None:
                 return None
+            self.subtracted = not self.subtracted
             rest = [k for k in (self.node(c, xf, mat) for c in live[1:]) if k is not None]
+            self.subtracted = not self.subtracted
             return first if not rest else Op("difference", [first, self.union(rest)])
         return self.union(kids(xf, mat))  # union, group, render
 
@@ -463,6 +485,113 @@ class Reader:
         if not np.any(n):
             raise self.err(s, "the normal of a halfspace must not be zero")
         return self.leaf(s, k, dict(normal=n, offset=num(self.path, s, a, "offset", 0.0)), xf, mat)
+
+    # ---------------------------------------------------------------- 2-D
+
+    def flat(self, s, m):
+        """A 2-D statement under the plane matrix m (3x3, homogeneous) as a
+        tree: ("poly", [loops as (k, 2) arrays]) filled even-odd,
+        ("ellipse", A, c) the image of the unit disc under x -> A x + c,
+        ("op", name, kids); None when empty."""
+        if "%" in s.mods or "*" in s.mods:
+            return None
+        name = s.name
+        if name not in PARAMS or name in SCENE:
+            raise self.err(s, f"{name} cannot stand in a 2-D shape")
+        a = bind(self.path, s)
+        if name in SOLIDS or name in EXTRUSIONS:
+            raise self.err(s, f"{name} is 3-D and cannot stand in a 2-D shape")
+        if name in SHAPES_2D:
+            return self.shape_2d(s, a, m)
+        if name in TRANSFORMS:
+            t = self.transform(s, a)
+            # OpenSCAD keeps the rows and columns of x, y and 1.
+            t2 = t[np.ix_([0, 1, 3], [0, 1, 3])]
+            if np.linalg.det(t2[:2, :2]) == 0:
+                return None
+            return self.flat_kids(s, "union", m @ t2)
+        if name in ("color", "material"):
+            self.appearance(s, a, dict(CORNFIELD))
+            return self.flat_kids(s, "union", m)
+        op = name if name in ("intersection", "difference") else "union"
+        return self.flat_kids(s, op, m)
+
+    def flat_kids(self, s, op, m):
+        parts = [self.flat(c, m) for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+        if op == "intersection" and any(p is None for p in parts):
+            return None
+        if op == "difference" and (not parts or parts[0] is None):
+            return None
+        live = [p for p in parts if p is not None]
+        if not live:
+            return None
+        return live[0] if len(live) == 1 else ("op", op, live)
+
+    def shape_2d(self, s, a, m):
+        if s.children:
+            raise self.err(s, f"{s.name} takes no children")
+        k = s.name
+        place = lambda pts: (np.asarray(pts, dtype=float) @ m[:2, :2].T) + m[:2, 2]
+        if k == "square":
+            v = a.get("size", 1.0)
+            size = np.array([v, v]) if isinstance(v, float) else vec(self.path, s, a, "size", sizes=(2,))[:2]
+            if size.min() <= 0:
+                return None
+            lo = -size / 2 if a.get("center", False) else np.zeros(2)
+            hi = lo + size
+            return ("poly", [place([lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]])])
+        if k == "circle":
+            d = num(self.path, s, a, "d")
+            r = d / 2 if d is not None else num(self.path, s, a, "r", 1.0)
+            if r <= 0:
+                return None
+            fn = a.get("$fn", 0.0)
+            if 0 < fn < 9:
+                n = int(max(fn, 3.0))
+                pts = [[r * sin_cos_deg(360.0 * i / n)[1], r * sin_cos_deg(360.0 * i / n)[0]] for i in range(n)]
+                return ("poly", [place(pts)])
+            return ("ellipse", m[:2, :2] * r, m[:2, 2].copy())
+        pts = a.get("points")
+        if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) for p in pts):
+            raise self.err(s, "points of polygon must be a list of 2-D points")
+        pts = np.array([p[:2] for p in pts], dtype=float)
+        paths = a.get("paths")
+        if paths is None:
+            if len(pts) < 3:
+                raise self.err(s, "a polygon needs at least 3 points")
+            paths = [list(range(len(pts)))]
+        loops = []
+        for path in paths:
+            idx = [int(i) for i in path]
+            if len(idx) < 3 or any(i != j or i < 0 or i >= len(pts) for i, j in zip(idx, path)):
+                raise self.err(s, "a path of polygon has fewer than 3 points or an index out of range")
+            loops.append(place(pts[idx]))
+        return ("poly", loops)
+
+    def extrusion(self, s, a, xf, mat):
+        for key in ("file", "layer", "origin"):
+            if key in a:
+                raise self.err(s, f"{key} of {s.name} is not in the oracle")
+        f = self.flat_kids(s, "union", np.eye(3))
+        if s.name == "linear_extrude":
+            if num(self.path, s, a, "twist", 0.0) != 0.0:
+                raise self.err(s, "a twisted linear_extrude is not in the oracle yet")
+            h = num(self.path, s, a, "height", 100.0)
+            sc = a.get("scale", 1.0)
+            sc = [sc, sc] if isinstance(sc, float) else list(vec(self.path, s, a, "scale", sizes=(2,))[:2])
+            sc = [max(x, 0.0) for x in sc]
+            if sc[0] != sc[1]:
+                raise self.err(s, "a linear_extrude scaled differently in x and y is not in the oracle yet")
+            if f is None or h <= 0:
+                return None
+            z0 = -h / 2 if a.get("center", False) else 0.0
+            return self.leaf(s, "linear_extrude", dict(flat=f, h=h, z0=z0, scale=sc[0]), xf, mat)
+        angle = num(self.path, s, a, "angle", 360.0)
+        if angle <= -360 or angle > 360:
+            angle = 360.0
+        if f is None or angle == 0:
+            return None
+        return self.leaf(s, "rotate_extrude", dict(flat=f, angle=angle), xf, mat)
 
     def transform(self, s, a):
         k = s.name
@@ -641,6 +770,8 @@ UNIT = (-np.ones(3), np.ones(3))
 
 def leaf_box(leaf):
     """The exact world box of a leaf."""
+    if leaf.kind in EXTRUSIONS:
+        return extrusion_box(leaf)
     m, p = leaf.matrix, leaf.params
     L, t = m[:3, :3], m[:3, 3]
     row = lambda cols: np.sqrt(sum(L[:, c] ** 2 for c in cols))
@@ -672,6 +803,141 @@ def leaf_box(leaf):
         else:
             lo[i] = q[i]
     return lo, hi
+
+
+def clip_right(loops):
+    """Each loop cut to x >= 0 (Sutherland-Hodgman)."""
+    out = []
+    for l in loops:
+        pts = []
+        for i in range(len(l)):
+            a, b = l[i], l[(i + 1) % len(l)]
+            if a[0] >= 0:
+                pts.append(a)
+            if (a[0] >= 0) != (b[0] >= 0):
+                f = a[0] / (a[0] - b[0])
+                pts.append(np.array([0.0, a[1] + f * (b[1] - a[1])]))
+        if len(pts) >= 3:
+            out.append(np.array(pts))
+    return out
+
+
+def flat_mirror(f):
+    """The tree mirrored in x = 0."""
+    if f[0] == "poly":
+        return ("poly", [l * [-1.0, 1.0] for l in f[1]])
+    if f[0] == "ellipse":
+        return ("ellipse", np.diag([-1.0, 1.0]) @ f[1], f[2] * [-1.0, 1.0])
+    return ("op", f[1], [flat_mirror(k) for k in f[2]])
+
+
+def flat_x_range(f):
+    """The x extent of a 2-D tree (union joins, intersection meets, a
+    difference keeps its first operand's), as csgrt reads OpenSCAD's axis
+    rule for rotate_extrude."""
+    if f[0] == "poly":
+        xs = np.concatenate([l[:, 0] for l in f[1]])
+        return xs.min(), xs.max()
+    if f[0] == "ellipse":
+        h = math.hypot(f[1][0, 0], f[1][0, 1])
+        return f[2][0] - h, f[2][0] + h
+    rs = [flat_x_range(k) for k in f[2]]
+    if f[1] == "union":
+        return min(r[0] for r in rs), max(r[1] for r in rs)
+    if f[1] == "intersection":
+        return max(r[0] for r in rs), min(r[1] for r in rs)
+    return rs[0]
+
+
+def combine_boxes(op, bs):
+    if op == "union":
+        return np.min([b[0] for b in bs], axis=0), np.max([b[1] for b in bs], axis=0)
+    if op == "intersection":
+        return np.max([b[0] for b in bs], axis=0), np.min([b[1] for b in bs], axis=0)
+    return bs[0]
+
+
+def corner_box(m, lo, hi):
+    corners = [m[:3, :3] @ np.where([(i >> k) & 1 for k in range(3)], hi, lo) + m[:3, 3] for i in range(8)]
+    return np.min(corners, axis=0), np.max(corners, axis=0)
+
+
+def revolve_setup(p):
+    """(tree at x >= 0, flipped, angle) of a rotate_extrude's parameters;
+    raises on a shape across the axis (OpenSCAD's error)."""
+    f = p["flat"]
+    lo, hi = flat_x_range(f)
+    if lo < 0 < hi:
+        raise ValueError(f"all points for rotate_extrude() must have the same X coordinate sign ({lo:.2f} -> {hi:.2f})")
+    return (flat_mirror(f), True) if hi <= 0 else (f, False)
+
+
+def wedge_normals(angle, flip):
+    """The outward normals of the half-spaces whose meet (up to 180
+    degrees) or join cuts the turn from 0 to angle (from 180 on, flipped)."""
+    sa, ca = sin_cos_deg(abs(angle))
+    sg = -1.0 if angle < 0 else 1.0
+    turn = -1.0 if flip else 1.0
+    return [np.array([0.0, -sg, 0.0]) * turn, np.array([-sa, ca * sg, 0.0]) * turn]
+
+
+def extrusion_box(leaf):
+    """The box of an extrusion, as csgrt frames it: the box of the solid
+    each 2-D leaf sweeps (a prism's corners; a cone over an ellipse, a torus
+    or an ellipsoid exactly), combined as the 2-D tree combines them."""
+    m, p = leaf.matrix, leaf.params
+    L, t = m[:3, :3], m[:3, 3]
+    if leaf.kind == "linear_extrude":
+        h, z0, s = p["h"], p["z0"], p["scale"]
+
+        def rec(f):
+            if f[0] == "poly":
+                pts = np.concatenate(f[1])
+                lo, hi = pts.min(axis=0), pts.max(axis=0)
+                lo, hi = np.minimum(lo, lo * s), np.maximum(hi, hi * s)
+                return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
+            if f[0] == "ellipse":
+                A, c = f[1], f[2]
+                out = []
+                for k, z in ((1.0, z0), (s, z0 + h)):
+                    C = L @ np.array([k * c[0], k * c[1], z]) + t
+                    U, V = L @ np.array([k * A[0, 0], k * A[1, 0], 0.0]), L @ np.array([k * A[0, 1], k * A[1, 1], 0.0])
+                    e = np.sqrt(U**2 + V**2)
+                    out.append((C - e, C + e))
+                return combine_boxes("union", out)
+            return combine_boxes(f[1], [rec(k) for k in f[2]])
+
+        return rec(p["flat"])
+    f, flip = revolve_setup(p)
+
+    def rec(f):
+        if f[0] == "poly":
+            loops = clip_right(f[1])
+            if not loops:
+                return EMPTY
+            pts = np.concatenate(loops)
+            r = max(pts[:, 0].max(), 0.0)
+            return corner_box(m, np.array([-r, -r, pts[:, 1].min()]), np.array([r, r, pts[:, 1].max()]))
+        if f[0] == "ellipse":
+            A, c = f[1], f[2]
+            ra, rz = abs(A[0, 0]), abs(A[1, 1])
+            if c[0] + ra <= 0:
+                return EMPTY
+            st = Stmt("x", [], [], "", 0, 0)
+            if c[0] == 0:
+                lf = Leaf("sphere", dict(r=1.0), m @ affine(np.diag([ra, ra, rz]), [0, 0, c[1]]), {}, st)
+            else:
+                lf = Leaf("torus", dict(R=1.0, r=ra / c[0]), m @ affine(np.diag([c[0], c[0], c[0] * rz / ra]), [0, 0, c[1]]), {}, st)
+            return leaf_box(lf)
+        return combine_boxes(f[1], [rec(k) for k in f[2]])
+
+    b = rec(f)
+    if p["angle"] != 360:
+        st = Stmt("x", [], [], "", 0, 0)
+        hs = [leaf_box(Leaf("halfspace", dict(normal=n, offset=0.0), m, {}, st)) for n in wedge_normals(p["angle"], flip)]
+        w = combine_boxes("intersection" if abs(p["angle"]) <= 180 else "union", hs)
+        b = combine_boxes("intersection", [b, w])
+    return b
 
 
 def box(node):
