@@ -92,7 +92,30 @@ class Sdl:
             depth += {"{": 1, "}": -1}.get(x, 0)
 
 
-SHAPES = ("box", "sphere", "cylinder", "cone", "torus", "plane")
+SHAPES = ("box", "sphere", "cylinder", "cone", "torus", "plane", "prism", "lathe")
+
+
+def even_odd(loops, q):
+    """Points q (n x 2) inside closed loops by the even-odd rule."""
+    inside = np.zeros(len(q), dtype=bool)
+    for l in loops:
+        for a, b in zip(l, np.roll(l, -1, axis=0)):
+            cross = (a[1] > q[:, 1]) != (b[1] > q[:, 1])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = a[0] + (q[:, 1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+            inside ^= cross & (x > q[:, 0])
+    return inside
+
+
+def sub_polygons(pts):
+    """POV-Ray's point list of a prism or lathe: a sub-polygon closes
+    where its first point comes again."""
+    out, start = [], 0
+    for i in range(1, len(pts)):
+        if i > start and np.array_equal(pts[i], pts[start]):
+            out.append(np.array(pts[start:i]))
+            start = i + 1
+    return out
 
 
 class PovLeaf:
@@ -109,6 +132,16 @@ class PovLeaf:
             return np.sum((q - p["c"]) ** 2, axis=1) <= p["r"] ** 2
         if self.kind in ("cylinder", "cone"):
             return frustum_inside(q, p["a"][2], p["b"][2], p["ra"], p["rb"])
+        if self.kind == "prism":
+            # Swept along y; the section at height y is the polygon, scaled
+            # by y for a conic sweep.
+            y = q[:, 1]
+            w = y if p["sweep"] == "conic_sweep" else np.ones(len(q))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                flat = np.column_stack([q[:, 0] / w, q[:, 2] / w])
+            return (y >= p["h0"]) & (y <= p["h1"]) & (w > 0) & even_odd(p["loops"], flat)
+        if self.kind == "lathe":
+            return even_odd(p["loops"], np.column_stack([np.hypot(q[:, 0], q[:, 2]), q[:, 1]]))
         if self.kind == "torus":
             # rotate x*90 first: object (x, y, z) came from torus coords
             # (x, -z, y)... in POV-Ray the torus lies in the x-z plane.
@@ -182,12 +215,41 @@ def read_object(s, kind):
         p["R"] = s.number()
         s.take(",")
         p["r"] = s.number()
+    elif kind in ("prism", "lathe"):
+        if kind == "prism":
+            p["sweep"] = s.take()
+        if s.take() != "linear_spline":
+            raise ValueError(f"a {kind} without linear_spline")
+        if kind == "prism":
+            p["h0"] = s.number()
+            s.take(",")
+            p["h1"] = s.number()
+            s.take(",")
+        count = int(s.number())
+        pts = []
+        for k in range(count):
+            s.take(",")
+            pts.append(s.vector())
+        p["loops"] = sub_polygons([np.array(x[:2]) for x in pts])
+        if kind == "lathe" and len(p["loops"]) != 1:
+            raise ValueError("a lathe of several outlines")
     else:
         axis = s.take()
         if axis != "z":
             raise ValueError(f"a plane along {axis}")
         s.take(",")
         p["d"] = s.number()
+    t = read_object_tail(s, kind)
+    return PovLeaf(kind, p, t.matrix, t.texture)
+
+
+class Tail:
+    def __init__(self, matrix, texture):
+        self.matrix, self.texture = matrix, texture
+
+
+def read_object_tail(s, kind):
+    """An object's transforms (applied in order) and texture, to its `}`."""
     m, texture = np.eye(4), {}
     while s.peek() != "}":
         w = s.take()
@@ -198,7 +260,7 @@ def read_object(s, kind):
             if (axis, ang) != ("x", 90.0) or kind != "torus":
                 raise ValueError(f"rotate {axis}*{ang} on a {kind}")
         elif w == "matrix":
-            m = pov_matrix(s.vector())
+            m = pov_matrix(s.vector()) @ m
         elif w == "texture":
             s.take("{")
             while s.peek() != "}":
@@ -225,12 +287,32 @@ def read_object(s, kind):
         else:
             raise ValueError(f"unexpected {w!r} in a {kind}")
     s.take("}")
-    return PovLeaf(kind, p, m, texture)
+    return Tail(m, texture)
+
+
+class PovPlaced:
+    """`object { inner ... }`: the inner object under the object's
+    transforms, with its texture."""
+
+    kind = "object"
+
+    def __init__(self, inner, matrix, texture):
+        self.inner, self.matrix, self.texture = inner, matrix, texture
+
+    def inside(self, pts):
+        q = (pts - self.matrix[:3, 3]) @ np.linalg.inv(self.matrix[:3, :3]).T
+        return self.inner.inside(q)
 
 
 def read_node(s, word):
     if word in SHAPES:
         return read_object(s, word)
+    if word == "object":
+        # object { INNER transforms and texture }: the inner object placed.
+        s.take("{")
+        inner = read_node(s, s.take())
+        outer = read_object_tail(s, "object")
+        return PovPlaced(inner, outer.matrix, outer.texture)
     s.take("{")
     kids = []
     while s.peek() != "}":
@@ -311,9 +393,51 @@ def read_sdl(text):
 # --------------------------------------------------------------------------
 
 
+def flat_inside(f, q2):
+    """Points q2 (n x 2) inside a 2-D tree of scene.py."""
+    if f[0] == "poly":
+        return even_odd(f[1], q2)
+    if f[0] == "ellipse":
+        u = np.linalg.solve(f[1], (q2 - f[2]).T).T
+        return np.sum(u**2, axis=1) <= 1.0
+    return combine(f[1], [flat_inside(k, q2) for k in f[2]])
+
+
+def flat_leaves(f):
+    if f[0] in ("poly", "ellipse"):
+        return [f]
+    return [x for k in f[2] for x in flat_leaves(k)]
+
+
+def extrusion_parts(leaf, q):
+    """(whole, [parts]) inside answers at object points q: the extrusion,
+    and the solid each 2-D leaf sweeps (and each half-space cutting a
+    partial turn) — the leaves csgrt makes of it."""
+    p = leaf.params
+    if leaf.kind == "linear_extrude":
+        z0, h, sc = p["z0"], p["h"], p["scale"]
+        w = 1 + (sc - 1) * (q[:, 2] - z0) / h
+        slab = (q[:, 2] >= z0) & (q[:, 2] <= z0 + h) & (w > 0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q2 = q[:, :2] / np.where(w > 0, w, 1.0)[:, None]
+        whole = slab & flat_inside(p["flat"], q2)
+        return whole, [slab & flat_inside(x, q2) for x in flat_leaves(p["flat"])]
+    f, flip = reader.revolve_setup(p)
+    q2 = np.column_stack([np.hypot(q[:, 0], q[:, 1]), q[:, 2]])
+    whole = flat_inside(f, q2)
+    parts = [flat_inside(x, q2) for x in flat_leaves(f)]
+    if p["angle"] != 360:
+        cuts = [q @ n <= 0 for n in reader.wedge_normals(p["angle"], flip)]
+        whole &= combine("intersection" if abs(p["angle"]) <= 180 else "union", cuts)
+        parts += cuts
+    return whole, parts
+
+
 def leaf_inside(leaf, pts):
     q = (pts - leaf.matrix[:3, 3]) @ np.linalg.inv(leaf.matrix[:3, :3]).T
     p = leaf.params
+    if leaf.kind in reader.EXTRUSIONS:
+        return extrusion_parts(leaf, q)[0]
     if leaf.kind == "sphere":
         return np.sum(q**2, axis=1) <= p["r"] ** 2
     if leaf.kind == "cube":
@@ -336,7 +460,7 @@ def tree_inside(node, pts):
 
 
 def pov_leaves(node):
-    if isinstance(node, PovLeaf):
+    if isinstance(node, (PovLeaf, PovPlaced)):
         yield node
     elif node is not None:
         for c in node.children:
@@ -414,10 +538,18 @@ def check(path, binary):
     got = sdl["root"].inside(pts) if sdl["root"] else np.zeros(len(pts), dtype=bool)
     if np.any(want != got):
         bad.append(f"the exported solid differs at {int(np.sum(want != got))} of {len(pts)} points")
-    mine = {x.id: leaf_inside(x, pts) for x in sc.leaves}
+    # The solids csgrt may export for each leaf: the leaf, or for an
+    # extrusion each solid one of its 2-D leaves sweeps.
+    mine = []
+    for x in sc.leaves:
+        if x.kind in reader.EXTRUSIONS:
+            q = (pts - x.matrix[:3, 3]) @ np.linalg.inv(x.matrix[:3, :3]).T
+            mine += [(x, part) for part in extrusion_parts(x, q)[1]]
+        else:
+            mine.append((x, leaf_inside(x, pts)))
     for pl in pov_leaves(sdl["root"]):
         ins = pl.inside(pts)
-        match = [x for x in sc.leaves if np.array_equal(mine[x.id], ins)]
+        match = [x for x, part in mine if np.array_equal(part, ins)]
         if not match:
             bad.append(f"an exported {pl.kind} is no solid of the file")
             continue

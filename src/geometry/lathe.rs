@@ -215,26 +215,32 @@ impl Solid for Lathe {
         vec![("edges", Param::Num(self.profile.edges.len() as f64))]
     }
 
-    /// POV-Ray's lathe turns about y: points <r, z>, turned so that it
-    /// turns about z (one closed outline per lathe, unioned).
+    /// POV-Ray's lathe turns about y: points <r, z>, mapped so that it
+    /// turns about z. A lathe takes one closed outline: a profile of
+    /// several is the first minus the others (its holes).
     fn pov(&self) -> String {
-        let mut parts = Vec::new();
-        for l in &self.profile.outlines.loops {
-            let pts: Vec<String> = l
-                .iter()
-                .chain(l.first())
-                .map(|p| format!("<{:?}, {:?}>", p.x, p.y))
-                .collect();
-            parts.push(format!(
-                "lathe {{ linear_spline {}, {} }}",
-                pts.len(),
-                pts.join(", ")
-            ));
-        }
+        let parts: Vec<String> = self
+            .profile
+            .outlines
+            .loops
+            .iter()
+            .map(|l| {
+                let pts: Vec<String> = l
+                    .iter()
+                    .chain(l.first())
+                    .map(|p| format!("<{:?}, {:?}>", p.x, p.y))
+                    .collect();
+                format!(
+                    "lathe {{ linear_spline {}, {} }}",
+                    pts.len(),
+                    pts.join(", ")
+                )
+            })
+            .collect();
         let body = if parts.len() == 1 {
-            parts.pop().unwrap_or_default()
+            parts[0].clone()
         } else {
-            format!("merge {{ {} }}", parts.join(" "))
+            format!("difference {{ {} }}", parts.join(" "))
         };
         format!("object {{ {body} matrix <1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0>")
     }

@@ -192,7 +192,10 @@ impl Solid for Prism {
         ]
     }
 
-    /// POV-Ray's prism sweeps along y: turned so that it sweeps along z.
+    /// POV-Ray's prism sweeps along y: a straight one from 0 to 1, a
+    /// tapered one as a `conic_sweep` (its section at height y is the
+    /// region scaled by y) from `top` to 1, mapped so that it sweeps along
+    /// z with s(z) = y, i.e. z = (1 − y)/(1 − top).
     fn pov(&self) -> String {
         let mut pts = Vec::new();
         for l in &self.region.outlines.loops {
@@ -200,8 +203,24 @@ impl Solid for Prism {
                 pts.push(format!("<{:?}, {:?}>", p.x, p.y));
             }
         }
+        let (sweep, h0, h1, m) = if self.top == 1.0 {
+            (
+                "linear_sweep",
+                0.0,
+                1.0,
+                "<1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0>".to_string(),
+            )
+        } else {
+            let k = 1.0 / (1.0 - self.top);
+            (
+                "conic_sweep",
+                self.top.min(1.0),
+                self.top.max(1.0),
+                format!("<1, 0, 0, 0, 0, {:?}, 0, 1, 0, 0, 0, {:?}>", -k, k),
+            )
+        };
         format!(
-            "prism {{ linear_sweep linear_spline 0, 1, {}, {} rotate x*90 scale <1, 1, -1>",
+            "prism {{ {sweep} linear_spline {h0:?}, {h1:?}, {}, {} matrix {m}",
             pts.len(),
             pts.join(", ")
         )

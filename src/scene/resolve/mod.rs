@@ -218,7 +218,11 @@ impl Resolver<'_> {
         self.src.error(
             s.name_span,
             format!("`{}` is not supported yet", s.name),
-            format!("csgrt renders {} and {}", known[..known.len() - 1].join(", "), known[known.len() - 1]),
+            format!(
+                "csgrt renders {} and {}",
+                known[..known.len() - 1].join(", "),
+                known[known.len() - 1]
+            ),
         )
     }
 
