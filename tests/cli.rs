@@ -342,3 +342,27 @@ fn export_pov_writes_one_complete_file() {
     assert!(opens > 0 && opens == sdl.matches('}').count(), "{sdl}");
     assert_eq!(files(dir.path()), ["p.csg", "p.png", "p.pov"]);
 }
+
+#[test]
+fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
+    // A polygon index out of range, at the index.
+    assert_eq!(
+        fails("linear_extrude(1) polygon(points = [[0, 0], [1, 0], [0, 1]], paths = [[0, 1, 3]]);\n"),
+        "error: index 3 in `paths` of `polygon` is out of range\n --> bad.csg:1:78\n  |\n1 | linear_extrude(1) polygon(points = [[0, 0], [1, 0], [0, 1]], paths = [[0, 1, 3]]);\n  |                                                                              ^ expected a whole number from 0 to 2\n"
+    );
+    // A path of fewer than 3 points, at the path.
+    assert_eq!(
+        fails("polygon(points = [[0, 0], [1, 0], [0, 1]], paths = [[0, 1]]);\n"),
+        "error: a list in `paths` of `polygon` has fewer than 3 indices\n --> bad.csg:1:53\n  |\n1 | polygon(points = [[0, 0], [1, 0], [0, 1]], paths = [[0, 1]]);\n  |                                                     ^^^^^^ expected 3 or more, found 2\n"
+    );
+    // An extrusion of a 3-D child, at the child.
+    assert_eq!(
+        fails("linear_extrude(height = 2) {\n  cube(1);\n}\n"),
+        "error: `cube` is a 3-D solid and cannot stand in a 2-D shape\n --> bad.csg:2:3\n  |\n2 |   cube(1);\n  |   ^^^^ expected a 2-D shape (square, circle, polygon) or a 2-D operation\n"
+    );
+    // OpenSCAD's error for a shape across the axis, with its range.
+    assert_eq!(
+        fails("rotate_extrude() translate([-1, 0]) square(3);\n"),
+        "error: all points for rotate_extrude() must have the same X coordinate sign (range is -1.00 -> 2.00)\n --> bad.csg:1:1\n  |\n1 | rotate_extrude() translate([-1, 0]) square(3);\n  | ^^^^^^^^^^^^^^ expected a 2-D shape on one side of the axis x = 0\n"
+    );
+}

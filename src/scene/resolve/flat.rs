@@ -394,15 +394,7 @@ impl Resolver<'_> {
                 "origin",
             ],
         )?;
-        for unsupported in ["file", "layer", "origin"] {
-            if a.has(unsupported) {
-                return Err(a.error(
-                    a.span_of(unsupported),
-                    format!("`{unsupported}` of `linear_extrude` is not supported yet"),
-                    "import the drawing as a child instead",
-                ));
-            }
-        }
+        no_file(&a, s)?;
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
         if a.number("twist")?.unwrap_or(0.0) != 0.0 {
@@ -452,15 +444,7 @@ impl Resolver<'_> {
             s,
             &["angle", "convexity", "file", "layer", "origin"],
         )?;
-        for unsupported in ["file", "layer", "origin"] {
-            if a.has(unsupported) {
-                return Err(a.error(
-                    a.span_of(unsupported),
-                    format!("`{unsupported}` of `rotate_extrude` is not supported yet"),
-                    "import the drawing as a child instead",
-                ));
-            }
-        }
+        no_file(&a, s)?;
         let mut angle = a.number("angle")?.unwrap_or(360.0);
         if angle <= -360.0 || angle > 360.0 {
             angle = 360.0;
@@ -582,6 +566,21 @@ impl Resolver<'_> {
             }
         }
     }
+}
+
+/// OpenSCAD's deprecated `file`, `layer` and `origin` of an extrusion: an
+/// error at the argument (a drawing is imported as a child instead).
+fn no_file(a: &Args, s: &Statement) -> Result<()> {
+    for key in ["file", "layer", "origin"] {
+        if a.has(key) {
+            return Err(a.error(
+                a.span_of(key),
+                format!("`{key}` of `{}` is not supported yet", s.name),
+                "import the drawing as a child instead",
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether `name` is a 3-D statement (a solid or an extrusion).
