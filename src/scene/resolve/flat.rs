@@ -17,7 +17,7 @@
 //! through), under its full 3-D transform.
 
 use super::transforms::{basis_from_z, sin_cos_deg};
-use super::Resolver;
+use super::{combine, Resolver};
 use crate::csg::spans::Op;
 use crate::error::Result;
 use crate::geometry::{Cone, Halfspace, Lathe, Prism, Shape, Sphere, Torus};
@@ -87,26 +87,6 @@ impl Flat {
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
         }
-    }
-}
-
-/// The combination of `parts` by `op` (`None` for empty operands, with
-/// OpenSCAD's meaning: an empty operand empties an intersection; a
-/// difference with an empty first operand is empty).
-fn combine<T>(op: Op, parts: Vec<Option<T>>, mut wrap: impl FnMut(Op, Vec<T>) -> T) -> Option<T> {
-    let mut live = Vec::new();
-    for (i, p) in parts.into_iter().enumerate() {
-        match p {
-            Some(p) => live.push(p),
-            None if op == Op::Intersection => return None,
-            None if op == Op::Difference && i == 0 => return None,
-            None => {}
-        }
-    }
-    match live.len() {
-        0 => None,
-        1 => live.pop(),
-        _ => Some(wrap(op, live)),
     }
 }
 
@@ -194,7 +174,7 @@ impl Resolver<'_> {
             };
             return self.flat_children(s, op, m, depth);
         }
-        if super::solids::binder(name) == Some(None) && !is_3d(name) {
+        if super::solids::binder(name) == Some(None) {
             return Err(self.not_supported_yet(s));
         }
         let (message, label) = if super::solids::binder(name).is_some() {
@@ -364,11 +344,6 @@ impl Resolver<'_> {
                 Ok(self.op(*op, parts))
             }
         }
-    }
-
-    fn op(&mut self, op: Op, parts: Vec<Option<u32>>) -> Option<u32> {
-        let csg = &mut self.b.csg;
-        combine(op, parts, |op, ids| csg.add_op(op, ids))
     }
 
     /// `linear_extrude(height, center, convexity, twist, slices, scale)`.
@@ -581,22 +556,4 @@ fn no_file(a: &Args, s: &Statement) -> Result<()> {
         }
     }
     Ok(())
-}
-
-/// Whether `name` is a 3-D statement (a solid or an extrusion).
-fn is_3d(name: &str) -> bool {
-    matches!(
-        name,
-        "cube"
-            | "sphere"
-            | "cylinder"
-            | "torus"
-            | "halfspace"
-            | "linear_extrude"
-            | "rotate_extrude"
-            | "polyhedron"
-            | "surface"
-            | "hull"
-            | "minkowski"
-    )
 }

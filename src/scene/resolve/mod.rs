@@ -68,6 +68,26 @@ pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
     Ok(r.b.finish(src, root, place, defaults::BACKGROUND))
 }
 
+/// The combination of `parts` by `op` (`None` for empty operands, with
+/// OpenSCAD's meaning: an empty operand empties an intersection; a
+/// difference with an empty first operand is empty).
+fn combine<T>(op: Op, parts: Vec<Option<T>>, mut wrap: impl FnMut(Op, Vec<T>) -> T) -> Option<T> {
+    let mut live = Vec::new();
+    for (i, p) in parts.into_iter().enumerate() {
+        match p {
+            Some(p) => live.push(p),
+            None if op == Op::Intersection => return None,
+            None if op == Op::Difference && i == 0 => return None,
+            None => {}
+        }
+    }
+    match live.len() {
+        0 => None,
+        1 => live.pop(),
+        _ => Some(wrap(op, live)),
+    }
+}
+
 fn skipped(s: &Statement) -> bool {
     s.modifiers.disable || s.modifiers.background
 }
@@ -172,20 +192,11 @@ impl Resolver<'_> {
                 "intersection" => {
                     // Every operand is built (so errors in any are reported);
                     // an empty operand makes the intersection empty.
-                    let mut ids = Vec::new();
-                    let mut empty = false;
+                    let mut parts = Vec::new();
                     for c in s.children.iter().filter(|c| !skipped(c)) {
-                        match self.statement(c, xf, mat, depth + 1)? {
-                            Some(id) => ids.push(id),
-                            None => empty = true,
-                        }
+                        parts.push(self.statement(c, xf, mat, depth + 1)?);
                     }
-                    Ok(match ids.len() {
-                        _ if empty => None,
-                        0 => None,
-                        1 => Some(ids[0]),
-                        _ => Some(self.b.csg.add_op(Op::Intersection, ids)),
-                    })
+                    Ok(self.op(Op::Intersection, parts))
                 }
                 _ => {
                     let ids = self.children(s, xf, mat, depth)?;
@@ -210,6 +221,13 @@ impl Resolver<'_> {
             format!("unknown statement `{name}`"),
             "expected a solid, a transform, a CSG operation, color, material or a scene statement",
         ))
+    }
+
+    /// `op` over `parts` (see [`combine`]), a new node when two or more
+    /// are solids.
+    fn op(&mut self, op: Op, parts: Vec<Option<u32>>) -> Option<u32> {
+        let csg = &mut self.b.csg;
+        combine(op, parts, |op, ids| csg.add_op(op, ids))
     }
 
     /// The error for a statement of [`solids::SOLIDS`] without a binder.
