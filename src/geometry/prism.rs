@@ -40,7 +40,7 @@ impl Prism {
 
     /// The spans of a tapered prism inside the slab (t0, p0)–(t1, p1).
     fn tapered(&self, o: DVec3, d: DVec3, slab: RawSpan, emit: &mut impl FnMut(RawSpan)) {
-        let (z0, zp0, z1, zp1) = slab;
+        let (z0, _, z1, _) = slab;
         let k = self.top - 1.0;
         let (w0, wd) = (1.0 + k * o.z, k * d.z);
         let (o2, d2) = (o.truncate(), d.truncate());
@@ -60,7 +60,7 @@ impl Prism {
             }
             return;
         }
-        let mut cuts: Vec<(f64, u32)> = Vec::new();
+        let mut cuts: smallvec::SmallVec<[(f64, Part); 16]> = smallvec::SmallVec::new();
         for (e, &(a, b)) in self.region.edges.iter().enumerate() {
             let (sa, sb) = (line.dot(a.extend(1.0)), line.dot(b.extend(1.0)));
             if (sa > 0.0) == (sb > 0.0) {
@@ -75,38 +75,33 @@ impl Prism {
             }
             let t = -f0 / f1;
             if w0 + t * wd > 0.0 {
-                cuts.push((t, e as u32));
+                cuts.push((t, SIDE + e as Part));
             }
         }
         cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-        // Outside at the image's far end (the points where s → 0⁺): pair
-        // from that end; an odd crossing out runs to the vanishing point.
-        let mut spans: Vec<(f64, Part, f64, Part)> = Vec::new();
-        let far = f64::INFINITY;
-        if wd >= 0.0 {
-            for pair in cuts.chunks(2) {
-                let (s0, e0) = pair[0];
-                let (s1, e1) = pair.get(1).map_or((far, NO_PART), |&(s, e)| (s, SIDE + e));
-                spans.push((s0, SIDE + e0, s1, e1));
-            }
-        } else {
-            for pair in cuts.rchunks(2).rev() {
-                let (s1, e1) = pair[pair.len() - 1];
-                let (s0, e0) = if pair.len() == 2 {
-                    (pair[0].0, SIDE + pair[0].1)
-                } else {
-                    (-far, NO_PART)
-                };
-                spans.push((s0, e0, s1, SIDE + e1));
+        // Outside at the image's far end (the points where s → 0⁺): an odd
+        // crossing pairs with the vanishing point, at the other end.
+        if cuts.len() % 2 == 1 {
+            if wd >= 0.0 {
+                cuts.push((f64::INFINITY, NO_PART));
+            } else {
+                cuts.insert(0, (f64::NEG_INFINITY, NO_PART));
             }
         }
-        for (s0, e0, s1, e1) in spans {
-            let (t0, p0) = if s0 > z0 { (s0, e0) } else { (z0, zp0) };
-            let (t1, p1) = if s1 < z1 { (s1, e1) } else { (z1, zp1) };
-            if t0 < t1 {
-                emit((t0, p0, t1, p1));
-            }
+        for pair in cuts.chunks_exact(2) {
+            clip(slab, (pair[0].0, pair[0].1, pair[1].0, pair[1].1), emit);
         }
+    }
+}
+
+/// The part of span `s` inside the slab, emitted unless it is empty.
+#[inline]
+fn clip(slab: RawSpan, s: RawSpan, emit: &mut impl FnMut(RawSpan)) {
+    let ((z0, zp0, z1, zp1), (s0, e0, s1, e1)) = (slab, s);
+    let (t0, p0) = if s0 > z0 { (s0, e0) } else { (z0, zp0) };
+    let (t1, p1) = if s1 < z1 { (s1, e1) } else { (z1, zp1) };
+    if t0 < t1 {
+        emit((t0, p0, t1, p1));
     }
 }
 
@@ -140,13 +135,10 @@ impl Solid for Prism {
             }
             return;
         }
+        let slab = (z0, zp0, z1, zp1);
         for pair in self.region.crossings(o2, d2).chunks_exact(2) {
             let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
-            let (t0, p0) = if s0 > z0 { (s0, SIDE + e0) } else { (z0, zp0) };
-            let (t1, p1) = if s1 < z1 { (s1, SIDE + e1) } else { (z1, zp1) };
-            if t0 < t1 {
-                emit((t0, p0, t1, p1));
-            }
+            clip(slab, (s0, SIDE + e0, s1, SIDE + e1), emit);
         }
     }
 
