@@ -197,33 +197,41 @@ def flat_extent(f):
 
 
 def extrusion_facets(leaf, n):
-    """(distance, angle, smallest object-space curvature radius) of an
-    extrusion's mesh: circles are inscribed n-gons (an ellipse's distance
-    and angle grow with its matrix's singular values and condition); a
-    turn is cut in n steps about the axis, within R (1 - cos(pi/n)) of the
-    surface at distance R, its normals within pi/n, doubled where a
-    circle's facets add their own."""
-    if not hasattr(leaf, "_facets"):
-        p = leaf.params
-        b = 1 - math.cos(math.pi / n)
-        es = ellipses(p["flat"])
-        sv = [np.linalg.svd(A, compute_uv=False) for A, _ in es]
-        if leaf.kind == "linear_extrude":
-            k = max(1.0, p["scale"])
-            dist = max((s[0] * k * b for s in sv), default=0.0)
-            ang = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
-            rho = min((s[1] * max(p["scale"], 1e-300) for s in sv), default=math.inf)
-        else:
-            R = flat_extent(p["flat"])
-            emax = max((s[0] for s in sv), default=0.0)
-            dist = (R + emax) * b + emax * b
-            ang = (2 if es else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
-            rho = min((s[1] for s in sv), default=math.inf)
-        leaf._facets = (n, dist, ang, rho)
-    if leaf._facets[0] != n:
-        del leaf._facets
-        return extrusion_facets(leaf, n)
-    return leaf._facets[1:]
+    """(distance, angle) of an extrusion's mesh at n segments: circles are
+    inscribed n-gons (an ellipse's distance and angle grow with its
+    matrix's singular values and condition); a turn is cut in n steps
+    about the axis, within R (1 - cos(pi/n)) of the surface at distance R,
+    its normals within pi/n, doubled where a circle's facets add their
+    own."""
+    p = leaf.params
+    b = 1 - math.cos(math.pi / n)
+    sv = ellipse_singular_values(leaf)
+    if leaf.kind == "linear_extrude":
+        k = max(1.0, p["scale"])
+        dist = max((s[0] * k * b for s in sv), default=0.0)
+        ang = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
+        return dist, ang
+    R = flat_extent(p["flat"])
+    emax = max((s[0] for s in sv), default=0.0)
+    dist = (R + emax) * b + emax * b
+    ang = (2 if sv else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
+    return dist, ang
+
+
+def ellipse_singular_values(leaf):
+    """The singular values of each circle's matrix in the leaf's 2-D tree,
+    computed once a leaf."""
+    if not hasattr(leaf, "_ellipse_sv"):
+        leaf._ellipse_sv = [np.linalg.svd(A, compute_uv=False) for A, _ in ellipses(leaf.params["flat"])]
+    return leaf._ellipse_sv
+
+
+def extrusion_curvature(leaf):
+    """The smallest object-space curvature radius of an extrusion's circles
+    (a tapered one's at its smaller end; infinite without circles)."""
+    sv = ellipse_singular_values(leaf)
+    k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
+    return min((s[1] * k for s in sv), default=math.inf)
 
 
 def facet_distance(leaf, n):
@@ -275,10 +283,10 @@ def curvature_radius(leaf, x):
     """The smallest object-space curvature radius near world point x."""
     p = leaf.params
     if leaf.kind == "linear_extrude":
-        return extrusion_facets(leaf, 64)[2]
+        return extrusion_curvature(leaf)
     if leaf.kind == "rotate_extrude":
         q = object_point(leaf, x)
-        return max(min(math.hypot(q[0], q[1]), extrusion_facets(leaf, 64)[2]), 1e-300)
+        return max(min(math.hypot(q[0], q[1]), extrusion_curvature(leaf)), 1e-300)
     if leaf.kind == "sphere":
         return p["r"]
     if leaf.kind == "torus":
@@ -345,9 +353,9 @@ def extrusion_face(leaf, q):
         cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + [feature_distance(ft, q2) for ft in fts]
         return int(np.argmin(cand))
     f, flip = reader.revolve_setup(p)
-    fts = [("seg", *x[1:]) if x[0] == "seg" else x for x in features(f)]
-    if f[0] == "poly":
-        fts = features(("poly", reader.clip_right(f[1])))
+    # Points off the axis are nearest the same piece of a polygon whether
+    # or not it was cut to x >= 0 first.
+    fts = features(f)
     q2 = np.array([math.hypot(q[0], q[1]), q[2]])
     cuts = [math.inf, math.inf]
     if p["angle"] != 360:

@@ -548,7 +548,8 @@ class Reader:
             fn = a.get("$fn", 0.0)
             if 0 < fn < 9:
                 n = int(max(fn, 3.0))
-                pts = [[r * sin_cos_deg(360.0 * i / n)[1], r * sin_cos_deg(360.0 * i / n)[0]] for i in range(n)]
+                sc = [sin_cos_deg(360.0 * i / n) for i in range(n)]
+                pts = [[r * c, r * si] for si, c in sc]
                 return ("poly", [place(pts)])
             return ("ellipse", m[:2, :2] * r, m[:2, 2].copy())
         pts = a.get("points")
