@@ -26,6 +26,7 @@ pub mod render;
 pub mod scene;
 pub mod stats;
 pub mod syntax;
+pub mod text;
 
 pub use error::{Error, Result, Source};
 pub use scene::Scene;

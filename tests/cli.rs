@@ -241,7 +241,7 @@ fn a_degenerate_camera_is_an_error() {
 fn an_unsupported_openscad_node_is_an_error_not_skipped() {
     assert_eq!(
         fails("group() {\n\tlinear_extrude(height = 10) offset(r = 1) square(1);\n}\n"),
-        "error: `offset` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) offset(r = 1) square(1);\n  | \t                            ^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle and polygon\n"
+        "error: `offset` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) offset(r = 1) square(1);\n  | \t                            ^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon and text\n"
     );
 }
 

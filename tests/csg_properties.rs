@@ -41,6 +41,8 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
         Just(Shape::Halfspace(Halfspace)),
         Just(l_prism(1.0)),
         Just(l_prism(0.5)),
+        Just(common::curved_prism(1.0)),
+        Just(common::curved_prism(0.6)),
         Just(common::l_lathe()),
     ]
 }

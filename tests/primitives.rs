@@ -12,7 +12,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::{l_lathe, l_prism, Rng};
+use common::{curved_prism, l_lathe, l_prism, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
@@ -20,6 +20,9 @@ fn shapes() -> Vec<(&'static str, Shape)> {
         ("tapered prism", l_prism(0.4)),
         ("widening prism", l_prism(1.7)),
         ("pyramid", l_prism(0.0)),
+        ("curved prism", curved_prism(1.0)),
+        ("curved tapered prism", curved_prism(0.3)),
+        ("curved widening prism", curved_prism(2.5)),
         ("lathe", l_lathe()),
         ("sphere", Shape::Sphere(Sphere)),
         ("cube", Shape::Cuboid(Cuboid { centered: false })),
@@ -369,19 +372,25 @@ fn support_points_are_the_farthest_points_of_the_solid() {
                 .expect("a bounded solid has a support point");
             let u = d.normalize();
             // A step from s towards the inside: the middle of a convex
-            // solid, or the tube's core for the torus.
-            let core = match &shape {
-                Shape::Torus(t) => s - t.minor * u,
-                // Within the support's own section.
-                Shape::Prism(p) => {
+            // solid, or the tube's core for the torus; for a prism, whose
+            // section need not be convex at its support, some step in the
+            // section's plane (and towards the slab's middle).
+            let on_solid = |core: DVec3| shape.contains(s + 1e-9 * (core - s));
+            let found = match &shape {
+                Shape::Torus(t) => on_solid(s - t.minor * u),
+                Shape::Prism(p) => (0..64).any(|k| {
                     let w = 1.0 + (p.top - 1.0) * s.z;
-                    DVec3::new(0.5 * w, 0.5 * w, s.z)
-                }
-                Shape::Lathe(_) => (s.truncate().normalize_or_zero()).extend(-0.5),
-                _ => shape.object_bounds().center(),
+                    if k == 0 {
+                        return on_solid(DVec3::new(0.5 * w, 0.5 * w, s.z));
+                    }
+                    let a = k as f64 * std::f64::consts::TAU / 64.0;
+                    on_solid(s + DVec3::new(a.cos(), a.sin(), 0.01 * (0.5 - s.z)))
+                }),
+                Shape::Lathe(_) => on_solid((s.truncate().normalize_or_zero()).extend(-0.5)),
+                _ => on_solid(shape.object_bounds().center()),
             };
             assert!(
-                shape.contains(s + 1e-9 * (core - s)),
+                found,
                 "{name}: support {s:?} along {d:?} is not on the solid"
             );
             let far = inside

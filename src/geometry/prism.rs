@@ -17,8 +17,8 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
-use crate::plane::Region;
-use glam::DVec3;
+use crate::plane::{side_changes, Ctrl, Curve, Region};
+use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
 const BOTTOM: Part = 0;
@@ -55,7 +55,7 @@ impl Prism {
                 0.0
             };
             let w = w0 + tm * wd;
-            if w > 0.0 && self.region.outlines.contains((o2 + tm * d2) / w) {
+            if w > 0.0 && self.region.contains((o2 + tm * d2) / w) {
                 emit(slab);
             }
             return;
@@ -63,6 +63,27 @@ impl Prism {
         let mut cuts: smallvec::SmallVec<[(f64, Part); 16]> = smallvec::SmallVec::new();
         for (e, &(a, b)) in self.region.edges.iter().enumerate() {
             let (sa, sb) = (line.dot(a.extend(1.0)), line.dot(b.extend(1.0)));
+            let ctrl = self.region.ctrl[e];
+            if ctrl != Ctrl::Line {
+                // The curve's points on the image ℓ·(q, 1) = 0, each met
+                // where o_xy + t·d_xy = w(t)·q: t by least squares along
+                // v = d_xy − w_d·q (the two equations agree up to rounding).
+                let curve = Curve::new(a, ctrl, b, DVec2::ZERO);
+                let f = curve.along(line.truncate(), -line.z);
+                side_changes(sa, sb, &f, curve.degree, |u| {
+                    let q = match u {
+                        0.0 => a,
+                        1.0 => b,
+                        _ => curve.at(u),
+                    };
+                    let v = d2 - wd * q;
+                    let t = (w0 * q - o2).dot(v) / v.length_squared();
+                    if v != DVec2::ZERO && w0 + t * wd > 0.0 {
+                        cuts.push((t, SIDE + e as Part));
+                    }
+                });
+                continue;
+            }
             if (sa > 0.0) == (sb > 0.0) {
                 continue;
             }
@@ -130,7 +151,7 @@ impl Solid for Prism {
         let (o2, d2) = (o.truncate(), d.truncate());
         if d2 == glam::DVec2::ZERO {
             // Along z: inside the slab wherever the point is in the region.
-            if self.region.outlines.contains(o2) {
+            if self.region.contains(o2) {
                 emit((z0, zp0, z1, zp1));
             }
             return;
@@ -142,14 +163,30 @@ impl Solid for Prism {
         }
     }
 
-    fn normal(&self, _p: DVec3, part: Part) -> DVec3 {
+    /// A side's normal is its edge's outward normal n in the plane, tilted
+    /// by the taper: the side over the point q of the edge is the plane
+    /// n·p_xy = s(z)·n·q, with gradient (n, (1 − top)·n·q).
+    fn normal(&self, p: DVec3, part: Part) -> DVec3 {
         match part {
             BOTTOM => DVec3::NEG_Z,
             TOP => DVec3::Z,
             k => {
                 let e = (k - SIDE) as usize;
-                let n = self.region.normals[e];
-                n.extend((1.0 - self.top) * n.dot(self.region.edges[e].0))
+                let r = &self.region;
+                if r.ctrl[e] == Ctrl::Line {
+                    let n = r.normals[e];
+                    return n.extend((1.0 - self.top) * n.dot(r.edges[e].0));
+                }
+                let w = self.scale_at(p.z);
+                let q = if w > 0.0 {
+                    p.truncate() / w
+                } else {
+                    r.edges[e].0
+                };
+                let c = r.curve(e, DVec2::ZERO);
+                let q = c.at(c.param_of(q));
+                let n = r.normal_at(e, q);
+                n.extend((1.0 - self.top) * n.dot(q))
             }
         }
     }
@@ -157,7 +194,7 @@ impl Solid for Prism {
     fn contains(&self, p: DVec3) -> bool {
         let w = self.scale_at(p.z);
         (0.0..=1.0).contains(&p.z)
-            && (w > 0.0 && self.region.outlines.contains(p.truncate() / w)
+            && (w > 0.0 && self.region.contains(p.truncate() / w)
                 || w == 0.0 && p.truncate() == glam::DVec2::ZERO)
     }
 
@@ -167,13 +204,12 @@ impl Solid for Prism {
         Aabb::new(lo.extend(0.0), hi.extend(1.0))
     }
 
-    /// The farthest vertex of either cap.
+    /// The farthest point of either cap: the region's farthest point along
+    /// d_xy, at scale 1 and at `top`.
     fn support(&self, d: DVec3) -> Option<DVec3> {
-        let caps = [(1.0, 0.0), (self.top, 1.0)];
-        self.region
-            .edges
-            .iter()
-            .flat_map(|(a, _)| caps.iter().map(move |&(s, z)| (*a * s).extend(z)))
+        let q = self.region.farthest(d.truncate());
+        [q.extend(0.0), (q * self.top).extend(1.0)]
+            .into_iter()
             .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
     }
 
@@ -190,11 +226,33 @@ impl Solid for Prism {
     /// z with s(z) = y, i.e. z = (1 − y)/(1 − top).
     fn pov(&self) -> String {
         let mut pts = Vec::new();
-        for l in &self.region.outlines.loops {
-            for p in l.iter().chain(l.first()) {
-                pts.push(format!("<{:?}, {:?}>", p.x, p.y));
+        let pt = |p: DVec2| format!("<{:?}, {:?}>", p.x, p.y);
+        let curved = self.region.curved();
+        for (j, l) in self.region.outlines.loops.iter().enumerate() {
+            for i in 0..l.len() {
+                let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                if !curved {
+                    pts.push(pt(a));
+                    continue;
+                }
+                // Every edge a cubic Bézier segment of four points: a line
+                // or a quadratic raised to degree 3 exactly.
+                let (c1, c2) = match self.region.outlines.ctrl[j][i] {
+                    Ctrl::Line => (a + (b - a) / 3.0, b + (a - b) / 3.0),
+                    Ctrl::Quad(c) => (a + (c - a) * (2.0 / 3.0), b + (c - b) * (2.0 / 3.0)),
+                    Ctrl::Cubic(c1, c2) => (c1, c2),
+                };
+                pts.extend([pt(a), pt(c1), pt(c2), pt(b)]);
+            }
+            if !curved {
+                pts.push(pt(l[0]));
             }
         }
+        let spline = if curved {
+            "bezier_spline"
+        } else {
+            "linear_spline"
+        };
         let (sweep, h0, h1, m) = if self.top == 1.0 {
             (
                 "linear_sweep",
@@ -212,7 +270,7 @@ impl Solid for Prism {
             )
         };
         format!(
-            "prism {{ {sweep} linear_spline {h0:?}, {h1:?}, {}, {} matrix {m}",
+            "prism {{ {sweep} {spline} {h0:?}, {h1:?}, {}, {} matrix {m}",
             pts.len(),
             pts.join(", ")
         )

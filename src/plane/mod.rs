@@ -11,6 +11,7 @@
 //! crossings of its edges ([`Outlines::spans`]) — what a prism's spans are
 //! made of once the slab is clipped.
 
+use crate::geometry::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2};
 
 /// The plane's part of a space transform, as OpenSCAD applies it to 2-D
@@ -21,33 +22,227 @@ pub fn from_space(m: &DAffine3) -> Option<DAffine2> {
     (a.determinant() != 0.0).then(|| DAffine2::from_mat2_translation(a, m.translation.truncate()))
 }
 
-/// Closed outlines in the plane, each a list of at least 3 points joined
-/// last to first, filled by the even-odd rule.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Outlines {
-    pub loops: Vec<Vec<DVec2>>,
+/// How an edge runs from its start to the next point of its loop: straight,
+/// or a quadratic or cubic Bézier curve with these control points (a font's
+/// outline is made of them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ctrl {
+    Line,
+    Quad(DVec2),
+    Cubic(DVec2, DVec2),
 }
 
-impl Outlines {
-    /// Every edge as (start, end).
-    pub fn edges(&self) -> impl Iterator<Item = (DVec2, DVec2)> + '_ {
-        self.loops
-            .iter()
-            .flat_map(|l| (0..l.len()).map(move |i| (l[i], l[(i + 1) % l.len()])))
+impl Ctrl {
+    /// The control points, mapped by `f`.
+    pub fn map(self, f: impl Fn(DVec2) -> DVec2) -> Ctrl {
+        match self {
+            Ctrl::Line => Ctrl::Line,
+            Ctrl::Quad(c) => Ctrl::Quad(f(c)),
+            Ctrl::Cubic(c1, c2) => Ctrl::Cubic(f(c1), f(c2)),
+        }
     }
 
-    /// Whether point `p` is inside (even-odd; on an edge counts as either).
-    pub fn contains(&self, p: DVec2) -> bool {
-        let mut inside = false;
-        for (a, b) in self.edges() {
-            // Half-open in y, so a vertex on the ray is counted once.
-            if (a.y > p.y) != (b.y > p.y) {
-                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-                if x > p.x {
-                    inside = !inside;
+    /// The control points.
+    pub fn points(&self) -> impl Iterator<Item = DVec2> {
+        let (a, b) = match *self {
+            Ctrl::Line => (None, None),
+            Ctrl::Quad(c) => (Some(c), None),
+            Ctrl::Cubic(c1, c2) => (Some(c1), Some(c2)),
+        };
+        a.into_iter().chain(b)
+    }
+}
+
+/// One edge from `a` to `b`: its point at u ∈ [0, 1] is B(u), a polynomial
+/// of degree ≤ 3, kept in the power basis about an origin o:
+/// B(u) − o = k[0] + k[1]·u + k[2]·u² + k[3]·u³.
+#[derive(Clone, Copy, Debug)]
+pub struct Curve {
+    pub k: [DVec2; 4],
+    pub degree: usize,
+}
+
+impl Curve {
+    /// The edge (a, ctrl, b) about origin `o`.
+    pub fn new(a: DVec2, ctrl: Ctrl, b: DVec2, o: DVec2) -> Curve {
+        let (p0, p3) = (a - o, b - o);
+        match ctrl {
+            Ctrl::Line => Curve {
+                k: [p0, p3 - p0, DVec2::ZERO, DVec2::ZERO],
+                degree: 1,
+            },
+            Ctrl::Quad(c) => {
+                let p1 = c - o;
+                Curve {
+                    k: [p0, 2.0 * (p1 - p0), p0 - 2.0 * p1 + p3, DVec2::ZERO],
+                    degree: 2,
+                }
+            }
+            Ctrl::Cubic(c1, c2) => {
+                let (p1, p2) = (c1 - o, c2 - o);
+                Curve {
+                    k: [
+                        p0,
+                        3.0 * (p1 - p0),
+                        3.0 * (p0 - 2.0 * p1 + p2),
+                        p3 - 3.0 * p2 + 3.0 * p1 - p0,
+                    ],
+                    degree: 3,
                 }
             }
         }
+    }
+
+    /// B(u) − o.
+    pub fn at(&self, u: f64) -> DVec2 {
+        let k = &self.k;
+        ((k[3] * u + k[2]) * u + k[1]) * u + k[0]
+    }
+
+    /// B′(u).
+    pub fn tangent(&self, u: f64) -> DVec2 {
+        let k = &self.k;
+        (k[3] * (3.0 * u) + k[2] * 2.0) * u + k[1]
+    }
+
+    /// The polynomial n·(B(u) − o) − c.
+    pub fn along(&self, n: DVec2, c: f64) -> Poly {
+        let k = &self.k;
+        [k[0].dot(n) - c, k[1].dot(n), k[2].dot(n), k[3].dot(n), 0.0]
+    }
+
+    /// The parameter of the point of the curve nearest `p` (a point on it,
+    /// up to rounding): among the ends and the parameters where either
+    /// coordinate of B equals p's (one of the two is never a double root
+    /// but at a cusp), the nearest.
+    pub fn param_of(&self, p: DVec2) -> f64 {
+        let mut best = (f64::INFINITY, 0.0);
+        let mut try_u = |u: f64| {
+            let e = (self.at(u) - p).length_squared();
+            if e < best.0 {
+                best = (e, u);
+            }
+        };
+        try_u(0.0);
+        try_u(1.0);
+        let mut roots = [0.0; 4];
+        for axis in [DVec2::X, DVec2::Y] {
+            let n = roots_in(
+                &self.along(axis, p.dot(axis)),
+                self.degree,
+                0.0,
+                1.0,
+                &mut roots,
+            );
+            roots[..n].iter().for_each(|&u| try_u(u));
+            // A coordinate's extreme value is a double root of its
+            // equation: its critical points are candidates too.
+            let k = &self.k;
+            let d = [
+                k[1].dot(axis),
+                2.0 * k[2].dot(axis),
+                3.0 * k[3].dot(axis),
+                0.0,
+                0.0,
+            ];
+            let n = roots_in(&d, self.degree - 1, 0.0, 1.0, &mut roots);
+            roots[..n].iter().for_each(|&u| try_u(u));
+        }
+        best.1
+    }
+}
+
+/// Closed outlines in the plane, each a list of at least 3 points joined
+/// last to first, filled by the even-odd rule. `ctrl`, when not empty, says
+/// how each edge runs (one list per loop, edge i from point i to i + 1);
+/// empty, every edge is straight.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Outlines {
+    pub loops: Vec<Vec<DVec2>>,
+    pub ctrl: Vec<Vec<Ctrl>>,
+}
+
+impl Outlines {
+    /// Straight-edged outlines.
+    pub fn polygons(loops: Vec<Vec<DVec2>>) -> Outlines {
+        Outlines {
+            loops,
+            ctrl: Vec::new(),
+        }
+    }
+
+    /// Whether any edge is curved.
+    pub fn curved(&self) -> bool {
+        self.ctrl.iter().flatten().any(|c| *c != Ctrl::Line)
+    }
+
+    /// The same outlines with every point (and control point) mapped by `f`.
+    pub fn map(&self, f: impl Fn(DVec2) -> DVec2 + Copy) -> Outlines {
+        Outlines {
+            loops: self
+                .loops
+                .iter()
+                .map(|l| l.iter().map(|&p| f(p)).collect())
+                .collect(),
+            ctrl: self
+                .ctrl
+                .iter()
+                .map(|l| l.iter().map(|c| c.map(f)).collect())
+                .collect(),
+        }
+    }
+
+    /// The range of p·axis over the region (exact: a curve's extreme
+    /// values are at its ends or where its derivative along `axis` is 0).
+    pub fn extent(&self, axis: DVec2) -> (f64, f64) {
+        let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut add = |v: f64| r = (r.0.min(v), r.1.max(v));
+        for (a, c, b) in self.edges() {
+            add(a.dot(axis));
+            if c != Ctrl::Line {
+                let curve = Curve::new(a, c, b, DVec2::ZERO);
+                let k = &curve.k;
+                let d = [
+                    k[1].dot(axis),
+                    2.0 * k[2].dot(axis),
+                    3.0 * k[3].dot(axis),
+                    0.0,
+                    0.0,
+                ];
+                let mut roots = [0.0; 4];
+                let n = roots_in(&d, curve.degree - 1, 0.0, 1.0, &mut roots);
+                roots[..n].iter().for_each(|&u| add(curve.at(u).dot(axis)));
+            }
+        }
+        r
+    }
+
+    /// Every point and control point.
+    pub fn all_points(&self) -> impl Iterator<Item = DVec2> + '_ {
+        let ctrl = self.ctrl.iter().flatten().flat_map(|c| c.points());
+        self.loops.iter().flatten().copied().chain(ctrl)
+    }
+
+    /// Every edge as (start, how it runs, end).
+    pub fn edges(&self) -> impl Iterator<Item = (DVec2, Ctrl, DVec2)> + '_ {
+        self.loops.iter().enumerate().flat_map(move |(j, l)| {
+            (0..l.len()).map(move |i| {
+                let c = self.ctrl.get(j).map_or(Ctrl::Line, |c| c[i]);
+                (l[i], c, l[(i + 1) % l.len()])
+            })
+        })
+    }
+
+    /// Whether point `p` is inside (even-odd; on an edge counts as either):
+    /// the crossings of the line through p along +x beyond p, half-open in
+    /// y so that a vertex on it is counted once.
+    pub fn contains(&self, p: DVec2) -> bool {
+        let mut inside = false;
+        crossings(self.edges(), p, DVec2::X, |s, _| {
+            if s > 0.0 {
+                inside = !inside;
+            }
+        });
         inside
     }
 
@@ -56,9 +251,10 @@ impl Outlines {
     /// (even-odd). An edge counts when its ends lie on either side of the
     /// line, one strictly to the left and the other not, so a line through
     /// a vertex counts it once, and a line along an edge holds it when the
-    /// region lies to the line's left.
+    /// region lies to the line's left. A curve counts where it passes from
+    /// one side to the other.
     pub fn spans(&self, o: DVec2, d: DVec2) -> Vec<(f64, f64)> {
-        crossings(self.edges(), o, d)
+        sorted_crossings(self.edges(), o, d)
             .chunks_exact(2)
             .map(|c| (c[0].0, c[1].0))
             .filter(|(s0, s1)| s0 < s1)
@@ -68,11 +264,14 @@ impl Outlines {
 
 /// Outlines made ready for ray queries: their edges, each with its unit
 /// outward normal (the side the region is not on, found once at its
-/// middle), and their box.
+/// middle; for a curve, the sign that turns its tangent's right-hand
+/// perpendicular outward), and their box (which holds every curve: a
+/// Bézier curve lies in the hull of its control points).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region {
     pub outlines: Outlines,
     pub edges: Vec<(DVec2, DVec2)>,
+    pub ctrl: Vec<Ctrl>,
     pub normals: Vec<DVec2>,
     pub lo: DVec2,
     pub hi: DVec2,
@@ -80,16 +279,20 @@ pub struct Region {
 
 impl Region {
     pub fn new(outlines: Outlines) -> Region {
-        let edges: Vec<(DVec2, DVec2)> = outlines.edges().collect();
-        let size = edges
+        let all: Vec<(DVec2, Ctrl, DVec2)> = outlines.edges().collect();
+        let edges: Vec<(DVec2, DVec2)> = all.iter().map(|&(a, _, b)| (a, b)).collect();
+        let ctrl: Vec<Ctrl> = all.iter().map(|&(_, c, _)| c).collect();
+        let (lo, hi) = outlines.all_points().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), a| (lo.min(a), hi.max(a)),
+        );
+        let size = lo.abs().max(hi.abs()).max_element().max(1e-300);
+        let normals = all
             .iter()
-            .map(|(a, b)| a.abs().max(b.abs()).max_element())
-            .fold(1e-300, f64::max);
-        let normals = edges
-            .iter()
-            .map(|&(a, b)| {
-                let n = (b - a).perp().normalize_or_zero() * -1.0;
-                let mid = (a + b) * 0.5;
+            .map(|&(a, c, b)| {
+                let curve = Curve::new(a, c, b, DVec2::ZERO);
+                let n = curve.tangent(0.5).perp().normalize_or_zero() * -1.0;
+                let mid = curve.at(0.5);
                 // The region lies on one side of a simple edge: the normal
                 // points to the other.
                 if outlines.contains(mid + n * (1e-9 * size)) {
@@ -99,43 +302,165 @@ impl Region {
                 }
             })
             .collect();
-        let (lo, hi) = edges.iter().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), (a, _)| (lo.min(*a), hi.max(*a)),
-        );
         Region {
             outlines,
             edges,
+            ctrl,
             normals,
             lo,
             hi,
         }
     }
 
+    /// Whether any edge is curved.
+    pub fn curved(&self) -> bool {
+        self.ctrl.iter().any(|c| *c != Ctrl::Line)
+    }
+
+    /// Edge `e` as a curve about origin `o`.
+    pub fn curve(&self, e: usize, o: DVec2) -> Curve {
+        let (a, b) = self.edges[e];
+        Curve::new(a, self.ctrl[e], b, o)
+    }
+
+    /// The unit outward normal of edge `e` at its point nearest `p`.
+    pub fn normal_at(&self, e: usize, p: DVec2) -> DVec2 {
+        if self.ctrl[e] == Ctrl::Line {
+            return self.normals[e];
+        }
+        let c = self.curve(e, DVec2::ZERO);
+        let n = c.tangent(c.param_of(p)).perp().normalize_or_zero() * -1.0;
+        // The same side as at the middle: the curve does not cross itself.
+        let n_mid = c.tangent(0.5).perp() * -1.0;
+        if n_mid.dot(self.normals[e]) >= 0.0 {
+            n
+        } else {
+            -n
+        }
+    }
+
+    /// The point of the outlines farthest along `dir` (exact: a curve's
+    /// at its ends or where its derivative along `dir` is 0).
+    pub fn farthest(&self, dir: DVec2) -> DVec2 {
+        let mut best = (f64::NEG_INFINITY, DVec2::ZERO);
+        let mut add = |p: DVec2| {
+            if p.dot(dir) > best.0 {
+                best = (p.dot(dir), p);
+            }
+        };
+        for e in 0..self.edges.len() {
+            add(self.edges[e].0);
+            if self.ctrl[e] != Ctrl::Line {
+                let curve = self.curve(e, DVec2::ZERO);
+                let k = &curve.k;
+                let d = [
+                    k[1].dot(dir),
+                    2.0 * k[2].dot(dir),
+                    3.0 * k[3].dot(dir),
+                    0.0,
+                    0.0,
+                ];
+                let mut roots = [0.0; 4];
+                let n = roots_in(&d, curve.degree - 1, 0.0, 1.0, &mut roots);
+                roots[..n].iter().for_each(|&u| add(curve.at(u)));
+            }
+        }
+        best.1
+    }
+
+    /// Whether point `p` is inside.
+    pub fn contains(&self, p: DVec2) -> bool {
+        self.outlines.contains(p)
+    }
+
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
     pub fn crossings(&self, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
-        crossings(self.edges.iter().copied(), o, d)
+        sorted_crossings(
+            self.edges
+                .iter()
+                .zip(&self.ctrl)
+                .map(|(&(a, b), &c)| (a, c, b)),
+            o,
+            d,
+        )
     }
 }
 
-/// Where the line `o + s·d` crosses `edges`, sorted: `(s, edge index)`. An
-/// edge counts when one end lies strictly left of the line and the other
-/// not (see [`Outlines::spans`]).
-fn crossings(edges: impl Iterator<Item = (DVec2, DVec2)>, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
-    let n = d.perp(); // the side of the line a point is on: (p − o)·n
+/// [`crossings`], sorted by s (then edge).
+fn sorted_crossings(
+    edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)>,
+    o: DVec2,
+    d: DVec2,
+) -> Vec<(f64, u32)> {
     let mut cuts: Vec<(f64, u32)> = Vec::new();
-    for (k, (a, b)) in edges.enumerate() {
-        let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
-        if (sa > 0.0) == (sb > 0.0) {
-            continue;
-        }
-        // The crossing point of the edge, then its parameter on the line.
-        let p = a + (b - a) * (sa / (sa - sb));
-        cuts.push(((p - o).dot(d) / d.length_squared(), k as u32));
-    }
+    crossings(edges, o, d, |s, k| cuts.push((s, k)));
     cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     cuts
+}
+
+/// Each place `(s, edge index)` where the line `o + s·d` crosses `edges`.
+/// A point is on the line's left when (p − o)·n > 0, n = d⊥. A straight
+/// edge counts when one end lies strictly left and the other not (see
+/// [`Outlines::spans`]); a curve counts at each place its side changes:
+/// the sides of its ends (computed from the points themselves, as its
+/// neighbours do) and of the stretches between the simple roots of
+/// n·(B(u) − o) in (0, 1), a change between an end and the next stretch
+/// placed at that end.
+pub fn crossings(
+    edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)>,
+    o: DVec2,
+    d: DVec2,
+    mut cut: impl FnMut(f64, u32),
+) {
+    let n = d.perp();
+    let dd = d.length_squared();
+    for (k, (a, c, b)) in edges.enumerate() {
+        let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
+        if c == Ctrl::Line {
+            if (sa > 0.0) == (sb > 0.0) {
+                continue;
+            }
+            // The crossing point of the edge, then its parameter on the line.
+            let p = a + (b - a) * (sa / (sa - sb));
+            cut((p - o).dot(d) / dd, k as u32);
+            continue;
+        }
+        let curve = Curve::new(a, c, b, o);
+        side_changes(sa, sb, &curve.along(n, 0.0), curve.degree, |u| {
+            let p = match u {
+                0.0 => a - o,
+                1.0 => b - o,
+                _ => curve.at(u),
+            };
+            cut(p.dot(d) / dd, k as u32);
+        });
+    }
+}
+
+/// The parameters u ∈ [0, 1] where a curve passes from one side of a line
+/// to the other, given the sides' measure at its ends (`sa`, `sb`,
+/// computed from the end points themselves, as the neighbouring edges do)
+/// and along it (`f`, of the given degree): the sides of the ends and of
+/// the stretches between the simple roots of f in (0, 1), a change between
+/// an end and the next stretch placed at that end. "Left" is f > 0.
+pub fn side_changes(sa: f64, sb: f64, f: &Poly, degree: usize, mut at_u: impl FnMut(f64)) {
+    let mut roots = [0.0; 4];
+    let nr = roots_in(f, degree, 0.0, 1.0, &mut roots);
+    let mut left = sa > 0.0;
+    let mut u0 = 0.0;
+    for &u in roots[..nr].iter().chain(std::iter::once(&1.0)) {
+        // The stretch (u0, u): its side at its middle.
+        let l = poly::eval(f, degree, 0.5 * (u0 + u)) > 0.0;
+        if l != left {
+            at_u(u0);
+            left = l;
+        }
+        u0 = u;
+    }
+    if (sb > 0.0) != left {
+        at_u(1.0);
+    }
 }
 
 #[cfg(test)]
@@ -152,9 +477,7 @@ mod tests {
                 DVec2::new(c - h, c + h),
             ]
         };
-        Outlines {
-            loops: vec![sq(0.0, 2.0), sq(0.0, 1.0)],
-        }
+        Outlines::polygons(vec![sq(0.0, 2.0), sq(0.0, 1.0)])
     }
 
     #[test]

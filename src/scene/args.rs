@@ -192,6 +192,16 @@ impl<'a> Args<'a> {
         Ok(x)
     }
 
+    pub fn string(&self, name: &str) -> Result<Option<&'a str>> {
+        let Some(v) = self.get(name) else {
+            return Ok(None);
+        };
+        match &v.kind {
+            ValueKind::Str(s) => Ok(Some(s.as_str())),
+            _ => Err(self.wrong_type(name, v, "a string")),
+        }
+    }
+
     pub fn boolean(&self, name: &str) -> Result<Option<bool>> {
         let Some(v) = self.get(name) else {
             return Ok(None);

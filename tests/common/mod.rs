@@ -111,14 +111,14 @@ pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
 /// The same region moved off the axis and turned about it: a lathe.
 pub fn l_lathe() -> csgrt::geometry::Shape {
     use csgrt::plane::{Outlines, Region};
-    let moved = Outlines {
-        loops: l_region()
+    let moved = Outlines::polygons(
+        l_region()
             .outlines
             .loops
             .iter()
             .map(|l| l.iter().map(|p| *p + glam::DVec2::new(0.5, -1.0)).collect())
             .collect(),
-    };
+    );
     csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
         profile: std::sync::Arc::new(Region::new(moved)),
     })
@@ -127,18 +127,44 @@ pub fn l_lathe() -> csgrt::geometry::Shape {
 fn l_region() -> csgrt::plane::Region {
     use csgrt::plane::{Outlines, Region};
     let p = |x: f64, y: f64| glam::DVec2::new(x, y);
+    let outlines = Outlines::polygons(vec![
+        vec![
+            p(0.0, 0.0),
+            p(2.0, 0.0),
+            p(2.0, 1.0),
+            p(1.0, 1.0),
+            p(1.0, 2.0),
+            p(0.0, 2.0),
+        ],
+        vec![p(1.3, 0.2), p(1.8, 0.2), p(1.8, 0.7)],
+    ]);
+    Region::new(outlines)
+}
+
+/// A region bounded by curves, as a glyph is: a D whose bow is a cubic
+/// with an S-bend (a curve with an inflection, crossed up to three times
+/// by a line) and whose top is a quadratic, with a lens-shaped hole of two
+/// quadratics, as a prism whose top section is scaled by `top`.
+pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
+    use csgrt::plane::{Ctrl, Outlines, Region};
+    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
     let outlines = Outlines {
         loops: vec![
+            vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 2.0), p(0.0, 2.0)],
+            vec![p(0.3, 0.6), p(0.3, 1.4)],
+        ],
+        ctrl: vec![
             vec![
-                p(0.0, 0.0),
-                p(2.0, 0.0),
-                p(2.0, 1.0),
-                p(1.0, 1.0),
-                p(1.0, 2.0),
-                p(0.0, 2.0),
+                Ctrl::Line,
+                Ctrl::Cubic(p(2.6, 0.3), p(0.2, 1.3)),
+                Ctrl::Quad(p(0.5, 2.6)),
+                Ctrl::Line,
             ],
-            vec![p(1.3, 0.2), p(1.8, 0.2), p(1.8, 0.7)],
+            vec![Ctrl::Quad(p(0.9, 1.0)), Ctrl::Quad(p(0.5, 1.0))],
         ],
     };
-    Region::new(outlines)
+    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
+        region: std::sync::Arc::new(Region::new(outlines)),
+        top,
+    })
 }

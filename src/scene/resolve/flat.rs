@@ -29,7 +29,7 @@ use glam::{DAffine2, DAffine3, DMat3, DVec2, DVec3};
 use std::sync::Arc;
 
 /// The 2-D primitives.
-pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon"];
+pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon", "text"];
 
 /// A region of the plane, as a tree.
 #[derive(Clone, Debug)]
@@ -46,13 +46,7 @@ impl Flat {
     /// meets, a difference keeps its first operand's).
     fn x_range(&self) -> (f64, f64) {
         match self {
-            Flat::Polygon(o) => o
-                .loops
-                .iter()
-                .flatten()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-                    (a.min(p.x), b.max(p.x))
-                }),
+            Flat::Polygon(o) => o.extent(DVec2::X),
             Flat::Ellipse(e) => {
                 let h = DVec2::new(e.matrix2.x_axis.x, e.matrix2.y_axis.x).length();
                 (e.translation.x - h, e.translation.x + h)
@@ -77,13 +71,7 @@ impl Flat {
     fn mirrored_x(&self) -> Flat {
         let m = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
         match self {
-            Flat::Polygon(o) => Flat::Polygon(Outlines {
-                loops: o
-                    .loops
-                    .iter()
-                    .map(|l| l.iter().map(|p| DVec2::new(-p.x, p.y)).collect())
-                    .collect(),
-            }),
+            Flat::Polygon(o) => Flat::Polygon(o.map(|p| DVec2::new(-p.x, p.y))),
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
         }
@@ -99,7 +87,7 @@ pub(super) fn regular_polygon(n: usize, r: f64) -> Outlines {
             DVec2::new(r * c, r * s)
         })
         .collect();
-    Outlines { loops: vec![pts] }
+    Outlines::polygons(vec![pts])
 }
 
 /// Each loop of `o` cut to the half-plane x ≥ 0 (Sutherland–Hodgman: a
@@ -123,7 +111,7 @@ fn clip_right(o: &Outlines) -> Outlines {
             loops.push(out);
         }
     }
-    Outlines { loops }
+    Outlines::polygons(loops)
 }
 
 impl Resolver<'_> {
@@ -207,13 +195,7 @@ impl Resolver<'_> {
 
     /// `square`, `circle` or `polygon` under `m`.
     pub(super) fn flat_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
-        let moved = |o: Outlines| Outlines {
-            loops: o
-                .loops
-                .into_iter()
-                .map(|l| l.into_iter().map(|p| m.transform_point2(p)).collect())
-                .collect(),
-        };
+        let moved = |o: Outlines| o.map(|p| m.transform_point2(p));
         match s.name.as_str() {
             "square" => {
                 let a = Args::bind(self.src, s, &["size", "center"])?;
@@ -234,7 +216,7 @@ impl Resolver<'_> {
                 };
                 let hi = lo + size;
                 let pts = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-                Ok(Some(Flat::Polygon(moved(Outlines { loops: vec![pts] }))))
+                Ok(Some(Flat::Polygon(moved(Outlines::polygons(vec![pts])))))
             }
             "circle" => {
                 let a = Args::bind(self.src, s, &["r", "d"])?;
@@ -252,6 +234,7 @@ impl Resolver<'_> {
                     None => Flat::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
                 }))
             }
+            "text" => self.text(s, m),
             _ => {
                 let a = Args::bind(self.src, s, &["points", "paths", "convexity"])?;
                 let pts = a.points("points", &[2, 3], 0)?;
@@ -273,9 +256,69 @@ impl Resolver<'_> {
                     .iter()
                     .map(|p| p.iter().map(|&i| pts[i as usize].truncate()).collect())
                     .collect();
-                Ok(Some(Flat::Polygon(moved(Outlines { loops }))))
+                Ok(Some(Flat::Polygon(moved(Outlines::polygons(loops)))))
             }
         }
+    }
+
+    /// `text` under `m`: the union of its glyphs.
+    fn text(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+        const PARAMS: &[&str] = &[
+            "text",
+            "size",
+            "font",
+            "halign",
+            "valign",
+            "spacing",
+            "direction",
+            "language",
+            "script",
+        ];
+        let a = Args::bind(self.src, s, PARAMS)?;
+        let text = a.string("text")?.unwrap_or("");
+        if text.chars().count() > crate::text::MAX_TEXT_CHARS {
+            return Err(a.error(
+                a.span_of("text"),
+                "this text is too long",
+                format!(
+                    "expected at most {} characters",
+                    crate::text::MAX_TEXT_CHARS
+                ),
+            ));
+        }
+        let p = crate::text::Params {
+            text,
+            size: a.number("size")?.unwrap_or(10.0),
+            font: a.string("font")?.unwrap_or(""),
+            halign: a.string("halign")?.unwrap_or("left"),
+            valign: a.string("valign")?.unwrap_or("baseline"),
+            spacing: a.number("spacing")?.unwrap_or(1.0),
+            direction: a.string("direction")?.unwrap_or(""),
+            language: a.string("language")?.unwrap_or("en"),
+            script: a.string("script")?.unwrap_or(""),
+        };
+        if p.direction.starts_with(['t', 'T', 'b', 'B']) {
+            return Err(a.error(
+                a.span_of("direction"),
+                "vertical text (`direction` \"ttb\" or \"btt\") is not supported yet",
+                "expected \"ltr\" or \"rtl\"",
+            ));
+        }
+        let laid = crate::text::layout(&p);
+        for (param, w) in &laid.warnings {
+            let place = if a.has(param) {
+                a.span_of(param)
+            } else {
+                s.args_span
+            };
+            self.warn(place, w, "csgrt reads fonts with fontdb; see README, Text");
+        }
+        let glyphs: Vec<Option<Flat>> = laid
+            .glyphs
+            .into_iter()
+            .map(|o| Some(Flat::Polygon(o.map(|p| m.transform_point2(p)))))
+            .collect();
+        Ok(combine(Op::Union, glyphs, Flat::Op))
     }
 
     /// A 2-D shape standing where a solid is expected: OpenSCAD's preview
@@ -487,6 +530,13 @@ impl Resolver<'_> {
     ) -> Result<Option<u32>> {
         match f {
             Flat::Polygon(o) => {
+                if o.curved() {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "turning curved outlines (text) is not supported yet",
+                        "csgrt turns polygons and circles",
+                    ));
+                }
                 let clipped = clip_right(o);
                 if clipped.loops.is_empty() {
                     return Ok(None);

@@ -31,7 +31,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("square", Some(slab)),
     ("circle", Some(slab)),
     ("polygon", Some(slab)),
-    ("text", None),
+    ("text", Some(slab)),
     ("import", None),
     ("surface", None),
     ("projection", None),
