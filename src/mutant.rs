@@ -18,6 +18,8 @@ pub const NAMES: &[&str] = &[
     "outer_color_wins",
     "fov_vertical",
     "cylinder_center_ignored",
+    "curves_as_chords",
+    "kerning_ignored",
 ];
 
 /// Whether the fault `name` is switched on.

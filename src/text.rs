@@ -320,7 +320,16 @@ fn lay_out_with(
         buf.direction(),
         rustybuzz::Direction::LeftToRight | rustybuzz::Direction::RightToLeft
     );
-    let shaped = rustybuzz::shape(face, &[], buf);
+    let features: &[rustybuzz::Feature] = if crate::mutant::active("kerning_ignored") {
+        &[rustybuzz::Feature::new(
+            ttf_parser::Tag::from_bytes(b"kern"),
+            0,
+            ..,
+        )]
+    } else {
+        &[]
+    };
+    let shaped = rustybuzz::shape(face, features, buf);
     let upem = face.units_per_em() as f64;
     let em = em_26_6(face);
     // Font units to OpenSCAD's: the outline's (÷1e5) and the advances' and

@@ -282,6 +282,25 @@ fn a_missing_model_is_an_io_error() {
 }
 
 #[test]
+fn a_missing_font_family_falls_back_to_the_built_in_font_with_a_warning() {
+    let text = "linear_extrude(1) text(\"Hi\", font = \"Nowhere Sans:style=Bold\");\n";
+    let (dir, _) = scene("f.csg", text);
+    let r = csgrt(dir.path(), &["f.csg", "--size", "40x30", "-q"]);
+    assert_eq!(r.status, 0);
+    assert_eq!(
+        r.stderr,
+        "warning: font `Nowhere Sans` is not installed; using Liberation Sans:style=Bold\n --> f.csg:1:37\n  |\n1 | linear_extrude(1) text(\"Hi\", font = \"Nowhere Sans:style=Bold\");\n  |                                     ^^^^^^^^^^^^^^^^^^^^^^^^^ expected an installed family (Liberation Sans is built in)\n"
+    );
+    // The same picture as the built-in family named outright.
+    let (dir2, _) = scene("f.csg", &text.replace("Nowhere Sans", "Liberation Sans"));
+    let r2 = csgrt(dir2.path(), &["f.csg", "--size", "40x30", "-q"]);
+    assert_eq!((r2.status, r2.stderr.as_str()), (0, ""));
+    let a = std::fs::read(dir.path().join("f.png")).unwrap();
+    let b = std::fs::read(dir2.path().join("f.png")).unwrap();
+    assert_eq!(a, b);
+}
+
+#[test]
 fn an_empty_scene_warns_and_renders_the_background() {
     let (dir, _) = scene("e.csg", "background([0, 0, 1]);\n");
     let r = csgrt(dir.path(), &["e.csg", "--size", "4x3", "-q"]);
@@ -359,6 +378,20 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     assert_eq!(
         fails("linear_extrude(height = 2) {\n  cube(1);\n}\n"),
         "error: `cube` is a 3-D solid and cannot stand in a 2-D shape\n --> bad.csg:2:3\n  |\n2 |   cube(1);\n  |   ^^^^ expected a 2-D shape (square, circle, polygon) or a 2-D operation\n"
+    );
+    // A text that is no string, at the value; vertical text, at its
+    // direction; a turned text, at the extrusion.
+    assert_eq!(
+        fails("text(text = 5);\n"),
+        "error: `text` of `text` must be a string\n --> bad.csg:1:13\n  |\n1 | text(text = 5);\n  |             ^ expected a string, found a number\n"
+    );
+    assert_eq!(
+        fails("text(\"a\", direction = \"ttb\");\n"),
+        "error: vertical text (`direction` \"ttb\" or \"btt\") is not supported yet\n --> bad.csg:1:23\n  |\n1 | text(\"a\", direction = \"ttb\");\n  |                       ^^^^^ expected \"ltr\" or \"rtl\"\n"
+    );
+    assert_eq!(
+        fails("rotate_extrude() translate([5, 0]) text(\"J\");\n"),
+        "error: turning curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | rotate_extrude() translate([5, 0]) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt turns polygons and circles\n"
     );
     // OpenSCAD's error for a shape across the axis, with its range.
     assert_eq!(

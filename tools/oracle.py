@@ -115,9 +115,34 @@ def svd(leaf):
     return leaf._svd
 
 
+def curve_steps(n):
+    """The pieces a quadratic edge is cut into at n circle segments."""
+    return max(2, n // 16)
+
+
+def flatten_curves(f, n):
+    """A curves leaf as polygons: each quadratic cut into equal steps of
+    its parameter, the points on the curve (the chords inscribed)."""
+    m = curve_steps(n)
+    u = np.arange(m)[:, None] / m
+    loops = []
+    for l in f[1]:
+        pts = []
+        for i, (a, c) in enumerate(l):
+            if c is None:
+                pts.append(a[None, :])
+            else:
+                b = l[(i + 1) % len(l)][0]
+                pts.append((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b)
+        loops.append(np.concatenate(pts))
+    return loops
+
+
 def cross_section(f, n):
     """manifold's cross-section of a 2-D tree of scene.py (circles as
-    n-gons inscribed in them)."""
+    n-gons inscribed in them, quadratic edges as inscribed polylines)."""
+    if f[0] == "curves":
+        return mf.CrossSection([l.tolist() for l in flatten_curves(f, n)], mf.FillRule.EvenOdd)
     if f[0] == "poly":
         return mf.CrossSection([l.tolist() for l in f[1]], mf.FillRule.EvenOdd)
     if f[0] == "ellipse":
@@ -182,7 +207,7 @@ def ellipses(f):
     """The ellipses (A, c) of a 2-D tree."""
     if f[0] == "ellipse":
         return [(f[1], f[2])]
-    if f[0] == "poly":
+    if f[0] in ("poly", "curves"):
         return []
     return [e for k in f[2] for e in ellipses(k)]
 
@@ -191,6 +216,8 @@ def flat_extent(f):
     """The largest |coordinate| of a 2-D tree's leaves."""
     if f[0] == "poly":
         return float(max(np.abs(l).max() for l in f[1]))
+    if f[0] == "curves":
+        return float(np.abs(np.array(reader.curve_extent(f))).max())
     if f[0] == "ellipse":
         return float(np.abs(f[2]).max() + np.linalg.norm(f[1], 2))
     return max(flat_extent(k) for k in f[2])
@@ -208,14 +235,62 @@ def extrusion_facets(leaf, n):
     sv = ellipse_singular_values(leaf)
     if leaf.kind == "linear_extrude":
         k = max(1.0, p["scale"])
-        dist = max((s[0] * k * b for s in sv), default=0.0)
-        ang = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
+        qd, qa = quad_facets(leaf, n)
+        dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k)
+        ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa)
         return dist, ang
     R = flat_extent(p["flat"])
     emax = max((s[0] for s in sv), default=0.0)
     dist = (R + emax) * b + emax * b
     ang = (2 if sv else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
     return dist, ang
+
+
+def quads(f):
+    """The quadratic edges (a, c, b) of a 2-D tree."""
+    if f[0] == "curves":
+        return [e for e in reader.curve_pieces(f) if e[1] is not None]
+    if f[0] in ("poly", "ellipse"):
+        return []
+    return [e for k in f[2] for e in quads(k)]
+
+
+def quad_facets(leaf, n):
+    """(distance, angle) of the inscribed polylines of the leaf's quadratic
+    edges at n: a parabola B with B'' = 2 (a - 2c + b) is within |B''| h^2
+    / 8 of its chord over a parameter step h = 1/m; its tangent turns one
+    way only, and a chord is parallel to the tangent somewhere in its step
+    (the mean value theorem), so the chord's normal is within the angle
+    between the tangents at the step's ends of the curve's, which is the
+    largest over the steps. Computed once a leaf and n."""
+    cache = leaf.__dict__.setdefault("_quad_facets", {})
+    if n not in cache:
+        m = curve_steps(n)
+        dist = ang = 0.0
+        u = np.arange(m + 1) / m
+        for a, c, b in quads(leaf.params["flat"]):
+            dist = max(dist, float(np.linalg.norm(a - 2 * c + b)) * 2 / (8 * m * m))
+            t = 2 * (1 - u)[:, None] * (c - a) + 2 * u[:, None] * (b - c)
+            t0, t1 = t[:-1], t[1:]
+            cr = t0[:, 0] * t1[:, 1] - t0[:, 1] * t1[:, 0]
+            dt = (t0 * t1).sum(axis=1)
+            ang = max(ang, float(np.abs(np.arctan2(cr, dt)).max()))
+        cache[n] = (dist, ang)
+    return cache[n]
+
+
+def quad_min_radius(a, c, b):
+    """The smallest curvature radius |B'|^3 / |B' x B''| of a quadratic
+    edge: B' x B'' is constant, so it is where |B'| is smallest (the
+    minimum of a quadratic in u on [0, 1])."""
+    p, q = 2 * (c - a), 2 * (b - c)
+    k = abs(float(p[0] * q[1] - p[1] * q[0]))
+    if k == 0:
+        return math.inf
+    d = q - p
+    u = 0.0 if d @ d == 0 else min(1.0, max(0.0, float(-(p @ d) / (d @ d))))
+    v = p + u * d
+    return float(np.linalg.norm(v)) ** 3 / k
 
 
 def ellipse_singular_values(leaf):
@@ -229,9 +304,13 @@ def ellipse_singular_values(leaf):
 def extrusion_curvature(leaf):
     """The smallest object-space curvature radius of an extrusion's circles
     (a tapered one's at its smaller end; infinite without circles)."""
-    sv = ellipse_singular_values(leaf)
-    k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
-    return min((s[1] * k for s in sv), default=math.inf)
+    if not hasattr(leaf, "_curvature"):
+        sv = ellipse_singular_values(leaf)
+        k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
+        r = min((s[1] * k for s in sv), default=math.inf)
+        r = min([r] + [quad_min_radius(*e) * k for e in quads(leaf.params["flat"])])
+        leaf._curvature = r
+    return leaf._curvature
 
 
 def facet_distance(leaf, n):
@@ -325,12 +404,27 @@ def features(f):
     polygon edge, ("ellipse", A, c) per circle."""
     if f[0] == "poly":
         return [("seg", l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
+    if f[0] == "curves":
+        return [("seg", a, b_) if c is None else ("quad", a, c, b_) for a, c, b_ in reader.curve_pieces(f)]
     if f[0] == "ellipse":
         return [f]
     return [x for k in f[2] for x in features(k)]
 
 
+QUAD_SAMPLES = np.linspace(0.0, 1.0, 257)[:, None]
+
+
 def feature_distance(ft, q):
+    if ft[0] == "quad":
+        # Which piece a point is on: the nearest of dense samples, refined
+        # between its neighbours (a classification, not a bound).
+        a, c, b = ft[1], ft[2], ft[3]
+        u = QUAD_SAMPLES
+        d = np.linalg.norm((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b - q, axis=1)
+        i = int(np.argmin(d))
+        lo, hi = QUAD_SAMPLES[max(i - 1, 0), 0], QUAD_SAMPLES[min(i + 1, 256), 0]
+        u = np.linspace(lo, hi, 65)[:, None]
+        return float(np.linalg.norm((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b - q, axis=1).min())
     if ft[0] == "seg":
         a, b = ft[1], ft[2]
         e = b - a

@@ -26,6 +26,7 @@ Usage: pov_check.py [--csgrt BIN] SCENE...   (exit 1 if any differs)
 """
 
 import argparse
+import math
 import os
 import re
 import subprocess
@@ -107,6 +108,117 @@ def even_odd(loops, q):
     return inside
 
 
+def bezier_even_odd(segments, q):
+    """Points q (n x 2) inside closed loops of Bézier segments (each a
+    (k, 2) array of control points, k = 2 for a line, 3 a quadratic, 4 a
+    cubic) by the even-odd rule: the crossings of the line from each point
+    along +x, half-open in y like even_odd. A cubic that is a raised
+    quadratic or line (POV-Ray's bezier_spline carries them so) is lowered
+    back. Each curve is cut where y' vanishes into pieces monotone in y; a
+    quadratic piece's crossing comes from the quadratic formula, a cubic's
+    by bisection (60 halvings)."""
+    inside = np.zeros(len(q), dtype=bool)
+    for P in segments:
+        P = lowered(np.asarray(P, float))
+        if len(P) == 2:
+            inside ^= even_odd_segment(P[0], P[1], q)
+            continue
+        yk = bezier_power(P[:, 1])
+        xk = bezier_power(P[:, 0])
+        dy = np.polynomial.polynomial.Polynomial(yk).deriv()
+        cuts = [0.0] + sorted(float(r.real) for r in dy.roots() if abs(r.imag) < 1e-12 and 0 < r.real < 1) + [1.0]
+        for u0, u1 in zip(cuts[:-1], cuts[1:]):
+            a, b = bezier_at(P, u0), bezier_at(P, u1)
+            cross = (a[1] > q[:, 1]) != (b[1] > q[:, 1])
+            if not cross.any():
+                continue
+            idx = np.nonzero(cross)[0]
+            y = q[idx, 1]
+            if len(P) == 3:
+                u = quadratic_root_in(yk[2], yk[1], yk[0] - y, u0, u1)
+            else:
+                lo, hi = np.full(len(idx), u0), np.full(len(idx), u1)
+                rising = b[1] > a[1]
+                for _ in range(60):
+                    mid = 0.5 * (lo + hi)
+                    above = bezier_at(P, mid)[..., 1] > y
+                    go_lo = above if rising else ~above
+                    hi = np.where(go_lo, mid, hi)
+                    lo = np.where(go_lo, lo, mid)
+                u = 0.5 * (lo + hi)
+            x = np.polynomial.polynomial.polyval(u, xk)
+            inside[idx] ^= x > q[idx, 0]
+    return inside
+
+
+def lowered(P):
+    """A Bézier of degree 3 that is exactly a raised quadratic (or line),
+    as that (to rounding)."""
+    if len(P) != 4:
+        return P
+    scale = max(1.0, float(np.abs(P).max()))
+    if np.abs(P[0] - 3 * P[1] + 3 * P[2] - P[3]).max() > 1e-12 * scale:
+        return P
+    c = (3 * P[1] - P[0]) / 2
+    if np.abs(P[0] - 2 * c + P[3]).max() <= 1e-12 * scale:
+        return np.array([P[0], P[3]])
+    return np.array([P[0], c, P[3]])
+
+
+def quadratic_root_in(a, b, c, u0, u1):
+    """For each c (an array), the root of a u^2 + b u + c in [u0, u1] (the
+    polynomial is monotone there and changes sign), by the formula that
+    does not cancel, clipped to the piece."""
+    if abs(a) <= 1e-15 * max(abs(b), 1e-300):
+        return np.clip(-c / b, u0, u1)
+    disc = np.sqrt(np.maximum(b * b - 4 * a * c, 0.0))
+    qq = -0.5 * (b + np.copysign(disc, b))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r1, r2 = qq / a, np.where(qq != 0, c / qq, -b / (2 * a))
+    mid = 0.5 * (u0 + u1)
+    pick = np.abs(r1 - mid) <= np.abs(r2 - mid)
+    return np.clip(np.where(pick, r1, r2), u0, u1)
+
+
+def even_odd_segment(a, b, q):
+    cross = (a[1] > q[:, 1]) != (b[1] > q[:, 1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x = a[0] + (q[:, 1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+    return cross & (x > q[:, 0])
+
+
+def bezier_power(c):
+    """Power-basis coefficients (lowest first) of a Bézier coordinate."""
+    k = len(c) - 1
+    return [math.comb(k, j) * sum((-1) ** (j - i) * math.comb(j, i) * c[i] for i in range(j + 1)) for j in range(k + 1)]
+
+
+def bezier_at(P, u):
+    """De Casteljau's point of the Bézier P at parameter(s) u."""
+    u = np.asarray(u, float)[..., None]
+    pts = [np.broadcast_to(p, u.shape[:-1] + (2,)) for p in P]
+    while len(pts) > 1:
+        pts = [(1 - u) * a + u * b for a, b in zip(pts[:-1], pts[1:])]
+    return pts[0]
+
+
+def bezier_loops(pts):
+    """POV-Ray's bezier_spline point list: four points a segment, a
+    sub-prism closing where a segment ends on its first segment's start."""
+    if len(pts) % 4:
+        raise ValueError("a bezier_spline whose point count is not a multiple of 4")
+    segs, out, start = [np.array(pts[i : i + 4]) for i in range(0, len(pts), 4)], [], 0
+    for i, sg in enumerate(segs):
+        if i > start and not np.array_equal(sg[0], segs[i - 1][3]):
+            raise ValueError("a bezier_spline segment that does not start where the last ended")
+        if np.array_equal(sg[3], segs[start][0]):
+            out.extend(segs[start : i + 1])
+            start = i + 1
+    if start != len(segs):
+        raise ValueError("a bezier_spline outline that does not close")
+    return out
+
+
 def sub_polygons(pts):
     """POV-Ray's point list of a prism or lathe: a sub-polygon closes
     where its first point comes again."""
@@ -139,7 +251,8 @@ class PovLeaf:
             w = y if p["sweep"] == "conic_sweep" else np.ones(len(q))
             with np.errstate(divide="ignore", invalid="ignore"):
                 flat = np.column_stack([q[:, 0] / w, q[:, 2] / w])
-            return (y >= p["h0"]) & (y <= p["h1"]) & (w > 0) & even_odd(p["loops"], flat)
+            region = bezier_even_odd(p["segments"], flat) if "segments" in p else even_odd(p["loops"], flat)
+            return (y >= p["h0"]) & (y <= p["h1"]) & (w > 0) & region
         if self.kind == "lathe":
             return even_odd(p["loops"], np.column_stack([np.hypot(q[:, 0], q[:, 2]), q[:, 1]]))
         if self.kind == "torus":
@@ -218,8 +331,9 @@ def read_object(s, kind):
     elif kind in ("prism", "lathe"):
         if kind == "prism":
             p["sweep"] = s.take()
-        if s.take() != "linear_spline":
-            raise ValueError(f"a {kind} without linear_spline")
+        spline = s.take()
+        if spline not in ("linear_spline", "bezier_spline") or spline == "bezier_spline" and kind != "prism":
+            raise ValueError(f"a {kind} with {spline}")
         if kind == "prism":
             p["h0"] = s.number()
             s.take(",")
@@ -230,7 +344,10 @@ def read_object(s, kind):
         for k in range(count):
             s.take(",")
             pts.append(s.vector())
-        p["loops"] = sub_polygons([np.array(x[:2]) for x in pts])
+        if spline == "bezier_spline":
+            p["segments"] = bezier_loops([np.array(x[:2]) for x in pts])
+        else:
+            p["loops"] = sub_polygons([np.array(x[:2]) for x in pts])
         if kind == "lathe" and len(p["loops"]) != 1:
             raise ValueError("a lathe of several outlines")
     else:
@@ -397,6 +514,8 @@ def flat_inside(f, q2):
     """Points q2 (n x 2) inside a 2-D tree of scene.py."""
     if f[0] == "poly":
         return even_odd(f[1], q2)
+    if f[0] == "curves":
+        return bezier_even_odd([np.array([a, b]) if c is None else np.array([a, c, b]) for a, c, b in reader.curve_pieces(f)], q2)
     if f[0] == "ellipse":
         u = np.linalg.solve(f[1], (q2 - f[2]).T).T
         return np.sum(u**2, axis=1) <= 1.0
@@ -404,7 +523,7 @@ def flat_inside(f, q2):
 
 
 def flat_leaves(f):
-    if f[0] in ("poly", "ellipse"):
+    if f[0] in ("poly", "ellipse", "curves"):
         return [f]
     return [x for k in f[2] for x in flat_leaves(k)]
 

@@ -39,6 +39,7 @@ Usage as a module: `read(path, width, height)` -> Scene.
 """
 
 import math
+import os
 import re
 
 import numpy as np
@@ -211,6 +212,7 @@ PARAMS = {
     "square": ["size", "center"],
     "circle": ["r", "d"],
     "polygon": ["points", "paths", "convexity"],
+    "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
     "rotate_extrude": ["angle", "convexity", "file", "layer", "origin"],
     "translate": ["v"],
@@ -232,7 +234,7 @@ PARAMS = {
     "point_light": ["color", "position"],
 }
 SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace")
-SHAPES_2D = ("square", "circle", "polygon")
+SHAPES_2D = ("square", "circle", "polygon", "text")
 EXTRUSIONS = ("linear_extrude", "rotate_extrude")
 TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
 SCENE = ("camera", "background", "ambient_light", "directional_light", "point_light")
@@ -491,6 +493,10 @@ class Reader:
     def flat(self, s, m):
         """A 2-D statement under the plane matrix m (3x3, homogeneous) as a
         tree: ("poly", [loops as (k, 2) arrays]) filled even-odd,
+        ("curves", [loops]) the same with curved edges (a loop a list of
+        (point, control) pairs, the edge from each point to the next a line
+        when control is None, else the quadratic Bézier through it: a
+        glyph),
         ("ellipse", A, c) the image of the unit disc under x -> A x + c,
         ("op", name, kids); None when empty."""
         if "%" in s.mods or "*" in s.mods:
@@ -552,6 +558,8 @@ class Reader:
                 pts = [[r * c, r * si] for si, c in sc]
                 return ("poly", [place(pts)])
             return ("ellipse", m[:2, :2] * r, m[:2, 2].copy())
+        if k == "text":
+            return text_2d(self, s, a, place)
         pts = a.get("points")
         if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) for p in pts):
             raise self.err(s, "points of polygon must be a list of 2-D points")
@@ -806,6 +814,171 @@ def leaf_box(leaf):
     return lo, hi
 
 
+# --------------------------------------------------------------------------
+# text(): OpenSCAD 2021.01's layout (src/FreetypeRenderer.cc), read with
+# HarfBuzz (uharfbuzz, the C library) for shaping and fontTools for the
+# glyphs, from the font files csgrt builds in (fonts/).
+# --------------------------------------------------------------------------
+
+FONT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fonts")
+FONT_FILES = {
+    (False, False): "LiberationSans-Regular.ttf",
+    (True, False): "LiberationSans-Bold.ttf",
+    (False, True): "LiberationSans-Italic.ttf",
+    (True, True): "LiberationSans-BoldItalic.ttf",
+}
+_FONTS = {}
+
+
+def font_file(name):
+    """The built-in face for a fontconfig name ("Family:style=Bold"): the
+    oracle knows Liberation Sans only, and any other family falls back to
+    it, as csgrt does on a machine without that family."""
+    name = name.strip() or "Liberation Sans:style=Regular"
+    props = [p.split("=", 1)[-1].lower() for p in name.split(":")[1:]]
+    words = " ".join(props).replace("-", " ").split()
+    bold = "bold" in words
+    italic = any(w in ("italic", "oblique") for w in words)
+    return os.path.join(FONT_DIR, FONT_FILES[(bold, italic)])
+
+
+def font(path):
+    if path not in _FONTS:
+        import uharfbuzz as hb
+        from fontTools.ttLib import TTFont
+
+        tt = TTFont(path)
+        face = hb.Face(hb.Blob.from_file_path(path))
+        _FONTS[path] = (tt, tt.getGlyphSet(), hb.Font(face), tt.getGlyphOrder())
+    return _FONTS[path]
+
+
+def glyph_loops(glyph_set, name):
+    """A glyph's contours in font units: loops of (point, control or None),
+    TrueType's implied on-curve points made explicit by fontTools."""
+    from fontTools.pens.basePen import BasePen
+
+    class Pen(BasePen):
+        def __init__(self):
+            super().__init__(glyph_set)
+            self.loops, self.cur = [], None
+
+        def _moveTo(self, p):
+            self.cur = [(np.array(p, float), None)]
+            self.loops.append(self.cur)
+
+        def _lineTo(self, p):
+            self.cur.append((np.array(p, float), None))
+
+        def _qCurveToOne(self, c, p):
+            self.cur[-1] = (self.cur[-1][0], np.array(c, float))
+            self.cur.append((np.array(p, float), None))
+
+        def _curveToOne(self, c1, c2, p):
+            raise ValueError("cubic glyph outlines are not in the oracle")
+
+        def _closePath(self):
+            l = self.cur
+            if len(l) > 1 and np.array_equal(l[-1][0], l[0][0]):
+                l.pop()
+            self.cur = None
+
+        _endPath = _closePath
+
+    pen = Pen()
+    glyph_set[name].draw(pen)
+    out = []
+    for l in pen.loops:
+        # Zero-length straight edges are no edges.
+        l = [e for i, e in enumerate(l) if e[1] is not None or not np.array_equal(e[0], l[(i + 1) % len(l)][0])]
+        if len(l) >= 3 or len(l) == 2 and any(c is not None for _, c in l):
+            out.append(l)
+    return out
+
+
+def text_2d(rd, s, a, place):
+    import uharfbuzz as hb
+
+    text = a.get("text", "")
+    if not isinstance(text, str):
+        raise rd.err(s, "text of text must be a string")
+    size = num(rd.path, s, a, "size", 10.0)
+    spacing = num(rd.path, s, a, "spacing", 1.0)
+    direction = a.get("direction", "")
+    if direction[:1].lower() in ("t", "b"):
+        raise rd.err(s, "vertical text is not in the oracle")
+    tt, gs, hbfont, order = font(font_file(a.get("font", "")))
+    buf = hb.Buffer()
+    buf.add_str(text)
+    if direction[:1].lower() in ("l", "r"):
+        buf.direction = "ltr" if direction[:1].lower() == "l" else "rtl"
+    if a.get("script"):
+        try:
+            buf.script = a["script"]
+        except Exception:
+            pass
+    if a.get("language", "en"):
+        buf.language = a.get("language", "en")
+    buf.guess_segment_properties()
+    hb.shape(hbfont, buf, {})
+    upem = tt["head"].unitsPerEm
+    # FT_Set_Char_Size(face, 0, 1e5, 100, 100): the em in 26.6 units, the
+    # ppem rounded to a whole pixel when head.flags bit 3 says so.
+    em = round(1e5 * 100 / 72)
+    if tt["head"].flags & 8:
+        em = math.floor((em + 32) / 64) * 64
+    k_out, k_met = em / upem / 1e5, em / upem / 1.024e5
+    glyphs, width, asc, desc = [], 0.0, 0.0, 0.0
+    for info, pos in zip(buf.glyph_infos, buf.glyph_positions):
+        loops = glyph_loops(gs, order[info.codepoint])
+        pts = [q for l in loops for e in l for q in e if q is not None]
+        lo = np.min(pts, axis=0) if pts else np.zeros(2)
+        hi = np.max(pts, axis=0) if pts else np.zeros(2)
+        # FreeType's grid-fitted control box (26.6 units, whole pixels).
+        lo = np.floor(lo * em / upem / 64) * 64
+        hi = np.ceil(hi * em / upem / 64) * 64
+        asc, desc = max(asc, max(0.0, hi[1] / 1.024e5)), max(desc, max(0.0, -lo[1] / 1.024e5))
+        adv = np.array([pos.x_advance, pos.y_advance], float) * k_met
+        width += adv[0] * spacing
+        glyphs.append((loops, np.array([pos.x_offset, pos.y_offset], float) * k_met, adv))
+    halign, valign = a.get("halign", "left"), a.get("valign", "baseline")
+    x0 = {"right": -width, "center": -width / 2}.get(halign, 0.0)
+    y0 = {"top": -asc, "center": desc / 2 - asc / 2, "bottom": desc}.get(valign, 0.0)
+    pen, parts = np.zeros(2), []
+    for loops, off, adv in glyphs:
+        shift = np.array([x0, y0]) + off + pen
+        pen = pen + adv * spacing
+        if not loops:
+            continue
+        moved = [[(place([size * (q * k_out + shift)])[0], None if c is None else place([size * (c * k_out + shift)])[0]) for q, c in l] for l in loops]
+        parts.append(("curves", moved))
+    if not parts:
+        return None
+    return parts[0] if len(parts) == 1 else ("op", "union", parts)
+
+
+def curve_pieces(f):
+    """The edges of a ("curves", loops) leaf as (a, c or None, b)."""
+    return [(l[i][0], l[i][1], l[(i + 1) % len(l)][0]) for l in f[1] for i in range(len(l))]
+
+
+def curve_extent(f):
+    """The exact box (lo, hi) of a curves leaf: a quadratic's extremes are
+    at its ends or where a coordinate's derivative vanishes."""
+    pts = []
+    for a, c, b in curve_pieces(f):
+        pts.append(a)
+        if c is not None:
+            for i in range(2):
+                den = a[i] - 2 * c[i] + b[i]
+                if den != 0:
+                    u = (a[i] - c[i]) / den
+                    if 0 < u < 1:
+                        pts.append((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b)
+    pts = np.array(pts)
+    return pts.min(axis=0), pts.max(axis=0)
+
+
 def clip_right(loops):
     """Each loop cut to x >= 0 (Sutherland-Hodgman)."""
     out = []
@@ -825,6 +998,8 @@ def clip_right(loops):
 
 def flat_mirror(f):
     """The tree mirrored in x = 0."""
+    if f[0] == "curves":
+        raise ValueError("turning text is not in the oracle")
     if f[0] == "poly":
         return ("poly", [l * [-1.0, 1.0] for l in f[1]])
     if f[0] == "ellipse":
@@ -839,6 +1014,9 @@ def flat_x_range(f):
     if f[0] == "poly":
         xs = np.concatenate([l[:, 0] for l in f[1]])
         return xs.min(), xs.max()
+    if f[0] == "curves":
+        lo, hi = curve_extent(f)
+        return lo[0], hi[0]
     if f[0] == "ellipse":
         h = math.hypot(f[1][0, 0], f[1][0, 1])
         return f[2][0] - h, f[2][0] + h
@@ -892,9 +1070,12 @@ def extrusion_box(leaf):
         h, z0, s = p["h"], p["z0"], p["scale"]
 
         def rec(f):
-            if f[0] == "poly":
-                pts = np.concatenate(f[1])
-                lo, hi = pts.min(axis=0), pts.max(axis=0)
+            if f[0] in ("poly", "curves"):
+                if f[0] == "poly":
+                    pts = np.concatenate(f[1])
+                    lo, hi = pts.min(axis=0), pts.max(axis=0)
+                else:
+                    lo, hi = curve_extent(f)
                 lo, hi = np.minimum(lo, lo * s), np.maximum(hi, hi * s)
                 return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
             if f[0] == "ellipse":

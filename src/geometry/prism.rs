@@ -61,9 +61,8 @@ impl Prism {
             return;
         }
         let mut cuts: smallvec::SmallVec<[(f64, Part); 16]> = smallvec::SmallVec::new();
-        for (e, &(a, b)) in self.region.edges.iter().enumerate() {
+        for (e, a, ctrl, b) in self.region.edges_meeting(line) {
             let (sa, sb) = (line.dot(a.extend(1.0)), line.dot(b.extend(1.0)));
-            let ctrl = self.region.ctrl[e];
             if ctrl != Ctrl::Line {
                 // The curve's points on the image ℓ·(q, 1) = 0, each met
                 // where o_xy + t·d_xy = w(t)·q: t by least squares along

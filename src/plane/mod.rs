@@ -12,7 +12,7 @@
 //! made of once the slab is clipped.
 
 use crate::geometry::poly::{self, roots_in, Poly};
-use glam::{DAffine2, DAffine3, DMat2, DVec2};
+use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};
 
 /// The plane's part of a space transform, as OpenSCAD applies it to 2-D
 /// shapes (`None` when it flattens them: a zero determinant).
@@ -217,12 +217,6 @@ impl Outlines {
         r
     }
 
-    /// Every point and control point.
-    pub fn all_points(&self) -> impl Iterator<Item = DVec2> + '_ {
-        let ctrl = self.ctrl.iter().flatten().flat_map(|c| c.points());
-        self.loops.iter().flatten().copied().chain(ctrl)
-    }
-
     /// Every edge as (start, how it runs, end).
     pub fn edges(&self) -> impl Iterator<Item = (DVec2, Ctrl, DVec2)> + '_ {
         self.loops.iter().enumerate().flat_map(move |(j, l)| {
@@ -238,7 +232,7 @@ impl Outlines {
     /// y so that a vertex on it is counted once.
     pub fn contains(&self, p: DVec2) -> bool {
         let mut inside = false;
-        crossings(self.edges(), p, DVec2::X, |s, _| {
+        crossings(numbered(self.edges()), p, DVec2::X, |s, _| {
             if s > 0.0 {
                 inside = !inside;
             }
@@ -254,7 +248,7 @@ impl Outlines {
     /// region lies to the line's left. A curve counts where it passes from
     /// one side to the other.
     pub fn spans(&self, o: DVec2, d: DVec2) -> Vec<(f64, f64)> {
-        sorted_crossings(self.edges(), o, d)
+        sorted_crossings(numbered(self.edges()), o, d)
             .chunks_exact(2)
             .map(|c| (c[0].0, c[1].0))
             .filter(|(s0, s1)| s0 < s1)
@@ -264,9 +258,7 @@ impl Outlines {
 
 /// Outlines made ready for ray queries: their edges, each with its unit
 /// outward normal (the side the region is not on, found once at its
-/// middle; for a curve, the sign that turns its tangent's right-hand
-/// perpendicular outward), and their box (which holds every curve: a
-/// Bézier curve lies in the hull of its control points).
+/// middle; for a curve, its outward normal there), and their exact box.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Region {
     pub outlines: Outlines,
@@ -275,6 +267,8 @@ pub struct Region {
     pub normals: Vec<DVec2>,
     pub lo: DVec2,
     pub hi: DVec2,
+    /// Above [`FLAT_EDGES`] edges, the tree over them.
+    pub tree: Option<EdgeTree>,
 }
 
 impl Region {
@@ -282,10 +276,8 @@ impl Region {
         let all: Vec<(DVec2, Ctrl, DVec2)> = outlines.edges().collect();
         let edges: Vec<(DVec2, DVec2)> = all.iter().map(|&(a, _, b)| (a, b)).collect();
         let ctrl: Vec<Ctrl> = all.iter().map(|&(_, c, _)| c).collect();
-        let (lo, hi) = outlines.all_points().fold(
-            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
-            |(lo, hi), a| (lo.min(a), hi.max(a)),
-        );
+        let ((x0, x1), (y0, y1)) = (outlines.extent(DVec2::X), outlines.extent(DVec2::Y));
+        let (lo, hi) = (DVec2::new(x0, y0), DVec2::new(x1, y1));
         let size = lo.abs().max(hi.abs()).max_element().max(1e-300);
         let normals = all
             .iter()
@@ -302,6 +294,17 @@ impl Region {
                 }
             })
             .collect();
+        let tree = (edges.len() > FLAT_EDGES).then(|| {
+            let boxes: Vec<(DVec2, DVec2)> = edges
+                .iter()
+                .zip(&ctrl)
+                .map(|(&(a, b), c)| {
+                    c.points()
+                        .fold((a.min(b), a.max(b)), |(lo, hi), p| (lo.min(p), hi.max(p)))
+                })
+                .collect();
+            EdgeTree::new(&boxes)
+        });
         Region {
             outlines,
             edges,
@@ -309,6 +312,7 @@ impl Region {
             normals,
             lo,
             hi,
+            tree,
         }
     }
 
@@ -370,26 +374,176 @@ impl Region {
 
     /// Whether point `p` is inside.
     pub fn contains(&self, p: DVec2) -> bool {
-        self.outlines.contains(p)
+        let mut inside = false;
+        crossings(self.edges_near(p, DVec2::X), p, DVec2::X, |s, _| {
+            if s > 0.0 {
+                inside = !inside;
+            }
+        });
+        inside
     }
 
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
     pub fn crossings(&self, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
-        sorted_crossings(
-            self.edges
-                .iter()
-                .zip(&self.ctrl)
-                .map(|(&(a, b), &c)| (a, c, b)),
-            o,
-            d,
-        )
+        sorted_crossings(self.edges_near(o, d), o, d)
     }
+
+    /// The edges that may cross the line `o + s·d`: all of them, but for
+    /// boxes of the edge tree the line passes clear of.
+    fn edges_near(
+        &self,
+        o: DVec2,
+        d: DVec2,
+    ) -> impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)> + '_ {
+        let n = d.perp();
+        self.edges_meeting(DVec3::new(n.x, n.y, -o.dot(n)))
+    }
+
+    /// The edges that may meet the line ℓ·(x, y, 1) = 0, as (index, start,
+    /// how it runs, end), by index.
+    pub fn edges_meeting(
+        &self,
+        line: DVec3,
+    ) -> impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)> + '_ {
+        let mut ids: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
+        match &self.tree {
+            None => ids.extend(0..self.edges.len() as u32),
+            Some(t) => {
+                t.visit(line, &mut |k| ids.push(k));
+                ids.sort_unstable();
+            }
+        }
+        ids.into_iter().map(move |k| {
+            let (a, b) = self.edges[k as usize];
+            (k, a, self.ctrl[k as usize], b)
+        })
+    }
+}
+
+/// The most edges a region checks one by one; above, an [`EdgeTree`].
+pub const FLAT_EDGES: usize = 12;
+
+/// A bounding-box tree over a region's edges (the box of a curve is that
+/// of its control points, which hold it), so that a line is tested against
+/// about log(edges) boxes and the edges near it. A box is passed over only
+/// when all four corners lie strictly on one side of the line by more than
+/// the rounding of the side's value (1e-14 of the terms' magnitude, far
+/// above the few ulps either is computed to), so no edge that would have
+/// counted is left out: the answers are the same as testing every edge.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EdgeTree {
+    nodes: Vec<TreeNode>,
+    order: Vec<u32>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+struct TreeNode {
+    lo: DVec2,
+    hi: DVec2,
+    /// A leaf: `count` edges of `order` from `first`; else children at
+    /// `first` and `first + 1`.
+    first: u32,
+    count: u32,
+}
+
+const TREE_LEAF: usize = 4;
+
+impl EdgeTree {
+    fn new(boxes: &[(DVec2, DVec2)]) -> EdgeTree {
+        let mut t = EdgeTree {
+            nodes: Vec::new(),
+            order: (0..boxes.len() as u32).collect(),
+        };
+        t.nodes.push(TreeNode {
+            lo: DVec2::ZERO,
+            hi: DVec2::ZERO,
+            first: 0,
+            count: 0,
+        });
+        t.build(0, 0, boxes.len(), boxes);
+        t
+    }
+
+    fn build(&mut self, node: usize, start: usize, end: usize, boxes: &[(DVec2, DVec2)]) {
+        let ids = &mut self.order[start..end];
+        let (lo, hi) = ids.iter().fold(
+            (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &k| (lo.min(boxes[k as usize].0), hi.max(boxes[k as usize].1)),
+        );
+        self.nodes[node].lo = lo;
+        self.nodes[node].hi = hi;
+        if end - start <= TREE_LEAF {
+            self.nodes[node].first = start as u32;
+            self.nodes[node].count = (end - start) as u32;
+            return;
+        }
+        // Split at the median of the box centres along the longer side.
+        let axis = if hi.x - lo.x >= hi.y - lo.y { 0 } else { 1 };
+        let key = |k: &u32| {
+            let (a, b) = boxes[*k as usize];
+            (a + b)[axis]
+        };
+        let mid = (end - start) / 2;
+        ids.select_nth_unstable_by(mid, |x, y| key(x).total_cmp(&key(y)).then(x.cmp(y)));
+        let first = self.nodes.len();
+        for _ in 0..2 {
+            self.nodes.push(TreeNode {
+                lo: DVec2::ZERO,
+                hi: DVec2::ZERO,
+                first: 0,
+                count: 0,
+            });
+        }
+        self.nodes[node].first = first as u32;
+        self.build(first, start, start + mid, boxes);
+        self.build(first + 1, start + mid, end, boxes);
+    }
+
+    /// Calls `f` with every edge in a box the line ℓ·(x, y, 1) = 0 may meet.
+    fn visit(&self, line: DVec3, f: &mut impl FnMut(u32)) {
+        let mut stack: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
+        stack.push(0);
+        while let Some(i) = stack.pop() {
+            let nd = &self.nodes[i as usize];
+            let (mut pos, mut neg) = (true, true);
+            for c in [
+                nd.lo,
+                DVec2::new(nd.hi.x, nd.lo.y),
+                nd.hi,
+                DVec2::new(nd.lo.x, nd.hi.y),
+            ] {
+                let v = line.x * c.x + line.y * c.y + line.z;
+                let tol = 1e-14 * ((line.x * c.x).abs() + (line.y * c.y).abs() + line.z.abs());
+                pos &= v > tol;
+                neg &= v < -tol;
+            }
+            if pos || neg {
+                continue;
+            }
+            if nd.count > 0 {
+                let s = nd.first as usize;
+                self.order[s..s + nd.count as usize]
+                    .iter()
+                    .for_each(|&k| f(k));
+            } else {
+                stack.push(nd.first);
+                stack.push(nd.first + 1);
+            }
+        }
+    }
+}
+
+/// Edges numbered in order.
+fn numbered<'a>(
+    edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)> + 'a,
+) -> impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)> + 'a {
+    edges.enumerate().map(|(k, (a, c, b))| (k as u32, a, c, b))
 }
 
 /// [`crossings`], sorted by s (then edge).
 fn sorted_crossings(
-    edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)>,
+    edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
     o: DVec2,
     d: DVec2,
 ) -> Vec<(f64, u32)> {
@@ -408,22 +562,22 @@ fn sorted_crossings(
 /// n·(B(u) − o) in (0, 1), a change between an end and the next stretch
 /// placed at that end.
 pub fn crossings(
-    edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)>,
+    edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
     o: DVec2,
     d: DVec2,
     mut cut: impl FnMut(f64, u32),
 ) {
     let n = d.perp();
     let dd = d.length_squared();
-    for (k, (a, c, b)) in edges.enumerate() {
+    for (k, a, c, b) in edges {
         let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
-        if c == Ctrl::Line {
+        if c == Ctrl::Line || crate::mutant::active("curves_as_chords") {
             if (sa > 0.0) == (sb > 0.0) {
                 continue;
             }
             // The crossing point of the edge, then its parameter on the line.
             let p = a + (b - a) * (sa / (sa - sb));
-            cut((p - o).dot(d) / dd, k as u32);
+            cut((p - o).dot(d) / dd, k);
             continue;
         }
         let curve = Curve::new(a, c, b, o);
@@ -433,7 +587,7 @@ pub fn crossings(
                 1.0 => b - o,
                 _ => curve.at(u),
             };
-            cut(p.dot(d) / dd, k as u32);
+            cut(p.dot(d) / dd, k);
         });
     }
 }
@@ -526,6 +680,63 @@ mod tests {
                 let inside = spans.iter().any(|&(a, b)| a < s && s < b);
                 assert_eq!(inside, r.contains(o + d * s), "s = {s} on {o:?} + s {d:?}");
             }
+        }
+    }
+
+    #[test]
+    fn the_edge_tree_finds_every_crossing_testing_all_edges_finds() {
+        // A 240-point wavy ring with a curved hole: lines at random, lines
+        // through vertices and along edges, far away and near.
+        let mut seed = 99u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let outer: Vec<DVec2> = (0..240)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 240.0;
+                DVec2::new(a.cos(), a.sin()) * (3.0 + 0.4 * (7.0 * a).sin())
+            })
+            .collect();
+        let hole = vec![DVec2::new(-1.0, 0.0), DVec2::new(1.0, 0.0)];
+        let mut ctrl = vec![vec![Ctrl::Line; 240]];
+        ctrl[0][17] = Ctrl::Quad(DVec2::new(3.5, 1.5));
+        ctrl.push(vec![
+            Ctrl::Quad(DVec2::new(0.0, -1.5)),
+            Ctrl::Cubic(DVec2::new(0.5, 1.5), DVec2::new(-0.5, 1.5)),
+        ]);
+        let r = Region::new(Outlines {
+            loops: vec![outer.clone(), hole],
+            ctrl,
+        });
+        assert!(r.tree.is_some());
+        let brute = |o: DVec2, d: DVec2| {
+            let all = r
+                .edges
+                .iter()
+                .zip(&r.ctrl)
+                .enumerate()
+                .map(|(k, (&(a, b), &c))| (k as u32, a, c, b));
+            sorted_crossings(all, o, d)
+        };
+        for i in 0..3000 {
+            let far = if i % 3 == 0 { 1e6 } else { 1.0 };
+            let mut o = DVec2::new(next() * 10.0 - 5.0, next() * 10.0 - 5.0) * far;
+            let a = next() * std::f64::consts::TAU;
+            let mut d = DVec2::new(a.cos(), a.sin());
+            if i % 5 == 1 {
+                // Through a vertex.
+                o = outer[i % 240];
+            } else if i % 5 == 2 {
+                // Along an edge.
+                o = outer[i % 240];
+                d = outer[(i + 1) % 240] - o;
+            }
+            assert_eq!(r.crossings(o, d), brute(o, d), "o {o:?} d {d:?}");
+            let p = DVec2::new(next() * 8.0 - 4.0, next() * 8.0 - 4.0);
+            assert_eq!(r.contains(p), r.outlines.contains(p), "{p:?}");
         }
     }
 

@@ -311,7 +311,12 @@ impl Resolver<'_> {
             } else {
                 s.args_span
             };
-            self.warn(place, w, "csgrt reads fonts with fontdb; see README, Text");
+            let label = if *param == "font" {
+                "expected an installed family (Liberation Sans is built in)"
+            } else {
+                "OpenSCAD reads it so too"
+            };
+            self.warn(place, w, label);
         }
         let glyphs: Vec<Option<Flat>> = laid
             .glyphs
