@@ -269,8 +269,8 @@ class Scene:
 
 def bind(path, s):
     """The statement's arguments by name ($-variables are OpenSCAD's
-    facet settings; an explicit $fn of 3 to 8 on a round solid is a shape
-    the oracle cannot build yet)."""
+    facet settings; an explicit $fn of 3 to 8 on a circle or cylinder is a
+    shape, on a sphere one the oracle cannot build yet)."""
     names = PARAMS[s.name]
     out, k = {}, 0
     for key, v in s.args:
@@ -280,7 +280,7 @@ def bind(path, s):
             key = names[k]
             k += 1
         elif key.startswith("$"):
-            if key == "$fn" and isinstance(v, float) and 0 < v < 9 and s.name in ("sphere", "cylinder"):
+            if key == "$fn" and isinstance(v, float) and 0 < v < 9 and s.name == "sphere":
                 raise ReadError(path, s.line, s.col, f"$fn = {v:g} makes {s.name} a polyhedron; not in the oracle yet")
             if key == "$fn" and isinstance(v, float):
                 out["$fn"] = v
@@ -472,7 +472,23 @@ class Reader:
                 raise self.err(s, "a radius of cylinder is negative")
             if h <= 0 or max(r1, r2) <= 0:
                 return None
-            return self.leaf(s, k, dict(h=h, r1=r1, r2=r2, center=bool(a.get("center", False))), xf, mat)
+            center = bool(a.get("center", False))
+            fn = a.get("$fn", 0.0)
+            if 0 < fn < 9:
+                # OpenSCAD's frustum over the regular n-gon (vertex i at
+                # 360 i / n): the extrusion of the wider end's n-gon,
+                # tapered to the other end, flipped end for end when the
+                # top is the wider.
+                n_ = int(max(fn, 3.0))
+                rmax = max(r1, r2)
+                sc = [sin_cos_deg(360.0 * i / n_) for i in range(n_)]
+                poly = ("poly", [np.array([[rmax * c, rmax * si] for si, c in sc])])
+                z0 = -h / 2 if center else 0.0
+                flip = np.eye(4)
+                if r1 < r2:
+                    flip[2, 2], flip[2, 3] = -1.0, 2 * z0 + h
+                return self.leaf(s, "linear_extrude", dict(flat=poly, h=h, z0=z0, scale=min(r1, r2) / rmax), xf @ flip, mat)
+            return self.leaf(s, k, dict(h=h, r1=r1, r2=r2, center=center), xf, mat)
         if k == "torus":
             R = num(self.path, s, a, "R", 2.0)
             r = num(self.path, s, a, "r", 0.5)

@@ -401,7 +401,7 @@ impl Region {
     }
 
     /// The edges that may meet the line ℓ·(x, y, 1) = 0, as (index, start,
-    /// how it runs, end), by index.
+    /// how it runs, end).
     pub fn edges_meeting(
         &self,
         line: DVec3,
@@ -409,10 +409,9 @@ impl Region {
         let mut ids: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
         match &self.tree {
             None => ids.extend(0..self.edges.len() as u32),
-            Some(t) => {
-                t.visit(line, &mut |k| ids.push(k));
-                ids.sort_unstable();
-            }
+            // In the tree's order: every caller sorts what it finds, or
+            // counts it.
+            Some(t) => t.visit(line, &mut |k| ids.push(k)),
         }
         ids.into_iter().map(move |k| {
             let (a, b) = self.edges[k as usize];
@@ -422,7 +421,7 @@ impl Region {
 }
 
 /// The most edges a region checks one by one; above, an [`EdgeTree`].
-pub const FLAT_EDGES: usize = 12;
+pub const FLAT_EDGES: usize = 32;
 
 /// A bounding-box tree over a region's edges (the box of a curve is that
 /// of its control points, which hold it), so that a line is tested against
@@ -447,7 +446,7 @@ struct TreeNode {
     count: u32,
 }
 
-const TREE_LEAF: usize = 4;
+const TREE_LEAF: usize = 8;
 
 impl EdgeTree {
     fn new(boxes: &[(DVec2, DVec2)]) -> EdgeTree {

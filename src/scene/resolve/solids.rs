@@ -1,10 +1,12 @@
 //! The solids: each statement's binder, from its arguments to a leaf.
 
+use super::flat::regular_polygon;
 use super::transforms::basis_from_z;
 use super::Resolver;
 use crate::error::Result;
-use crate::geometry::{Cone, Cuboid, Halfspace, Shape, Sphere, Torus};
+use crate::geometry::{Cone, Cuboid, Halfspace, Prism, Shape, Sphere, Torus};
 use crate::mutant;
+use crate::plane::Region;
 use crate::scene::args::Args;
 use crate::scene::Material;
 use crate::syntax::ast::Statement;
@@ -139,6 +141,22 @@ fn cylinder(
     let rmax = r1.max(r2);
     if rmax <= 0.0 {
         return res.empty(s, "both its radii are zero");
+    }
+    if let Some(n) = a.few_facets() {
+        // OpenSCAD's prism (or pyramid, or frustum) over the regular
+        // n-gon: the wider end's polygon tapered to the other's, turned
+        // end for end when the top is the wider.
+        let region = std::sync::Arc::new(Region::new(regular_polygon(n, rmax)));
+        let top = r1.min(r2) / rmax;
+        let z0 = if center { -h / 2.0 } else { 0.0 };
+        let local = if r1 >= r2 {
+            DAffine3::from_translation(DVec3::new(0.0, 0.0, z0))
+                * DAffine3::from_scale(DVec3::new(1.0, 1.0, h))
+        } else {
+            DAffine3::from_translation(DVec3::new(0.0, 0.0, z0 + h))
+                * DAffine3::from_scale(DVec3::new(1.0, 1.0, -h))
+        };
+        return res.leaf(s, Shape::Prism(Prism { region, top }), xf * local, mat);
     }
     let shape = Shape::Cone(Cone {
         r0: r1 / rmax,
