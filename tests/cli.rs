@@ -240,8 +240,8 @@ fn a_degenerate_camera_is_an_error() {
 #[test]
 fn an_unsupported_openscad_node_is_an_error_not_skipped() {
     assert_eq!(
-        fails("group() {\n\tlinear_extrude(height = 10) offset(r = 1) square(1);\n}\n"),
-        "error: `offset` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) offset(r = 1) square(1);\n  | \t                            ^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon and text\n"
+        fails("group() {\n\tlinear_extrude(height = 10) import(file = \"a.dxf\");\n}\n"),
+        "error: `import` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) import(file = \"a.dxf\");\n  | \t                            ^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text and offset\n"
     );
 }
 
@@ -378,6 +378,15 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     assert_eq!(
         fails("linear_extrude(height = 2) {\n  cube(1);\n}\n"),
         "error: `cube` is a 3-D solid and cannot stand in a 2-D shape\n --> bad.csg:2:3\n  |\n2 |   cube(1);\n  |   ^^^^ expected a 2-D shape (square, circle, polygon) or a 2-D operation\n"
+    );
+    // An offset csgrt cannot compute exactly yet, at the offset.
+    assert_eq!(
+        fails("linear_extrude(1) offset(r = -1) union() { square(2); translate([1, 1]) square(2); }\n"),
+        "error: shrinking a 2-D union is not supported yet\n --> bad.csg:1:19\n  |\n1 | linear_extrude(1) offset(r = -1) union() { square(2); translate([1, 1]) square(2); }\n  |                   ^^^^^^ csgrt offsets simple polygons and circles, unions when growing\n"
+    );
+    assert_eq!(
+        fails("linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n"),
+        "error: offsetting an outline that crosses or touches itself is not supported yet\n --> bad.csg:1:19\n  |\n1 | linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n  |                   ^^^^^^ csgrt offsets simple polygons and circles, unions when growing\n"
     );
     // A text that is no string, at the value; vertical text, at its
     // direction; a turned text, at the extrusion.

@@ -149,7 +149,7 @@ fn message(node: &str, line: usize, col: usize, source: &str) -> String {
         lead + &caret[col - 1..]
     };
     format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon and text\n"
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text and offset\n"
     )
 }
 
@@ -188,9 +188,9 @@ fn each_unsupported_node_stops_the_run_with_its_place() {
 
 #[test]
 fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
-    // OpenSCAD writes the square inside the offset on line 2, after a tab;
-    // the offset itself is reported first.
-    let text = std::fs::read_to_string(fixtures().join("unsupported/offset.csg")).unwrap();
+    // OpenSCAD writes the sphere inside the projection on line 2, after a
+    // tab; the projection itself is reported first.
+    let text = std::fs::read_to_string(fixtures().join("unsupported/projection.csg")).unwrap();
     let wrapped = format!(
         "group() {{\n\t{}}}\n",
         text.replace('\n', "\n\t").trim_end_matches('\t')
@@ -200,6 +200,6 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
     let r = csgrt(dir.path(), &["x.csg", "-q"]);
     assert_eq!(r.status, 2);
     let line2 = wrapped.lines().nth(1).unwrap();
-    assert!(line2.starts_with("\toffset("));
-    assert_eq!(r.stderr, message("offset", 2, 2, line2));
+    assert!(line2.starts_with("\tprojection("));
+    assert_eq!(r.stderr, message("projection", 2, 2, line2));
 }

@@ -148,6 +148,12 @@ def cross_section(f, n):
     if f[0] == "ellipse":
         A, c = f[1], f[2]
         return mf.CrossSection.circle(1.0, n).transform([[A[0, 0], A[0, 1], c[0]], [A[1, 0], A[1, 1], c[1]]])
+    if len(f) == 4:
+        # An offset: manifold's own (Clipper2's) of the child, then moved.
+        join, d, child, m = f[3]
+        jt = {"round": mf.JoinType.Round, "miter": mf.JoinType.Miter, "square": mf.JoinType.Square}[join]
+        cs = cross_section(child, n).offset(d, jt, 1e6, n)
+        return cs.transform([[m[0, 0], m[0, 1], m[0, 2]], [m[1, 0], m[1, 1], m[1, 2]]])
     kids = [cross_section(k, n) for k in f[2]]
     if f[1] == "union":
         return mf.CrossSection.batch_boolean(kids, mf.OpType.Add)

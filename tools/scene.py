@@ -212,6 +212,7 @@ PARAMS = {
     "square": ["size", "center"],
     "circle": ["r", "d"],
     "polygon": ["points", "paths", "convexity"],
+    "offset": ["r", "delta", "chamfer"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
     "rotate_extrude": ["angle", "convexity", "file", "layer", "origin"],
@@ -535,8 +536,37 @@ class Reader:
         if name in ("color", "material"):
             self.appearance(s, a, dict(CORNFIELD))
             return self.flat_kids(s, "union", m)
+        if name == "offset":
+            return self.offset(s, a, m)
         op = name if name in ("intersection", "difference") else "union"
         return self.flat_kids(s, op, m)
+
+    def offset(self, s, a, m):
+        """offset(r | delta, chamfer) of the children's union, in its own
+        frame, then moved by m: ("op", "union" | "difference", pieces,
+        (join, d, child, m)) — the pieces (below) in the plane, and what
+        manifold3d's own offset is given in the oracle."""
+        if "r" in a:
+            join, d = "round", num(self.path, s, a, "r")
+        elif "delta" in a:
+            d = num(self.path, s, a, "delta")
+            join = "square" if a.get("chamfer", False) is True else "miter"
+        else:
+            join, d = "round", 1.0
+        child = self.flat_kids(s, "union", np.eye(3))
+        if child is None:
+            return None
+        if d == 0:
+            return flat_moved(child, m)
+        try:
+            pieces = offset_pieces(child, join, d)
+        except ValueError as e:
+            raise self.err(s, str(e))
+        if pieces is None:
+            return None
+        if pieces[0] != "op":
+            return flat_moved(pieces, m)
+        return ("op", pieces[1], [flat_moved(k, m) for k in pieces[2]], (join, d, child, m))
 
     def flat_kids(self, s, op, m):
         parts = [self.flat(c, m) for c in s.children if not ("%" in c.mods or "*" in c.mods)]
@@ -971,6 +1001,101 @@ def text_2d(rd, s, a, place):
     if not parts:
         return None
     return parts[0] if len(parts) == 1 else ("op", "union", parts)
+
+
+def flat_moved(f, m):
+    """A 2-D tree moved by the plane matrix m (3x3, homogeneous)."""
+    if f[0] == "poly":
+        return ("poly", [l @ m[:2, :2].T + m[:2, 2] for l in f[1]])
+    if f[0] == "ellipse":
+        return ("ellipse", m[:2, :2] @ f[1], m[:2, :2] @ f[2] + m[:2, 2])
+    if f[0] == "curves":
+        mv = lambda q: None if q is None else m[:2, :2] @ q + m[:2, 2]
+        return ("curves", [[(mv(q), mv(c)) for q, c in l] for l in f[1]])
+    if len(f) == 4:
+        join, d, child, m0 = f[3]
+        return ("op", f[1], [flat_moved(k, m) for k in f[2]], (join, d, child, m @ m0))
+    return ("op", f[1], [flat_moved(k, m) for k in f[2]])
+
+
+def outward_normals(loop, loops):
+    """Each edge's unit outward normal (the even-odd region is not on its
+    side just off the edge's middle)."""
+    from_pts = np.asarray(loop)
+    out = []
+    size = max(float(np.abs(np.concatenate(loops)).max()), 1e-300)
+    for i in range(len(from_pts)):
+        a, b = from_pts[i], from_pts[(i + 1) % len(from_pts)]
+        e = b - a
+        n = np.array([e[1], -e[0]]) / np.linalg.norm(e)
+        mid = (a + b) / 2 + n * 1e-9 * size
+        out.append(-n if even_odd_inside(loops, mid) else n)
+    return out
+
+
+def even_odd_inside(loops, p):
+    inside = False
+    for l in loops:
+        for a, b in zip(l, np.roll(l, -1, axis=0)):
+            if (a[1] > p[1]) != (b[1] > p[1]):
+                x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                inside ^= x > p[0]
+    return inside
+
+
+def offset_pieces(f, join, d):
+    """OpenSCAD's offset of a 2-D tree as the CSG of plain 2-D leaves it
+    is (Clipper's joins: round = the disc of radius |d| at a corner, miter =
+    the kite to the two offset edges' meeting point, square = that kite cut
+    across the corner's bisector at distance |d|): growing a simple polygon
+    is it, the band each edge sweeps moving out by d, and a join at each
+    convex corner; shrinking is it minus the bands swept inward and the
+    joins at its reflex corners. A circle grows to radius R + d. Growing
+    maps over a union, shrinking over an intersection; anything else is
+    not in the oracle."""
+    if f[0] == "op":
+        if f[1] == "union" and d > 0 or f[1] == "intersection" and d < 0:
+            parts = [offset_pieces(k, join, d) for k in f[2]]
+            if f[1] == "intersection" and any(p is None for p in parts):
+                return None
+            parts = [p for p in parts if p is not None]
+            return None if not parts else parts[0] if len(parts) == 1 else ("op", f[1], parts)
+        raise ValueError(f"offset of a 2-D {f[1]} by {d:g} is not in the oracle")
+    if f[0] == "ellipse":
+        A = f[1]
+        r = math.hypot(A[0, 0], A[1, 0])
+        if abs(A[:, 0] @ A[:, 1]) > 1e-12 * r * r or abs(math.hypot(A[0, 1], A[1, 1]) - r) > 1e-12 * r:
+            raise ValueError("offset of an ellipse is not in the oracle")
+        return ("ellipse", np.eye(2) * (r + d), f[2]) if r + d > 0 else None
+    if f[0] == "curves":
+        raise ValueError("offset of text is not in the oracle")
+    loops = f[1]
+    k, side = abs(d), (1.0 if d > 0 else -1.0)
+    pieces = []
+    for l in loops:
+        ns = outward_normals(l, loops)
+        m = len(l)
+        for i in range(m):
+            a, v, b = l[(i - 1) % m], l[i], l[(i + 1) % m]
+            n1, n2 = ns[(i - 1) % m] * side, ns[i] * side
+            pieces.append(("poly", [np.array([v, b, b + k * n2, v + k * n2])]))
+            t1, t2 = v - a, b - v
+            if (t2 @ n1) >= 0 or t1[0] * t2[1] - t1[1] * t2[0] == 0:
+                continue  # no join where the offset side sees the corner reflex
+            cos = float(n1 @ n2)
+            if join == "round":
+                pieces.append(("ellipse", np.eye(2) * k, v.copy()))
+            elif join == "miter" and 1 + cos >= 2e-12:
+                pieces.append(("poly", [np.array([v, v + k * n1, v + (n1 + n2) * (k / (1 + cos)), v + k * n2])]))
+            else:
+                # The cut at distance k along the bisector meets the offset
+                # edges k tan(theta / 4) beyond their ends.
+                theta = math.atan2(abs(n1[0] * n2[1] - n1[1] * n2[0]), cos)
+                run = k * math.tan(theta / 4)
+                u1, u2 = t1 / np.linalg.norm(t1), t2 / np.linalg.norm(t2)
+                pieces.append(("poly", [np.array([v, v + k * n1, v + k * n1 + run * u1, v + k * n2 - run * u2, v + k * n2])]))
+    body = ("poly", loops)
+    return ("op", "union" if d > 0 else "difference", [body] + pieces)
 
 
 def curve_pieces(f):

@@ -16,6 +16,7 @@
 //! on its plane (1.1 when it is subtracted, so that a 2-D hole cuts
 //! through), under its full 3-D transform.
 
+use super::offset::Join;
 use super::transforms::{basis_from_z, sin_cos_deg};
 use super::{combine, Resolver};
 use crate::csg::spans::Op;
@@ -64,6 +65,15 @@ impl Flat {
                     Op::Difference => kids[0].x_range(),
                 }
             }
+        }
+    }
+
+    /// The tree moved by `m`.
+    pub(super) fn moved(&self, m: DAffine2) -> Flat {
+        match self {
+            Flat::Polygon(o) => Flat::Polygon(o.map(|p| m.transform_point2(p))),
+            Flat::Ellipse(e) => Flat::Ellipse(m * *e),
+            Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
         }
     }
 
@@ -141,6 +151,9 @@ impl Resolver<'_> {
                 return Ok(None);
             };
             return self.flat_children(s, Op::Union, m * l2, depth);
+        }
+        if name == "offset" {
+            return self.offset(s, m, depth);
         }
         if super::APPEARANCE.contains(&name) {
             // An extrusion is one new solid: colours below it are dropped,
@@ -326,6 +339,30 @@ impl Resolver<'_> {
         Ok(combine(Op::Union, glyphs, Flat::Op))
     }
 
+    /// `offset(r | delta, chamfer)` of its children's union, computed in
+    /// its own frame, then placed by `m`.
+    fn offset(&mut self, s: &Statement, m: DAffine2, depth: usize) -> Result<Option<Flat>> {
+        let a = Args::bind(self.src, s, &["r", "delta", "chamfer"])?;
+        // As OpenSCAD: r beats delta; no argument at all is r = 1.
+        let (join, d) = match (a.number("r")?, a.number("delta")?) {
+            (Some(r), _) => (Join::Round, r),
+            (None, Some(d)) if a.boolean("chamfer")?.unwrap_or(false) => (Join::Square, d),
+            (None, Some(d)) => (Join::Miter, d),
+            (None, None) => (Join::Round, 1.0),
+        };
+        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+            return Ok(None);
+        };
+        match super::offset::offset(f, join, d) {
+            Ok(f) => Ok(f.map(|f| f.moved(m))),
+            Err(why) => Err(self.src.error(
+                s.name_span,
+                why,
+                "csgrt offsets simple polygons and circles, unions when growing",
+            )),
+        }
+    }
+
     /// A 2-D shape standing where a solid is expected: OpenSCAD's preview
     /// slab, 1 thick (1.1 when subtracted), centred on its plane.
     pub(super) fn slab(
@@ -334,7 +371,7 @@ impl Resolver<'_> {
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let Some(f) = self.flat_shape(s, DAffine2::IDENTITY)? else {
+        let Some(f) = self.flat(s, DAffine2::IDENTITY, 0)? else {
             return Ok(None);
         };
         let h = if self.subtracted { 1.1 } else { 1.0 };

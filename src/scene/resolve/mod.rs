@@ -7,6 +7,7 @@
 
 mod appearance;
 mod flat;
+mod offset;
 mod solids;
 mod statements;
 mod transforms;

@@ -37,7 +37,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("import", None),
     ("surface", None),
     ("projection", None),
-    ("offset", None),
+    ("offset", Some(slab)),
     ("hull", None),
     ("minkowski", None),
     ("resize", None),
@@ -47,7 +47,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
 ];
 
 /// The statements of [`SOLIDS`] that take children (2-D shapes to lift).
-pub(crate) const WITH_CHILDREN: &[&str] = &["linear_extrude", "rotate_extrude"];
+pub(crate) const WITH_CHILDREN: &[&str] = &["linear_extrude", "rotate_extrude", "offset"];
 
 /// The OpenSCAD solids csgrt does not render yet.
 pub fn unsupported() -> impl Iterator<Item = &'static str> {

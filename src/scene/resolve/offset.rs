@@ -1,0 +1,284 @@
+//! OpenSCAD's `offset(r | delta, chamfer)`, exactly, as a CSG of 2-D
+//! leaves csgrt already renders exactly.
+//!
+//! OpenSCAD 2021.01 offsets the union of the children with Clipper: `r`
+//! rounds the corners (the Minkowski sum with the disc of radius r, or for
+//! r < 0 the erosion by it), `delta` keeps them sharp (a miter, Clipper's
+//! limit 10⁶ being no limit), `chamfer = true` cuts them square at distance
+//! delta from the corner, across its bisector (Clipper's `jtSquare`). For a
+//! simple region R with edges e (outward normals n) and corners v:
+//!
+//! - growing by d > 0: R ∪ ⋃ band(e) ∪ ⋃ join(v), band(e) the rectangle
+//!   the edge sweeps moving out to distance d, join(v) at each convex corner
+//!   the disc of radius d about v (round), the kite v, v + d·n₁, the miter
+//!   point v + d·(n₁ + n₂)/(1 + n₁·n₂), v + d·n₂ (miter), or that kite cut
+//!   at distance d from v (chamfer); a reflex corner needs none, its two
+//!   bands overlapping there;
+//! - shrinking by d < 0: R − ⋃ band′(e) − ⋃ join′(v), the bands swept
+//!   inward and the joins at the reflex corners (the convex ones of the
+//!   outside, which the same rules grow).
+//!
+//! Growing distributes over union ((A ∪ B) ⊕ D = (A ⊕ D) ∪ (B ⊕ D): a
+//! union's convex corners are its operands', and where their edges cross
+//! the union is reflex), shrinking over intersection; a circle grows to the
+//! circle of radius R + d. What needs the boundary of a combination —
+//! shrinking a union, growing an intersection, either of a difference — and
+//! ellipses, curved (text) or self-crossing outlines are not supported yet.
+
+use super::flat::Flat;
+use crate::csg::spans::Op;
+use crate::plane::{Outlines, Region};
+use glam::{DAffine2, DVec2};
+
+/// How corners are joined.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Join {
+    Round,
+    Miter,
+    Square,
+}
+
+/// Clipper's miter test: a corner whose normals are this close to opposite
+/// (1 + n₁·n₂ below it) is squared instead (OpenSCAD's miter limit of 10⁶:
+/// 2/limit²).
+const MITER_LIMIT: f64 = 2e-12;
+
+/// The most edges an outline to offset may have (the self-crossing test
+/// compares every pair).
+pub const MAX_OFFSET_EDGES: usize = 20_000;
+
+/// `f` offset by `d`, or why it cannot be yet.
+pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String> {
+    if d == 0.0 {
+        return Ok(Some(f));
+    }
+    match f {
+        Flat::Op(Op::Union, kids) if d > 0.0 => {
+            let mut out = Vec::new();
+            for k in kids {
+                out.extend(offset(k, join, d)?);
+            }
+            Ok(union(out))
+        }
+        Flat::Op(Op::Intersection, kids) if d < 0.0 => {
+            let mut out = Vec::new();
+            for k in kids {
+                match offset(k, join, d)? {
+                    Some(x) => out.push(x),
+                    None => return Ok(None),
+                }
+            }
+            Ok(Some(Flat::Op(Op::Intersection, out)))
+        }
+        Flat::Op(op, _) => Err(format!(
+            "{} a 2-D {} is not supported yet",
+            if d > 0.0 { "growing" } else { "shrinking" },
+            match op {
+                Op::Union => "union",
+                Op::Intersection => "intersection",
+                Op::Difference => "difference",
+            }
+        )),
+        Flat::Ellipse(e) => {
+            let (x, y) = (e.matrix2.x_axis, e.matrix2.y_axis);
+            let r = x.length();
+            if x.dot(y).abs() > 1e-12 * r * r || (y.length() - r).abs() > 1e-12 * r {
+                return Err("offsetting an ellipse is not supported yet".into());
+            }
+            let r2 = r + d;
+            Ok((r2 > 0.0).then(|| {
+                Flat::Ellipse(DAffine2::from_scale_angle_translation(
+                    DVec2::splat(r2),
+                    0.0,
+                    e.translation,
+                ))
+            }))
+        }
+        Flat::Polygon(o) => polygon(o, join, d),
+    }
+}
+
+fn union(mut parts: Vec<Flat>) -> Option<Flat> {
+    match parts.len() {
+        0 => None,
+        1 => parts.pop(),
+        _ => Some(Flat::Op(Op::Union, parts)),
+    }
+}
+
+/// A simple polygon region grown or shrunk.
+fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
+    if o.curved() {
+        return Err("offsetting curved outlines (text) is not supported yet".into());
+    }
+    let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
+    if edges > MAX_OFFSET_EDGES {
+        return Err(format!(
+            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges is not supported yet"
+        ));
+    }
+    if self_crossing(&o) {
+        return Err(
+            "offsetting an outline that crosses or touches itself is not supported yet".into(),
+        );
+    }
+    let region = Region::new(o);
+    // Outward (d > 0) or inward (d < 0) by |d|.
+    let k = d.abs();
+    let side = d.signum();
+    let mut parts = Vec::new();
+    let mut start = 0;
+    for l in &region.outlines.loops {
+        let m = l.len();
+        for i in 0..m {
+            let (e1, e2) = (start + (i + m - 1) % m, start + i);
+            let (a, v) = region.edges[e1];
+            let b = region.edges[e2].1;
+            let (n1, n2) = (region.normals[e1] * side, region.normals[e2] * side);
+            // The band swept by the edge from v to b.
+            parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
+                v,
+                b,
+                b + n2 * k,
+                v + n2 * k,
+            ]])));
+            // A corner the offset side sees as convex: the next edge turns
+            // away from n₁.
+            if (b - v).dot(n1) >= 0.0 || (v - a).perp_dot(b - v) == 0.0 {
+                continue;
+            }
+            let cos = n1.dot(n2);
+            match join {
+                Join::Round => parts.push(Flat::Ellipse(DAffine2::from_scale_angle_translation(
+                    DVec2::splat(k),
+                    0.0,
+                    v,
+                ))),
+                Join::Miter if 1.0 + cos >= MITER_LIMIT => {
+                    let miter = v + (n1 + n2) * (k / (1.0 + cos));
+                    parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
+                        v,
+                        v + n1 * k,
+                        miter,
+                        v + n2 * k,
+                    ]])));
+                }
+                _ => {
+                    // Cut across the bisector at distance k from v: each
+                    // offset edge runs on by k·tan(θ/4) past its end.
+                    let theta = n1.perp_dot(n2).abs().atan2(cos);
+                    let run = k * (theta / 4.0).tan();
+                    let (t1, t2) = ((v - a).normalize(), (b - v).normalize());
+                    parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
+                        v,
+                        v + n1 * k,
+                        v + n1 * k + t1 * run,
+                        v + n2 * k - t2 * run,
+                        v + n2 * k,
+                    ]])));
+                }
+            }
+        }
+        start += m;
+    }
+    let body = Flat::Polygon(region.outlines.clone());
+    Ok(Some(if d > 0.0 {
+        parts.insert(0, body);
+        Flat::Op(Op::Union, parts)
+    } else {
+        parts.insert(0, body);
+        Flat::Op(Op::Difference, parts)
+    }))
+}
+
+/// Whether two edges of the outlines meet other than where consecutive
+/// edges of a loop share their end.
+fn self_crossing(o: &Outlines) -> bool {
+    let edges: Vec<(DVec2, DVec2, usize, usize)> = o
+        .loops
+        .iter()
+        .enumerate()
+        .flat_map(|(j, l)| (0..l.len()).map(move |i| (l[i], l[(i + 1) % l.len()], j, i)))
+        .collect();
+    let orient = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let on = |a: DVec2, b: DVec2, p: DVec2| {
+        orient(a, b, p) == 0.0 && p.cmpge(a.min(b)).all() && p.cmple(a.max(b)).all()
+    };
+    for (x, &(a, b, ja, ia)) in edges.iter().enumerate() {
+        let (lo, hi) = (a.min(b), a.max(b));
+        for &(c, d, jc, ic) in &edges[x + 1..] {
+            if c.max(d).cmplt(lo).any() || c.min(d).cmpgt(hi).any() {
+                continue;
+            }
+            let len = o.loops[ja].len();
+            let adjacent = ja == jc && (ic == (ia + 1) % len || ia == (ic + 1) % len);
+            if adjacent {
+                // Sharing one end p: they meet again only folding back,
+                // the far end of one on the other.
+                let (p, far1, far2) = if ic == (ia + 1) % len {
+                    (b, a, d)
+                } else {
+                    (a, b, c)
+                };
+                if on(c, d, far1) && far1 != p || on(a, b, far2) && far2 != p {
+                    return true;
+                }
+                continue;
+            }
+            let (d1, d2) = (orient(a, b, c), orient(a, b, d));
+            let (d3, d4) = (orient(c, d, a), orient(c, d, b));
+            if (d1 > 0.0) != (d2 > 0.0)
+                && (d1 < 0.0) != (d2 < 0.0)
+                && (d3 > 0.0) != (d4 > 0.0)
+                && (d3 < 0.0) != (d4 < 0.0)
+            {
+                return true;
+            }
+            if on(a, b, c) || on(a, b, d) || on(c, d, a) || on(c, d, b) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sq(c: DVec2, h: f64) -> Vec<DVec2> {
+        vec![
+            c + DVec2::new(-h, -h),
+            c + DVec2::new(h, -h),
+            c + DVec2::new(h, h),
+            c + DVec2::new(-h, h),
+        ]
+    }
+
+    #[test]
+    fn self_crossing_outlines_are_found() {
+        let z = DVec2::ZERO;
+        assert!(!self_crossing(&Outlines::polygons(vec![
+            sq(z, 2.0),
+            sq(z, 1.0)
+        ])));
+        let bow = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(0.0, 1.0),
+        ];
+        assert!(self_crossing(&Outlines::polygons(vec![bow])));
+        // Two squares touching at a corner.
+        let touching = vec![sq(z, 1.0), sq(DVec2::new(2.0, 2.0), 1.0)];
+        assert!(self_crossing(&Outlines::polygons(touching)));
+        // A spike folding back along itself.
+        let fold = vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(2.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(0.0, 1.0),
+        ];
+        assert!(self_crossing(&Outlines::polygons(vec![fold])));
+    }
+}

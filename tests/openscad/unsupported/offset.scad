@@ -1,1 +1,0 @@
-offset(r = 1) square(4);
