@@ -20,6 +20,7 @@ pub const NAMES: &[&str] = &[
     "cylinder_center_ignored",
     "curves_as_chords",
     "kerning_ignored",
+    "twist_reversed",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -42,6 +42,7 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
         Just(l_prism(1.0)),
         Just(l_prism(0.5)),
         Just(common::curved_prism(1.0)),
+        Just(common::l_twisted(2.0, glam::DVec2::new(0.5, 1.2))),
         Just(common::curved_prism(0.6)),
         Just(common::l_lathe()),
     ]

@@ -12,7 +12,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::{curved_prism, l_lathe, l_prism, Rng};
+use common::{curved_prism, l_lathe, l_prism, l_twisted, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
@@ -23,6 +23,16 @@ fn shapes() -> Vec<(&'static str, Shape)> {
         ("curved prism", curved_prism(1.0)),
         ("curved tapered prism", curved_prism(0.3)),
         ("curved widening prism", curved_prism(2.5)),
+        ("twisted prism", l_twisted(2.5, glam::DVec2::ONE)),
+        (
+            "twisted tapered prism",
+            l_twisted(-7.0, glam::DVec2::new(0.6, 1.4)),
+        ),
+        (
+            "unevenly scaled prism",
+            l_twisted(0.0, glam::DVec2::new(0.2, 1.8)),
+        ),
+        ("twisted pyramid", l_twisted(3.0, glam::DVec2::ZERO)),
         ("lathe", l_lathe()),
         ("sphere", Shape::Sphere(Sphere)),
         ("cube", Shape::Cuboid(Cuboid { centered: false })),
@@ -98,6 +108,13 @@ fn inner_point(shape: &Shape) -> DVec3 {
             DVec3::new(0.5 * w, 0.5 * w, 0.25)
         }
         Shape::Lathe(_) => DVec3::new(1.0, 0.0, -0.5),
+        // The same point of the section, where the twist and scale put it.
+        Shape::Twisted(t) => {
+            let z = 0.25;
+            let s = glam::DVec2::ONE + (t.scale - glam::DVec2::ONE) * z;
+            let p = glam::DMat2::from_angle(-t.twist * z) * glam::DVec2::splat(0.5);
+            (p * s).extend(z)
+        }
         s => s.object_bounds().center(),
     }
 }
@@ -113,7 +130,12 @@ fn surface_hits(
     let size = size_of(m);
     let mut out = Vec::new();
     while out.len() < n {
-        let target = m.transform_point3(inner_point(shape) + (rng.unit() * 0.2));
+        let inner = inner_point(shape) + (rng.unit() * 0.2);
+        if !shape.contains(inner) {
+            // Beyond a twisted section's turn: aim elsewhere.
+            continue;
+        }
+        let target = m.transform_point3(inner);
         let eye = target + rng.unit() * 6.0 * size * 2.0;
         let ray = Ray::new(eye, (target - eye).normalize());
         let hit = first(csg, &ray).expect("a ray aimed inside the solid hits it");
@@ -159,7 +181,10 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                 match first(&csg, &away) {
                     None => {}
                     Some(h)
-                        if matches!(shape, Shape::Torus(_) | Shape::Prism(_) | Shape::Lathe(_)) =>
+                        if matches!(
+                            shape,
+                            Shape::Torus(_) | Shape::Prism(_) | Shape::Lathe(_) | Shape::Twisted(_)
+                        ) =>
                     {
                         assert!(h.t > 1e-6 * size, "{name}: re-hit at t = {}", h.t)
                     }
@@ -359,6 +384,11 @@ fn support_points_are_the_farthest_points_of_the_solid() {
     // by the primitive's own inside test.
     let mut rng = Rng(11);
     for (name, shape) in shapes() {
+        if matches!(shape, Shape::Twisted(_)) {
+            // No support function: its farthest point is not a vertex.
+            assert!(shape.support(DVec3::X).is_none());
+            continue;
+        }
         let b = shape.object_bounds();
         let inside: Vec<DVec3> = (0..20000)
             .map(|_| b.min + (b.max - b.min) * DVec3::new(rng.next(), rng.next(), rng.next()))

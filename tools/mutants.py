@@ -40,6 +40,7 @@ MUTANTS = {
     "cylinder_center_ignored": (["models/csg_ops.csg"], False),
     "curves_as_chords": (["tests/openscad/text.csg"], False),
     "kerning_ignored": (["tests/openscad/text.csg"], False),
+    "twist_reversed": (["tests/openscad/twist.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

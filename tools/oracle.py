@@ -162,8 +162,33 @@ def cross_section(f, n):
     return kids[0] - mf.CrossSection.batch_boolean(kids[1:], mf.OpType.Add)
 
 
+def twist_steps(leaf, n):
+    """(slices, pieces a polygon edge is cut into) of a twisted or unevenly
+    scaled extrusion's mesh at n: slices turning at most 2 pi / n each (at
+    least n / 8), edges cut so that the ruled sides' triangles converge."""
+    th = abs(math.radians(leaf.params["twist"]))
+    return max(n // 8, int(math.ceil(th * n / (2 * math.pi)))), max(2, n // 16)
+
+
+def refined(f, m):
+    """A 2-D tree with each polygon edge cut into m equal pieces."""
+    if f[0] == "poly":
+        u = np.arange(m)[:, None] / m
+        return ("poly", [np.concatenate([(1 - u) * l[i] + u * l[(i + 1) % len(l)] for i in range(len(l))]) for l in f[1]])
+    if f[0] == "op":
+        return ("op", f[1], [refined(k, m) for k in f[2]]) + tuple(f[3:])
+    return f
+
+
 def extrusion_mesh(leaf, n):
     p = leaf.params
+    if leaf.kind == "linear_extrude" and reader.twisted(p):
+        slices, m = twist_steps(leaf, n)
+        cs = cross_section(refined(p["flat"], m), n)
+        # manifold turns counter-clockwise, OpenSCAD clockwise; both scale
+        # after turning (S R p).
+        mesh = mf.Manifold.extrude(cs, p["h"], slices - 1, -p["twist"], tuple(p["scale2"]))
+        return mesh.translate([0.0, 0.0, p["z0"]])
     if leaf.kind == "linear_extrude":
         cs = cross_section(p["flat"], n)
         m = mf.Manifold.extrude(cs, p["h"], 0, 0.0, (p["scale"], p["scale"]))
@@ -239,6 +264,8 @@ def extrusion_facets(leaf, n):
     p = leaf.params
     b = 1 - math.cos(math.pi / n)
     sv = ellipse_singular_values(leaf)
+    if leaf.kind == "linear_extrude" and reader.twisted(p):
+        return twisted_facets(leaf, n)[:2]
     if leaf.kind == "linear_extrude":
         k = max(1.0, p["scale"])
         qd, qa = quad_facets(leaf, n)
@@ -250,6 +277,105 @@ def extrusion_facets(leaf, n):
     dist = (R + emax) * b + emax * b
     ang = (2 if sv else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
     return dist, ang
+
+
+def poly_edges(f):
+    """The straight edges (a, b) of a 2-D tree's polygons."""
+    if f[0] == "poly":
+        return [(l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
+    if f[0] == "op":
+        return [e for k in f[2] for e in poly_edges(k)]
+    return []
+
+
+def twist_surface(p, a, e, u, t):
+    """Points X and unit normals N of a twisted side, over edge a + u e at
+    height fraction t (arrays), in the extrusion's own coordinates:
+    X = (S(t) R(-theta t)(a + u e), z0 + h t), N along X_u x X_t."""
+    th = math.radians(p["twist"])
+    sx, sy = p["scale2"]
+    sg = np.stack([1 + (sx - 1) * t, 1 + (sy - 1) * t], axis=-1)
+    ang = -th * t
+    c, s_ = np.cos(ang), np.sin(ang)
+    q = a + u[..., None] * e
+    rq = np.stack([c * q[..., 0] - s_ * q[..., 1], s_ * q[..., 0] + c * q[..., 1]], axis=-1)
+    re = np.stack([c * e[0] - s_ * e[1], s_ * e[0] + c * e[1]], axis=-1)
+    # d/dt of R(-theta t) q is -theta R(-theta t + pi/2) q.
+    drq = -th * np.stack([-rq[..., 1], rq[..., 0]], axis=-1)
+    xu = np.concatenate([sg * re, np.zeros(u.shape + (1,))], axis=-1)
+    xt = np.concatenate([np.array([sx - 1, sy - 1]) * rq + sg * drq, np.full(u.shape + (1,), p["h"])], axis=-1)
+    X = np.concatenate([sg * rq, (p["z0"] + p["h"] * t)[..., None]], axis=-1)
+    N = np.cross(xu, xt)
+    return X, N / np.linalg.norm(N, axis=-1, keepdims=True)
+
+
+def twisted_facets(leaf, n):
+    """(distance, angle, curvature radius) of a twisted extrusion's mesh
+    at n, computed once a leaf and n. Distance, derived: the mesh's
+    vertices lie on the surface X(u, t) = S(t) R(-theta t)(a + u e), linear
+    in u; between slices Delta t apart it departs from its chords by at
+    most Delta t^2 / 8 max|X_tt| <= Delta t^2 rho (2 k theta + s theta^2) / 8
+    (rho the farthest vertex, k = max|s_i - 1|, s = max(1, s_i)), and a
+    cell's bilinear patch from its two triangles by a quarter of its twist
+    |(M(t1) - M(t0)) e| <= Delta t (k + s theta) l (l the longest edge
+    piece); a centred circle adds its inscribed polygon's r b s. Angle and
+    curvature radius, sampled: the largest angle between the surface's
+    normal at each cell's corners and middle and the normals of the cell's
+    triangles (either diagonal), and the smallest ratio of distance to
+    normal turn between neighbouring samples, each with a factor 2 of
+    margin."""
+    cache = leaf.__dict__.setdefault("_twisted_facets", {})
+    if n in cache:
+        return cache[n]
+    p = leaf.params
+    slices, m = twist_steps(leaf, n)
+    th = abs(math.radians(p["twist"]))
+    sx, sy = p["scale2"]
+    k, sg = max(abs(sx - 1), abs(sy - 1)), max(1.0, sx, sy)
+    dt = 1.0 / slices
+    edges = poly_edges(p["flat"])
+    sv = ellipse_singular_values(leaf)
+    radii = [s[0] for s in sv]
+    rho = max([float(np.linalg.norm(a)) for a, _ in edges] + radii + [0.0])
+    piece = max([float(np.linalg.norm(b - a)) / m for a, b in edges] + [2 * r * math.sin(math.pi / n) for r in radii] + [0.0])
+    bcirc = 1 - math.cos(math.pi / n)
+    dist = dt * dt * rho * (2 * k * th + sg * th * th) / 8 + dt * (k + sg * th) * piece / 4
+    dist += max((r * bcirc * sg for r in radii), default=0.0)
+    ang, curv = 0.0, math.inf
+    t = np.linspace(0.0, 1.0, slices + 1)
+    for a, b in edges:
+        e = (b - a) / m
+        for j in range(m):
+            a0 = a + j * e
+            uu, tt = np.meshgrid(np.array([0.0, 0.5, 1.0]), np.concatenate([t, (t[:-1] + t[1:]) / 2]))
+            X, N = twist_surface(p, a0, e, uu, tt)
+            corner = X[: slices + 1]
+            c00, c10 = corner[:-1, 0], corner[:-1, 2]
+            c01, c11 = corner[1:, 0], corner[1:, 2]
+            tri = [np.cross(c10 - c00, c11 - c00), np.cross(c11 - c00, c01 - c00), np.cross(c10 - c00, c01 - c00), np.cross(c11 - c10, c01 - c10)]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                # (a cell shrunk to a point, at a pyramid's apex, has none)
+                tri = [f / np.linalg.norm(f, axis=-1, keepdims=True) for f in tri]
+            Nc = N[: slices + 1]
+            samples = [Nc[:-1, 0], Nc[:-1, 2], Nc[1:, 0], Nc[1:, 2], N[slices + 1 :, 1]]
+            for f in tri:
+                for s_ in samples:
+                    cosv = np.abs(np.sum(f * s_, axis=-1)).clip(0, 1)
+                    ok = np.isfinite(cosv)
+                    if ok.any():
+                        ang = max(ang, float(np.arccos(cosv[ok]).max()))
+            # Curvature: normal turn against distance along t and along u.
+            for (X1, N1, X2, N2) in ((X[:slices, 0], Nc[:-1, 0], X[1 : slices + 1, 0], Nc[1:, 0]), (X[: slices + 1, 0], Nc[:, 0], X[: slices + 1, 2], Nc[:, 2])):
+                turn = np.arccos(np.abs(np.sum(N1 * N2, axis=-1)).clip(0, 1))
+                dd = np.linalg.norm(X2 - X1, axis=-1)
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    r = np.where(turn > 0, dd / turn, np.inf)
+                r = r[np.isfinite(turn)]
+                if r.size:
+                    curv = min(curv, float(r.min()) / 2)
+    circ = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
+    cache[n] = (dist, max(2 * ang, circ), min(curv, min((s[1] * min(1.0, sx) for s in sv), default=math.inf)))
+    return cache[n]
 
 
 def quads(f):
@@ -310,6 +436,8 @@ def ellipse_singular_values(leaf):
 def extrusion_curvature(leaf):
     """The smallest object-space curvature radius of an extrusion's circles
     (a tapered one's at its smaller end; infinite without circles)."""
+    if leaf.kind == "linear_extrude" and reader.twisted(leaf.params):
+        return twisted_facets(leaf, 512)[2]
     if not hasattr(leaf, "_curvature"):
         sv = ellipse_singular_values(leaf)
         k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
@@ -354,7 +482,7 @@ def largest_radius(leaf):
         "sphere": lambda: p["r"],
         "cylinder": lambda: max(p["r1"], p["r2"], p["h"]),
         "torus": lambda: p["R"] + p["r"],
-        "linear_extrude": lambda: max(flat_extent(p["flat"]) * max(1.0, p["scale"]), p["h"]),
+        "linear_extrude": lambda: max(flat_extent(p["flat"]) * max([1.0] + list(p.get("scale2") or [p["scale"]])), p["h"]),
         "rotate_extrude": lambda: flat_extent(p["flat"]),
     }.get(leaf.kind, lambda: 0.0)()
     return r * smax
@@ -447,9 +575,15 @@ def extrusion_face(leaf, q):
     p = leaf.params
     if leaf.kind == "linear_extrude":
         h, z0 = p["h"], p["z0"]
-        w = 1 + (p["scale"] - 1) * (q[2] - z0) / h
         fts = features(p["flat"])
-        q2 = q[:2] / w if w > 0 else q[:2] * 0
+        if reader.twisted(p):
+            tq = (q[2] - z0) / h
+            sx, sy = p["scale2"]
+            ok = 1 + (sx - 1) * tq > 0 and 1 + (sy - 1) * tq > 0
+            q2 = reader.twist_frame(p, tq) @ q[:2] if ok else q[:2] * 0
+        else:
+            w = 1 + (p["scale"] - 1) * (q[2] - z0) / h
+            q2 = q[:2] / w if w > 0 else q[:2] * 0
         cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + [feature_distance(ft, q2) for ft in fts]
         return int(np.argmin(cand))
     f, flip = reader.revolve_setup(p)

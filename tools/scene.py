@@ -629,17 +629,19 @@ class Reader:
                 raise self.err(s, f"{key} of {s.name} is not in the oracle")
         f = self.flat_kids(s, "union", np.eye(3))
         if s.name == "linear_extrude":
-            if num(self.path, s, a, "twist", 0.0) != 0.0:
-                raise self.err(s, "a twisted linear_extrude is not in the oracle yet")
+            twist = num(self.path, s, a, "twist", 0.0)
             h = num(self.path, s, a, "height", 100.0)
             sc = a.get("scale", 1.0)
             sc = [sc, sc] if isinstance(sc, float) else list(vec(self.path, s, a, "scale", sizes=(2,))[:2])
             sc = [max(x, 0.0) for x in sc]
-            if sc[0] != sc[1]:
-                raise self.err(s, "a linear_extrude scaled differently in x and y is not in the oracle yet")
             if f is None or h <= 0:
                 return None
             z0 = -h / 2 if a.get("center", False) else 0.0
+            if twist != 0.0 or sc[0] != sc[1]:
+                # OpenSCAD's slice at height fraction t: x = S(t) R(-twist t) p,
+                # S(t) = diag(1 + (sx - 1) t, 1 + (sy - 1) t).
+                check_twistable(self, s, f, twist, sc)
+                return self.leaf(s, "linear_extrude", dict(flat=f, h=h, z0=z0, scale=None, scale2=sc, twist=twist), xf, mat)
             return self.leaf(s, "linear_extrude", dict(flat=f, h=h, z0=z0, scale=sc[0]), xf, mat)
         angle = num(self.path, s, a, "angle", 360.0)
         if angle <= -360 or angle > 360:
@@ -1098,6 +1100,36 @@ def offset_pieces(f, join, d):
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
 
 
+def check_twistable(rd, s, f, twist, sc):
+    """The oracle twists polygons and circles centred on the axis (the
+    same circle turned), and scales circles evenly only."""
+    if f[0] == "curves":
+        raise rd.err(s, "twisted text is not in the oracle")
+    if f[0] == "ellipse":
+        A, c = f[1], f[2]
+        circle = abs(A[:, 0] @ A[:, 1]) <= 1e-12 * (A[:, 0] @ A[:, 0]) and abs(A[:, 1] @ A[:, 1] - A[:, 0] @ A[:, 0]) <= 1e-12 * (A[:, 0] @ A[:, 0])
+        if sc[0] != sc[1] or twist != 0 and not (circle and not np.any(c)):
+            raise rd.err(s, "a twisted circle off the axis, or one scaled unevenly, is not in the oracle")
+    if f[0] == "op":
+        for k in f[2]:
+            check_twistable(rd, s, k, twist, sc)
+
+
+def twisted(p):
+    """Whether an extrusion's parameters twist or scale unevenly."""
+    return p.get("scale") is None
+
+
+def twist_frame(p, t):
+    """R(twist t) S(t)^-1 (OpenSCAD's section at fraction t, inverted): a
+    world plane point times it is the region's point."""
+    sx, sy = p["scale2"]
+    sg = np.array([1 + (sx - 1) * t, 1 + (sy - 1) * t])
+    a = math.radians(p["twist"]) * t
+    c, s_ = math.cos(a), math.sin(a)
+    return np.array([[c, -s_], [s_, c]]) @ np.diag(1 / sg)
+
+
 def curve_pieces(f):
     """The edges of a ("curves", loops) leaf as (a, c or None, b)."""
     return [(l[i][0], l[i][1], l[(i + 1) % len(l)][0]) for l in f[1] for i in range(len(l))]
@@ -1207,6 +1239,36 @@ def extrusion_box(leaf):
     or an ellipsoid exactly), combined as the 2-D tree combines them."""
     m, p = leaf.matrix, leaf.params
     L, t = m[:3, :3], m[:3, 3]
+    if leaf.kind == "linear_extrude" and twisted(p):
+        # csgrt's box of a twisted or unevenly scaled prism: without twist,
+        # each axis scaled at the top; with it, the disc of the farthest
+        # vertex grown by the larger of 1 and each scale. A centred circle
+        # is the cone it sweeps.
+        h, z0, (sx, sy) = p["h"], p["z0"], p["scale2"]
+        grow = np.array([max(1.0, sx), max(1.0, sy)])
+
+        def rec(f):
+            if f[0] == "poly":
+                pts = np.concatenate(f[1])
+                if p["twist"] == 0:
+                    lo, hi = pts.min(axis=0), pts.max(axis=0)
+                    lo, hi = np.minimum(lo, lo * [sx, sy]), np.maximum(hi, hi * [sx, sy])
+                else:
+                    rho = float(np.max(np.hypot(pts[:, 0], pts[:, 1])))
+                    lo, hi = -grow * rho, grow * rho
+                return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
+            if f[0] == "ellipse":
+                A = f[1]
+                out = []
+                for k, z in ((1.0, z0), (sx, z0 + h)):
+                    C = L @ np.array([0.0, 0.0, z]) + t
+                    U, V = L @ np.array([k * A[0, 0], k * A[1, 0], 0.0]), L @ np.array([k * A[0, 1], k * A[1, 1], 0.0])
+                    e = np.sqrt(U**2 + V**2)
+                    out.append((C - e, C + e))
+                return combine_boxes("union", out)
+            return combine_boxes(f[1], [rec(k) for k in f[2]])
+
+        return rec(p["flat"])
     if leaf.kind == "linear_extrude":
         h, z0, s = p["h"], p["z0"], p["scale"]
 

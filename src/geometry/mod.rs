@@ -19,6 +19,7 @@ pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
+pub mod twist;
 
 pub use aabb::Aabb;
 pub use cone::Cone;
@@ -31,6 +32,7 @@ pub use solid::{Param, Probe, Solid};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
+pub use twist::Twisted;
 
 use glam::DVec3;
 

@@ -2,7 +2,7 @@
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Part, Prism, Sphere, Torus};
+use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Part, Prism, Sphere, Torus, Twisted};
 use glam::{DAffine3, DVec3};
 
 /// Not `Copy`: a leaf may carry shared data (a prism's region).
@@ -15,6 +15,7 @@ pub enum Shape {
     Halfspace(Halfspace),
     Prism(Prism),
     Lathe(Lathe),
+    Twisted(Twisted),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -28,6 +29,7 @@ macro_rules! each {
             Shape::Halfspace($s) => $e,
             Shape::Prism($s) => $e,
             Shape::Lathe($s) => $e,
+            Shape::Twisted($s) => $e,
         }
     };
 }

@@ -108,6 +108,16 @@ pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
     })
 }
 
+/// The L region twisted by `twist` radians and scaled to `scale` at the
+/// top (OpenSCAD's twisted or unevenly scaled linear_extrude).
+pub fn l_twisted(twist: f64, scale: glam::DVec2) -> csgrt::geometry::Shape {
+    csgrt::geometry::Shape::Twisted(csgrt::geometry::Twisted {
+        region: std::sync::Arc::new(l_region()),
+        twist,
+        scale,
+    })
+}
+
 /// The same region moved off the axis and turned about it: a lathe.
 pub fn l_lathe() -> csgrt::geometry::Shape {
     use csgrt::plane::{Outlines, Region};

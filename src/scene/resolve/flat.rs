@@ -21,7 +21,7 @@ use super::transforms::{basis_from_z, sin_cos_deg};
 use super::{combine, Resolver};
 use crate::csg::spans::Op;
 use crate::error::Result;
-use crate::geometry::{Cone, Halfspace, Lathe, Prism, Shape, Sphere, Torus};
+use crate::geometry::{Cone, Halfspace, Lathe, Prism, Shape, Sphere, Torus, Twisted};
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
 use crate::scene::Material;
@@ -86,6 +86,28 @@ impl Flat {
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
         }
     }
+}
+
+/// How a linear extrusion sweeps its section: the top's scale in x and y,
+/// and the twist (radians, OpenSCAD's clockwise).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Sweep {
+    pub top: DVec2,
+    pub twist: f64,
+}
+
+impl Sweep {
+    const STRAIGHT: Sweep = Sweep {
+        top: DVec2::ONE,
+        twist: 0.0,
+    };
+}
+
+/// Whether a 2×2 matrix maps the unit circle to a circle.
+fn is_circle(m: glam::DMat2) -> bool {
+    let (x, y) = (m.x_axis, m.y_axis);
+    let r2 = x.length_squared();
+    x.dot(y).abs() <= 1e-12 * r2 && (y.length_squared() - r2).abs() <= 1e-12 * r2
 }
 
 /// A regular polygon of `n` vertices on the circle of radius r, vertex i
@@ -376,10 +398,11 @@ impl Resolver<'_> {
         };
         let h = if self.subtracted { 1.1 } else { 1.0 };
         let local = DAffine3::from_translation(DVec3::new(0.0, 0.0, -h / 2.0));
-        self.linear(s, &f, xf * local, mat, h, 1.0)
+        self.linear(s, &f, xf * local, mat, h, Sweep::STRAIGHT)
     }
 
-    /// The straight or tapered prism of `f` from z = 0 to h under `xf`.
+    /// The straight, tapered or twisted prism of `f` from z = 0 to h under
+    /// `xf`.
     fn linear(
         &mut self,
         s: &Statement,
@@ -387,16 +410,51 @@ impl Resolver<'_> {
         xf: DAffine3,
         mat: Material,
         h: f64,
-        top: f64,
+        sweep: Sweep,
     ) -> Result<Option<u32>> {
+        let local = DAffine3::from_scale(DVec3::new(1.0, 1.0, h));
+        let top = sweep.top.x;
+        let even = sweep.top.x == sweep.top.y;
         match f {
-            Flat::Polygon(o) => {
+            Flat::Polygon(o) if even && sweep.twist == 0.0 => {
                 let shape = Shape::Prism(Prism {
                     region: Arc::new(Region::new(o.clone())),
                     top,
                 });
-                let local = DAffine3::from_scale(DVec3::new(1.0, 1.0, h));
                 self.leaf(s, shape, xf * local, mat)
+            }
+            Flat::Polygon(o) => {
+                if o.curved() {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "twisting or unevenly scaling curved outlines (text) is not supported yet",
+                        "csgrt twists polygons and circles about their centre",
+                    ));
+                }
+                let twist = if crate::mutant::active("twist_reversed") {
+                    -sweep.twist
+                } else {
+                    sweep.twist
+                };
+                let shape = Shape::Twisted(Twisted {
+                    region: Arc::new(Region::new(o.clone())),
+                    twist,
+                    scale: sweep.top,
+                });
+                self.leaf(s, shape, xf * local, mat)
+            }
+            // A circle about the axis is the same circle turned: only an
+            // even taper changes it.
+            Flat::Ellipse(e)
+                if !even
+                    || sweep.twist != 0.0
+                        && !(e.translation == DVec2::ZERO && is_circle(e.matrix2)) =>
+            {
+                Err(self.src.error(
+                    s.name_span,
+                    "twisting a circle off the axis, or scaling one unevenly, is not supported yet",
+                    "csgrt twists polygons, and circles centred on the axis",
+                ))
             }
             Flat::Ellipse(e) => {
                 // The cone over the ellipse with its apex where s(z) = 0:
@@ -424,7 +482,7 @@ impl Resolver<'_> {
             Flat::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {
-                    parts.push(self.linear(s, k, xf, mat, h, top)?);
+                    parts.push(self.linear(s, k, xf, mat, h, sweep)?);
                 }
                 Ok(self.op(*op, parts))
             }
@@ -457,13 +515,7 @@ impl Resolver<'_> {
         no_file(&a, s)?;
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
-        if a.number("twist")?.unwrap_or(0.0) != 0.0 {
-            return Err(a.error(
-                a.span_of("twist"),
-                "a twisted `linear_extrude` is not supported yet",
-                "csgrt extrudes straight and uniformly tapered prisms",
-            ));
-        }
+        let twist = a.number("twist")?.unwrap_or(0.0).to_radians();
         a.number("slices")?;
         let scale = if a.is_number("scale") {
             let k = a.number("scale")?.unwrap_or(1.0);
@@ -473,13 +525,6 @@ impl Resolver<'_> {
                 .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
         }
         .max(DVec2::ZERO);
-        if scale.x != scale.y {
-            return Err(a.error(
-                a.span_of("scale"),
-                "a `linear_extrude` scaled differently in x and y is not supported yet",
-                "csgrt tapers by one scale in both directions",
-            ));
-        }
         let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
@@ -488,7 +533,7 @@ impl Resolver<'_> {
         }
         let z0 = if center { -h / 2.0 } else { 0.0 };
         let xf = xf * DAffine3::from_translation(DVec3::new(0.0, 0.0, z0));
-        self.linear(s, &f, xf, mat, h, scale.x)
+        self.linear(s, &f, xf, mat, h, Sweep { top: scale, twist })
     }
 
     /// `rotate_extrude(angle, convexity)`.
