@@ -105,7 +105,8 @@ fn inner_point(shape: &Shape) -> DVec3 {
         // section scaled by the taper there).
         Shape::Prism(p) => {
             let w = 1.0 + (p.top - 1.0) * 0.25;
-            DVec3::new(0.5 * w, 0.5 * w, 0.25)
+            let z = if p.centered { -0.25 } else { 0.25 };
+            DVec3::new(0.5 * w, 0.5 * w, z)
         }
         Shape::Lathe(_) => DVec3::new(1.0, 0.0, -0.5),
         // The same point of the section, where the twist and scale put it.
@@ -113,7 +114,7 @@ fn inner_point(shape: &Shape) -> DVec3 {
             let z = 0.25;
             let s = glam::DVec2::ONE + (t.scale - glam::DVec2::ONE) * z;
             let p = glam::DMat2::from_angle(-t.twist * z) * glam::DVec2::splat(0.5);
-            (p * s).extend(z)
+            (p * s).extend(if t.centered { z - 0.5 } else { z })
         }
         s => s.object_bounds().center(),
     }
@@ -409,12 +410,13 @@ fn support_points_are_the_farthest_points_of_the_solid() {
             let found = match &shape {
                 Shape::Torus(t) => on_solid(s - t.minor * u),
                 Shape::Prism(p) => (0..64).any(|k| {
-                    let w = 1.0 + (p.top - 1.0) * s.z;
+                    let (z_lo, z_mid) = if p.centered { (-0.5, 0.0) } else { (0.0, 0.5) };
+                    let w = 1.0 + (p.top - 1.0) * (s.z - z_lo);
                     if k == 0 {
                         return on_solid(DVec3::new(0.5 * w, 0.5 * w, s.z));
                     }
                     let a = k as f64 * std::f64::consts::TAU / 64.0;
-                    on_solid(s + DVec3::new(a.cos(), a.sin(), 0.01 * (0.5 - s.z)))
+                    on_solid(s + DVec3::new(a.cos(), a.sin(), 0.01 * (z_mid - s.z)))
                 }),
                 Shape::Lathe(_) => on_solid((s.truncate().normalize_or_zero()).extend(-0.5)),
                 _ => on_solid(shape.object_bounds().center()),

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Stress csgrt's intersections against exact arithmetic.
 
-For every primitive (sphere, cube, cylinder, cone, frustum, torus), placed at
+For every primitive (sphere, cube, cylinder, cone, frustum, torus, and the
+extrusions: a straight, a tapered and a twisted prism of an L-shaped polygon,
+a glyph's prism — quadratic Bézier edges, the letter from the built-in font
+laid out by tools/scene.py — and an L profile turned), placed at
 offsets 0, 1e3 and 1e6 from the origin and at sizes 1e-3, 1 and 1e3, rays of
 several kinds are traced by csgrt (--trace-rays) and by mpmath at 50 digits
 from the very same f64 inputs:
@@ -34,6 +37,8 @@ import sys
 import tempfile
 
 import mpmath as mp
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 mp.mp.dps = 50
 LIMIT = 1e-9
@@ -245,6 +250,339 @@ class Prim:
         return ts[0] if ts else None
 
 
+# --------------------------------------------------------------------------
+# Extrusions: exact crossings of prisms, tapered, twisted and turned
+# polygons, and a glyph's curves
+# --------------------------------------------------------------------------
+
+L_SHAPE = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.0), (0.0, 0.0), (0.0, 0.5), (-0.5, 0.5)]
+PROFILE = [(0.25, -0.5), (0.5, -0.5), (0.5, 0.0), (0.375, 0.25), (0.25, 0.5)]
+EXTRUSIONS = ["prism", "tapered", "twisted", "glyph", "lathe"]
+TAPER = 0.5
+TWIST, TWIST_SCALE = 90.0, (0.7, 1.3)
+
+
+def cross2(a, b):
+    return a[0] * b[1] - a[1] * b[0]
+
+
+class Extruded(Prim):
+    """A 2-D shape of size s extruded over z in [-s/2, s/2] (straight,
+    tapered to TAPER, twisted by TWIST with TWIST_SCALE) or turned (its
+    profile in (r, z)), centred at c."""
+
+    def __init__(self, kind, c, s, pose="plain"):
+        super().__init__(kind, c, s, pose)
+        self.h = M(s) / 2
+        if kind == "glyph":
+            import scene as reader
+
+            with tempfile.NamedTemporaryFile("w", suffix=".csg", delete=False) as f:
+                f.write(self.body() + "\n")
+            leaf = reader.read(f.name).leaves[0]
+            os.unlink(f.name)
+            flat = leaf.params["flat"]
+            parts = flat[2] if flat[0] == "op" else [flat]
+            self.edges = []
+            for g in parts:
+                for a, c_, b in reader.curve_pieces(g):
+                    pts = [a, b] if c_ is None else [a, c_, b]
+                    self.edges.append([[M(float(x)) for x in q] for q in pts])
+        else:
+            pts = PROFILE if kind == "lathe" else L_SHAPE
+            pts = [[M(x * s) for x in q] for q in pts]
+            self.edges = [[pts[i], pts[(i + 1) % len(pts)]] for i in range(len(pts))]
+
+    def body(self):
+        s = self.s
+        if self.kind == "glyph":
+            return f"linear_extrude(height = {s!r}, center = true) text(\"e\", size = {s!r}, halign = \"center\", valign = \"center\");"
+        pts = PROFILE if self.kind == "lathe" else L_SHAPE
+        poly = "polygon([" + ", ".join(f"[{x * s!r}, {y * s!r}]" for x, y in pts) + "])"
+        if self.kind == "lathe":
+            return f"rotate_extrude() {poly};"
+        extra = {
+            "prism": "",
+            "tapered": f", scale = {TAPER!r}",
+            "twisted": f", twist = {TWIST!r}, scale = [{TWIST_SCALE[0]!r}, {TWIST_SCALE[1]!r}]",
+        }[self.kind]
+        return f"linear_extrude(height = {s!r}, center = true{extra}) {poly};"
+
+    # The section at height z (fraction f from the bottom): the region's
+    # point q for a plane point p.
+    def frac(self, z):
+        return (z + self.h) / (2 * self.h)
+
+    def to_region(self, p):
+        f = self.frac(p[2])
+        if self.kind == "tapered":
+            w = 1 + (M(TAPER) - 1) * f
+            return [p[0] / w, p[1] / w] if w > 0 else None
+        if self.kind == "twisted":
+            sx, sy = 1 + (M(TWIST_SCALE[0]) - 1) * f, 1 + (M(TWIST_SCALE[1]) - 1) * f
+            a = mp.pi * M(TWIST) / 180 * f
+            u, v = p[0] / sx, p[1] / sy
+            return [mp.cos(a) * u - mp.sin(a) * v, mp.sin(a) * u + mp.cos(a) * v]
+        return [p[0], p[1]]
+
+    def inside2(self, q):
+        """Even-odd: crossings of the line from q along +x."""
+        inside = False
+        for e in self.edges:
+            if len(e) == 2:
+                a, b = e
+                if (a[1] > q[1]) != (b[1] > q[1]):
+                    x = a[0] + (q[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
+                    inside ^= x > q[0]
+                continue
+            a, c, b = e
+            # y(u) = q_y: (a - 2c + b) u^2 + 2 (c - a) u + a - q
+            k2, k1, k0 = a[1] - 2 * c[1] + b[1], 2 * (c[1] - a[1]), a[1] - q[1]
+            for u in real_roots([k2, k1, k0]):
+                if 0 <= u < 1:
+                    x = (1 - u) ** 2 * a[0] + 2 * u * (1 - u) * c[0] + u * u * b[0]
+                    if x > q[0] and abs(2 * k2 * u + k1) > 0:
+                        inside ^= True
+        return inside
+
+    def contains(self, p):
+        if self.kind == "lathe":
+            return self.inside2([mp.sqrt(p[0] ** 2 + p[1] ** 2), p[2]])
+        if abs(p[2]) > self.h:
+            return False
+        q = self.to_region(p)
+        return q is not None and self.inside2(q)
+
+    def tagged(self, o, d):
+        """Every boundary crossing (t, surface) of the local line."""
+        out = []
+        if self.kind == "lathe":
+            for i, (a, b) in enumerate(self.edges):
+                e = [b[0] - a[0], b[1] - a[1]]
+                # rho e_z = a_r e_z + (z - a_z) e_r, squared: a quadratic.
+                L0, L1 = a[0] * e[1] + (o[2] - a[1]) * e[0], d[2] * e[0]
+                A = (d[0] ** 2 + d[1] ** 2) * e[1] ** 2 - L1 * L1
+                B = 2 * (o[0] * d[0] + o[1] * d[1]) * e[1] ** 2 - 2 * L0 * L1
+                C = (o[0] ** 2 + o[1] ** 2) * e[1] ** 2 - L0 * L0
+                if e[1] == 0:
+                    if d[2] != 0:
+                        t = (a[1] - o[2]) / d[2]
+                        rho = mp.sqrt((o[0] + t * d[0]) ** 2 + (o[1] + t * d[1]) ** 2)
+                        u = (rho - a[0]) / e[0]
+                        if 0 <= u <= 1:
+                            out.append((t, ("ring", i)))
+                    continue
+                for t in real_roots([A, B, C]):
+                    if (L0 + L1 * t) * e[1] < 0:
+                        continue
+                    z = o[2] + t * d[2]
+                    u = (z - a[1]) / e[1]
+                    if 0 <= u <= 1:
+                        out.append((t, ("cone", i)))
+            return sorted(out, key=lambda x: x[0])
+        # Caps.
+        if d[2] != 0:
+            for zc in (-self.h, self.h):
+                t = (zc - o[2]) / d[2]
+                p = [o[i] + t * d[i] for i in range(3)]
+                q = self.to_region(p)
+                if q is not None and self.inside2(q):
+                    out.append((t, ("cap", 1 if zc > 0 else -1)))
+            tlo, thi = sorted([(-self.h - o[2]) / d[2], (self.h - o[2]) / d[2]])
+        else:
+            if abs(o[2]) >= self.h:
+                return []
+            tlo, thi = -mp.inf, mp.inf
+        for i, e in enumerate(self.edges):
+            for t in self.side_roots(o, d, e, tlo, thi):
+                out.append((t, ("side", i)))
+        return sorted(out, key=lambda x: x[0])
+
+    def side_roots(self, o, d, e, tlo, thi):
+        """Where the line meets the side over edge e, within the slab."""
+        out = []
+        if self.kind == "glyph" and len(e) == 3:
+            a, c, b = e
+            # cross(B(u) - o, d) = 0: a quadratic in u.
+            k = [[a[i] - 2 * c[i] + b[i], 2 * (c[i] - a[i]), a[i] - o[i]] for i in range(2)]
+            co = [k[0][j] * d[1] - k[1][j] * d[0] for j in range(3)]
+            for u in real_roots(co):
+                if 0 <= u <= 1:
+                    pt = [(1 - u) ** 2 * a[i] + 2 * u * (1 - u) * c[i] + u * u * b[i] for i in range(2)]
+                    dd = d[0] ** 2 + d[1] ** 2
+                    t = ((pt[0] - o[0]) * d[0] + (pt[1] - o[1]) * d[1]) / dd
+                    if tlo <= t <= thi:
+                        out.append(t)
+            return out
+        a, b = e
+        ed = [b[0] - a[0], b[1] - a[1]]
+        if self.kind in ("prism", "glyph", "tapered"):
+            # cross(p_xy - w a, e) = 0 with w = 1 + (k - 1) f(z): linear in t.
+            kk = (M(TAPER) - 1) / (2 * self.h) if self.kind == "tapered" else M(0)
+            w0 = 1 + kk * (o[2] + self.h)
+            f0 = cross2([o[0] - w0 * a[0], o[1] - w0 * a[1]], ed)
+            f1 = cross2([d[0] - kk * d[2] * a[0], d[1] - kk * d[2] * a[1]], ed)
+            if f1 == 0:
+                return []
+            t = -f0 / f1
+            if not (tlo <= t <= thi):
+                return []
+            p = [o[i] + t * d[i] for i in range(3)]
+            q = self.to_region(p)
+            if q is None:
+                return []
+            u = ((q[0] - a[0]) * ed[0] + (q[1] - a[1]) * ed[1]) / (ed[0] ** 2 + ed[1] ** 2)
+            return [t] if 0 <= u <= 1 else []
+        # Twisted: n.q(t) - c changes sign; sampled finely, then bisected.
+        n = [ed[1], -ed[0]]
+        c = n[0] * a[0] + n[1] * a[1]
+
+        def g(t):
+            q = self.to_region([o[i] + t * d[i] for i in range(3)])
+            return n[0] * q[0] + n[1] * q[1] - c
+
+        steps = 160
+        ts = [tlo + (thi - tlo) * j / steps for j in range(steps + 1)]
+        gs = [g(t) for t in ts]
+        for j in range(steps):
+            if (gs[j] > 0) != (gs[j + 1] > 0):
+                t = mp.findroot(g, (ts[j], ts[j + 1]), solver="anderson")
+                q = self.to_region([o[i] + t * d[i] for i in range(3)])
+                u = ((q[0] - a[0]) * ed[0] + (q[1] - a[1]) * ed[1]) / (ed[0] ** 2 + ed[1] ** 2)
+                if 0 <= u <= 1:
+                    out.append(t)
+        return out
+
+    def crossings(self, o, d):
+        lo, ld = self.local(o, d)
+        return [t for t, _ in self.tagged(lo, ld)]
+
+    def grad(self, p, tag):
+        """The gradient of a function zero on the surface `tag` at local p."""
+        kind, i = tag
+        if kind == "cap":
+            return [M(0), M(0), M(i)]
+        e = self.edges[i]
+        if kind in ("cone", "ring"):
+            a, b = e
+            rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+            er, ez = b[0] - a[0], b[1] - a[1]
+            return [ez * p[0] / rho, ez * p[1] / rho, -er]
+        if self.kind == "glyph" and len(e) == 3:
+            a, c, b = e
+            q = [p[0], p[1]]
+            u = self.param(e, q)
+            tg = [2 * (1 - u) * (c[j] - a[j]) + 2 * u * (b[j] - c[j]) for j in range(2)]
+            return [tg[1], -tg[0], M(0)]
+
+        def F(x, y, z):
+            q = self.to_region([x, y, z])
+            a, b = e
+            ed = [b[0] - a[0], b[1] - a[1]]
+            return ed[1] * (q[0] - a[0]) - ed[0] * (q[1] - a[1])
+
+        return [mp.diff(F, (p[0], p[1], p[2]), tuple(int(j == k) for j in range(3))) for k in range(3)]
+
+    def param(self, e, q):
+        a, c, b = e
+        best = None
+        for j in range(2):
+            for u in real_roots([a[j] - 2 * c[j] + b[j], 2 * (c[j] - a[j]), a[j] - q[j]]):
+                if -1e-20 <= u <= 1 + 1e-20:
+                    pt = [(1 - u) ** 2 * a[k] + 2 * u * (1 - u) * c[k] + u * u * b[k] for k in range(2)]
+                    dist = (pt[0] - q[0]) ** 2 + (pt[1] - q[1]) ** 2
+                    if best is None or dist < best[0]:
+                        best = (dist, u)
+        return best[1]
+
+    def normal(self, o, d, t):
+        lo, ld = self.local(o, d)
+        tag = min(self.tagged(lo, ld), key=lambda x: abs(x[0] - t))[1]
+        p = [lo[i] + t * ld[i] for i in range(3)]
+        g = self.grad(p, tag)
+        ln = mp.sqrt(dot(g, g))
+        g = [x / ln for x in g]
+        eps = M(self.s) * mp.mpf(10) ** -20
+        if self.contains([p[i] + eps * g[i] for i in range(3)]):
+            g = [-x for x in g]
+        # The curvature radius: a plane side none; a turned side its
+        # distance from the axis (no more than its radii); a glyph's curve
+        # |B'|^3 / |B' x B''|; a twisted side the rate its normal field
+        # turns along the ray (half of it, for margin).
+        kind, i = tag
+        if kind == "cap" or self.kind in ("prism", "tapered") or kind == "side" and len(self.edges[i]) == 2 and self.kind == "glyph":
+            rho = mp.inf
+        elif kind in ("cone", "ring"):
+            rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+        elif self.kind == "glyph":
+            a, c, b = self.edges[i]
+            u = self.param(self.edges[i], p)
+            b1 = [2 * (1 - u) * (c[j] - a[j]) + 2 * u * (b[j] - c[j]) for j in range(2)]
+            b2 = [2 * (a[j] - 2 * c[j] + b[j]) for j in range(2)]
+            k = abs(cross2(b1, b2))
+            rho = mp.inf if k == 0 else mp.sqrt(b1[0] ** 2 + b1[1] ** 2) ** 3 / k
+        else:
+            def nf(tt):
+                q = [lo[j] + tt * ld[j] for j in range(3)]
+                gg = self.grad(q, tag)
+                l2 = mp.sqrt(dot(gg, gg))
+                return [x / l2 for x in gg]
+
+            dn = [mp.diff(lambda tt, j=j: nf(tt)[j], t) for j in range(3)]
+            rate = mp.sqrt(dot(dn, dn)) / mp.sqrt(dot(ld, ld))
+            rho = mp.inf if rate == 0 else 1 / (2 * rate)
+        w = apply(transpose(self.inv), g)
+        ln = mp.sqrt(dot(w, w))
+        return [x / ln for x in w], rho
+
+
+def real_roots(c):
+    """Real roots of c[0] u^2 + c[1] u + c[2] (any of them zero)."""
+    a, b, k = c
+    if a == 0:
+        return [] if b == 0 else [-k / b]
+    disc = b * b - 4 * a * k
+    if disc < 0:
+        return []
+    q = mp.sqrt(disc)
+    return sorted([(-b - q) / (2 * a), (-b + q) / (2 * a)])
+
+
+def extrusion_rays(p, n, rng):
+    """Random rays at random inner points, rays from inside, and rays
+    along a prism's vertical edge 1e-9 of the size inside its corner, or
+    grazing a turned profile's outer cylinder."""
+    c, s = p.c, p.s
+    out = []
+
+    def at(*rel):
+        return [c[i] + rel[i] * s for i in range(3)]
+
+    inner = []
+    while len(inner) < n:
+        q = [rng.uniform(-0.5, 0.5) for _ in range(3)]
+        if p.contains([M(x * s) for x in q]):
+            inner.append(q)
+    for q in inner:
+        u = [rng.gauss(0, 1) for _ in range(3)]
+        nu = sum(x * x for x in u) ** 0.5
+        o = at(*(3 * x / nu for x in u))
+        target = at(*q)
+        out.append(("random", o, unit([target[i] - o[i] for i in range(3)])))
+        out.append(("inside", at(*q), unit(u)))
+    ulp = math.ulp(max(abs(x) for x in c) or 1.0)
+    slim = max(SLIM, 8 * ulp / s)
+    for j in range(max(2, n // 4)):
+        if p.kind == "lathe":
+            a = 2 * math.pi * j / n
+            o = at(-3.0, 0.5 * (1 - slim), -0.25 + 0.05 * math.sin(a))
+            out.append(("grazing", o, [1.0, 0.0, 0.0]))
+        elif p.kind != "glyph":
+            e = -0.5 + slim
+            out.append(("edge", at(e, e, -3.0), [0.0, 0.0, 1.0]))
+    return out
+
+
 def quadratic(a, b, c):
     """Roots of a t^2 + 2 b t + c = 0 when two distinct real ones exist."""
     disc = b * b - a * c
@@ -388,12 +726,15 @@ def main():
     failures = []
     direction = [1.0, 0.7, 0.3]
     with tempfile.TemporaryDirectory() as work:
-        for kind in ["sphere", "cube", "cylinder", "cone", "frustum", "torus"]:
-            for pose in POSES:
+        for kind in ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS:
+            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "glyph") else POSES
+            for pose in poses:
                 for off in OFFSETS:
                     for size in SIZES:
-                        p = Prim(kind, [off * x for x in direction], size, pose)
-                        rays = [(case, *p.place(o, d)) for case, o, d in rays_for(p, a.rays, rng)]
+                        cls = Extruded if kind in EXTRUSIONS else Prim
+                        p = cls(kind, [off * x for x in direction], size, pose)
+                        maker = extrusion_rays if kind in EXTRUSIONS else rays_for
+                        rays = [(case, *p.place(o, d)) for case, o, d in maker(p, a.rays, rng)]
                         got = run(a.csgrt, p, rays, work)
                         for (case, o, d), c in zip(rays, got):
                             check_ray(p, case, o, d, c, worst, worst_angle, failures)

@@ -30,10 +30,24 @@ pub struct Prism {
     pub region: Arc<Region>,
     /// The scale of the top section (≥ 0; 1 for a straight prism).
     pub top: f64,
+    /// From z = −1/2 to 1/2 rather than 0 to 1 (OpenSCAD's `center`): kept
+    /// here, not in the transform, so that a small part far from the origin
+    /// keeps its own precision (the half height is not rounded into a
+    /// translation of the world's size).
+    pub centered: bool,
 }
 
 impl Prism {
-    /// The section's scale s(z) at height z.
+    /// The bottom's height.
+    fn z_lo(&self) -> f64 {
+        if self.centered {
+            -0.5
+        } else {
+            0.0
+        }
+    }
+
+    /// The section's scale s(z) at height z (from the bottom).
     fn scale_at(&self, z: f64) -> f64 {
         1.0 + (self.top - 1.0) * z
     }
@@ -129,7 +143,8 @@ impl Solid for Prism {
     const NAME: &'static str = "linear_extrude";
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
-        let (o, d) = (q.o, q.d);
+        // Heights from the bottom.
+        let (o, d) = (q.o - DVec3::Z * self.z_lo(), q.d);
         // The slab 0 ≤ z ≤ 1.
         let (z0, zp0, z1, zp1) = if d.z == 0.0 {
             if o.z <= 0.0 || o.z >= 1.0 {
@@ -176,7 +191,7 @@ impl Solid for Prism {
                     let n = r.normals[e];
                     return n.extend((1.0 - self.top) * n.dot(r.edges[e].0));
                 }
-                let w = self.scale_at(p.z);
+                let w = self.scale_at(p.z - self.z_lo());
                 let q = if w > 0.0 {
                     p.truncate() / w
                 } else {
@@ -191,6 +206,7 @@ impl Solid for Prism {
     }
 
     fn contains(&self, p: DVec3) -> bool {
+        let p = p - DVec3::Z * self.z_lo();
         let w = self.scale_at(p.z);
         (0.0..=1.0).contains(&p.z)
             && (w > 0.0 && self.region.contains(p.truncate() / w)
@@ -200,14 +216,16 @@ impl Solid for Prism {
     fn object_bounds(&self) -> Aabb {
         let r = &self.region;
         let (lo, hi) = (r.lo.min(r.lo * self.top), r.hi.max(r.hi * self.top));
-        Aabb::new(lo.extend(0.0), hi.extend(1.0))
+        let z = self.z_lo();
+        Aabb::new(lo.extend(z), hi.extend(z + 1.0))
     }
 
     /// The farthest point of either cap: the region's farthest point along
     /// d_xy, at scale 1 and at `top`.
     fn support(&self, d: DVec3) -> Option<DVec3> {
         let q = self.region.farthest(d.truncate());
-        [q.extend(0.0), (q * self.top).extend(1.0)]
+        let z = self.z_lo();
+        [q.extend(z), (q * self.top).extend(z + 1.0)]
             .into_iter()
             .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
     }
@@ -216,6 +234,7 @@ impl Solid for Prism {
         vec![
             ("edges", Param::Num(self.region.edges.len() as f64)),
             ("scale", Param::Num(self.top)),
+            ("center", Param::Bool(self.centered)),
         ]
     }
 
@@ -257,7 +276,7 @@ impl Solid for Prism {
                 "linear_sweep",
                 0.0,
                 1.0,
-                "<1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 0>".to_string(),
+                format!("<1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, {:?}>", self.z_lo()),
             )
         } else {
             let k = 1.0 / (1.0 - self.top);
@@ -265,7 +284,11 @@ impl Solid for Prism {
                 "conic_sweep",
                 self.top.min(1.0),
                 self.top.max(1.0),
-                format!("<1, 0, 0, 0, 0, {:?}, 0, 1, 0, 0, 0, {:?}>", -k, k),
+                format!(
+                    "<1, 0, 0, 0, 0, {:?}, 0, 1, 0, 0, 0, {:?}>",
+                    -k,
+                    k + self.z_lo()
+                ),
             )
         };
         format!(

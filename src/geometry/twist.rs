@@ -40,6 +40,8 @@ pub struct Twisted {
     pub twist: f64,
     /// The top section's scale in x and y (≥ 0).
     pub scale: DVec2,
+    /// From z = −1/2 to 1/2 rather than 0 to 1 (see [`super::Prism`]).
+    pub centered: bool,
 }
 
 /// A quadratic q0 + q1·t + q2·t².
@@ -231,6 +233,15 @@ fn union2(a: Spans, b: Spans) -> Spans {
 }
 
 impl Twisted {
+    /// The bottom's height.
+    fn z_lo(&self) -> f64 {
+        if self.centered {
+            -0.5
+        } else {
+            0.0
+        }
+    }
+
     fn sigma(&self, z: f64) -> DVec2 {
         DVec2::ONE + (self.scale - DVec2::ONE) * z
     }
@@ -341,7 +352,8 @@ impl Solid for Twisted {
     const NAME: &'static str = "linear_extrude";
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
-        let (o, d) = (q.o, q.d);
+        // Heights from the bottom.
+        let (o, d) = (q.o - DVec3::Z * self.z_lo(), q.d);
         if d.z == 0.0 {
             // A straight path through the section at this height.
             if o.z <= 0.0 || o.z >= 1.0 {
@@ -395,6 +407,7 @@ impl Solid for Twisted {
     /// The gradient of n·p(x) − c: S⁻¹R(θz)ᵀn in x and y, and in z
     /// n·(θ·R′(θz)S⁻¹x + R(θz)·d(S⁻¹)/dz·x).
     fn normal(&self, p: DVec3, part: Part) -> DVec3 {
+        let p = p - DVec3::Z * self.z_lo();
         match part {
             BOTTOM => DVec3::NEG_Z,
             TOP => DVec3::Z,
@@ -414,6 +427,7 @@ impl Solid for Twisted {
     }
 
     fn contains(&self, p: DVec3) -> bool {
+        let p = p - DVec3::Z * self.z_lo();
         (0.0..=1.0).contains(&p.z)
             && self
                 .frame(p.z)
@@ -432,7 +446,8 @@ impl Solid for Twisted {
             let rho = r.edges.iter().map(|(a, _)| a.length()).fold(0.0, f64::max);
             (-grow * rho, grow * rho)
         };
-        Aabb::new(lo.extend(0.0), hi.extend(1.0))
+        let z = self.z_lo();
+        Aabb::new(lo.extend(z), hi.extend(z + 1.0))
     }
 
     /// Not computed: a twisted side's farthest point is not at a vertex.
@@ -446,6 +461,7 @@ impl Solid for Twisted {
             ("twist", Param::Num(self.twist.to_degrees())),
             ("scale_x", Param::Num(self.scale.x)),
             ("scale_y", Param::Num(self.scale.y)),
+            ("center", Param::Bool(self.centered)),
         ]
     }
 

@@ -105,6 +105,7 @@ pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
     csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
         region: std::sync::Arc::new(l_region()),
         top,
+        centered: top < 0.5,
     })
 }
 
@@ -115,6 +116,7 @@ pub fn l_twisted(twist: f64, scale: glam::DVec2) -> csgrt::geometry::Shape {
         region: std::sync::Arc::new(l_region()),
         twist,
         scale,
+        centered: twist < 0.0,
     })
 }
 
@@ -176,5 +178,6 @@ pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
     csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
         region: std::sync::Arc::new(Region::new(outlines)),
         top,
+        centered: true,
     })
 }

@@ -94,13 +94,8 @@ impl Flat {
 pub(super) struct Sweep {
     pub top: DVec2,
     pub twist: f64,
-}
-
-impl Sweep {
-    const STRAIGHT: Sweep = Sweep {
-        top: DVec2::ONE,
-        twist: 0.0,
-    };
+    /// From −h/2 to h/2 (OpenSCAD's `center`), kept in the leaf itself.
+    pub centered: bool,
 }
 
 /// Whether a 2×2 matrix maps the unit circle to a circle.
@@ -397,8 +392,12 @@ impl Resolver<'_> {
             return Ok(None);
         };
         let h = if self.subtracted { 1.1 } else { 1.0 };
-        let local = DAffine3::from_translation(DVec3::new(0.0, 0.0, -h / 2.0));
-        self.linear(s, &f, xf * local, mat, h, Sweep::STRAIGHT)
+        let sweep = Sweep {
+            top: DVec2::ONE,
+            twist: 0.0,
+            centered: true,
+        };
+        self.linear(s, &f, xf, mat, h, sweep)
     }
 
     /// The straight, tapered or twisted prism of `f` from z = 0 to h under
@@ -413,6 +412,7 @@ impl Resolver<'_> {
         sweep: Sweep,
     ) -> Result<Option<u32>> {
         let local = DAffine3::from_scale(DVec3::new(1.0, 1.0, h));
+        let centered = sweep.centered;
         let top = sweep.top.x;
         let even = sweep.top.x == sweep.top.y;
         match f {
@@ -420,6 +420,7 @@ impl Resolver<'_> {
                 let shape = Shape::Prism(Prism {
                     region: Arc::new(Region::new(o.clone())),
                     top,
+                    centered,
                 });
                 self.leaf(s, shape, xf * local, mat)
             }
@@ -440,6 +441,7 @@ impl Resolver<'_> {
                     region: Arc::new(Region::new(o.clone())),
                     twist,
                     scale: sweep.top,
+                    centered,
                 });
                 self.leaf(s, shape, xf * local, mat)
             }
@@ -465,18 +467,17 @@ impl Resolver<'_> {
                 } else {
                     (1.0 / top, 1.0, top)
                 };
+                // Centred, z runs from −1/2 and the shear's part of the
+                // bottom moves to the translation.
                 let c = e.translation;
                 let m = DMat3::from_cols(
                     (e.matrix2.x_axis * k).extend(0.0),
                     (e.matrix2.y_axis * k).extend(0.0),
                     (c * (top - 1.0)).extend(h),
                 );
-                let local = DAffine3::from_mat3_translation(m, c.extend(0.0));
-                let shape = Shape::Cone(Cone {
-                    r0,
-                    r1,
-                    centered: false,
-                });
+                let base = if centered { c * (top + 1.0) * 0.5 } else { c };
+                let local = DAffine3::from_mat3_translation(m, base.extend(0.0));
+                let shape = Shape::Cone(Cone { r0, r1, centered });
                 self.leaf(s, shape, xf * local, mat)
             }
             Flat::Op(op, kids) => {
@@ -531,9 +532,12 @@ impl Resolver<'_> {
         if h <= 0.0 {
             return self.empty(s, "its height is zero or negative");
         }
-        let z0 = if center { -h / 2.0 } else { 0.0 };
-        let xf = xf * DAffine3::from_translation(DVec3::new(0.0, 0.0, z0));
-        self.linear(s, &f, xf, mat, h, Sweep { top: scale, twist })
+        let sweep = Sweep {
+            top: scale,
+            twist,
+            centered: center,
+        };
+        self.linear(s, &f, xf, mat, h, sweep)
     }
 
     /// `rotate_extrude(angle, convexity)`.

@@ -148,15 +148,17 @@ fn cylinder(
         // end for end when the top is the wider.
         let region = std::sync::Arc::new(Region::new(regular_polygon(n, rmax)));
         let top = r1.min(r2) / rmax;
-        let z0 = if center { -h / 2.0 } else { 0.0 };
-        let local = if r1 >= r2 {
-            DAffine3::from_translation(DVec3::new(0.0, 0.0, z0))
-                * DAffine3::from_scale(DVec3::new(1.0, 1.0, h))
-        } else {
-            DAffine3::from_translation(DVec3::new(0.0, 0.0, z0 + h))
-                * DAffine3::from_scale(DVec3::new(1.0, 1.0, -h))
+        // Centred, it is its own mirror image in z = 0.
+        let flip = if r1 >= r2 { 1.0 } else { -1.0 };
+        let lift = if r1 >= r2 || center { 0.0 } else { h };
+        let local = DAffine3::from_translation(DVec3::new(0.0, 0.0, lift))
+            * DAffine3::from_scale(DVec3::new(1.0, 1.0, flip * h));
+        let prism = Prism {
+            region,
+            top,
+            centered: center,
         };
-        return res.leaf(s, Shape::Prism(Prism { region, top }), xf * local, mat);
+        return res.leaf(s, Shape::Prism(prism), xf * local, mat);
     }
     let shape = Shape::Cone(Cone {
         r0: r1 / rmax,
