@@ -217,7 +217,7 @@ def main():
     scenes = a.scenes or sorted(glob.glob("models/*.csg")) + sorted(glob.glob("bench/*.csg"))
     w, h = a.size.split("x")
     cores = os.cpu_count() or 1
-    rows = []
+    rows, skipped = [], []
     with tempfile.TemporaryDirectory() as work:
         for scene in scenes:
             name = os.path.splitext(os.path.basename(scene))[0]
@@ -231,6 +231,12 @@ def main():
             )
             with open(stats) as f:
                 s = json.load(f)
+            with open(pov) as f:
+                if "#error" in f.read():
+                    # A twisted extrusion: POV-Ray has no such solid.
+                    print(f"{name}: skipped, no POV-Ray equivalent (a twisted linear_extrude)", flush=True)
+                    skipped.append(name)
+                    continue
             entered = json.loads(subprocess.run(
                 [a.entered, scene, a.size, "4"], check=True, capture_output=True, text=True).stdout)
             row = {"scene": name, "stats": s, "entered": entered}
@@ -297,6 +303,9 @@ def main():
             f"{s['primary_rays'] / r1:,.0f} | {s['primitive_tests'] / s['primary_rays']:.2f} | "
             f"{r['entered']['tests_per_entered']:.2f} | {100 * r['entered']['rays_within_3x']:.1f} % |"
         )
+    if skipped:
+        lines += ["", "Not compared (no POV-Ray equivalent: a twisted or unevenly scaled `linear_extrude`): "
+                  + ", ".join(skipped) + "."]
     text = "\n".join(lines) + "\n"
     print(text)
     if a.out:

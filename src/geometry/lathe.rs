@@ -46,7 +46,21 @@ impl Lathe {
             let t = (v.y - o.z) / d.z;
             v.x * v.x - rho2(t) > 0.0
         };
+        // Where the line is within the profile's largest radius, and so
+        // the heights it can meet the profile at.
+        let rmax = self.profile.hi.x.max(0.0);
+        let (z_lo, z_hi) = match roots(a2, b2, c2 - rmax * rmax * (1.0 + 1e-9)) {
+            Roots::Two(t0, t1) => {
+                let (za, zb) = (o.z + t0 * d.z, o.z + t1 * d.z);
+                (za.min(zb), za.max(zb))
+            }
+            _ => return,
+        };
+        let pad = 1e-9 * (z_hi - z_lo).abs().max(self.profile.hi.y.abs().max(self.profile.lo.y.abs()));
         for (k, &(a, b)) in self.profile.edges.iter().enumerate() {
+            if a.y.max(b.y) < z_lo - pad || a.y.min(b.y) > z_hi + pad {
+                continue;
+            }
             let (ga, gb) = (side(a), side(b));
             // The edge's line n·(r, z) = c turned about the axis is a cone:
             // n_r ρ(t) = c − n_z z(t), squared a quadratic in t (as stable

@@ -579,6 +579,13 @@ pub fn crossings(
             cut((p - o).dot(d) / dd, k);
             continue;
         }
+        // A curve lies in the hull of its control points: all on one side,
+        // it never changes side.
+        let mut hull = c.points().map(|p| (p - o).dot(n) > 0.0);
+        let left = sa > 0.0;
+        if (sb > 0.0) == left && hull.all(|l| l == left) {
+            continue;
+        }
         let curve = Curve::new(a, c, b, o);
         side_changes(sa, sb, &curve.along(n, 0.0), curve.degree, |u| {
             let p = match u {
