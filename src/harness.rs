@@ -51,3 +51,12 @@ pub fn exercise(data: &[u8]) {
     let _ = dump::scene_json(&scene, &cam, s.width, s.height).to_string();
     let _ = pov::scene_sdl(&scene, &cam, s.width, s.height, s.max_depth);
 }
+
+/// Any bytes as a DXF drawing (`import`), then as a font (`text`): an error
+/// or a drawing, a layout or the fallback, never a panic.
+pub fn exercise_readers(data: &[u8]) {
+    if let Ok(d) = crate::drawing::read(data, "", glam::DVec2::ZERO, 1.0) {
+        assert!(d.paths.iter().all(|p| p.pts.len() == p.arcs.len()));
+    }
+    let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
+}

@@ -13,6 +13,7 @@
 
 pub mod cli;
 pub mod csg;
+pub mod drawing;
 pub mod dump;
 pub mod error;
 pub mod geometry;

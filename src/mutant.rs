@@ -21,6 +21,7 @@ pub const NAMES: &[&str] = &[
     "curves_as_chords",
     "kerning_ignored",
     "twist_reversed",
+    "drawing_unnested",
 ];
 
 /// Whether the fault `name` is switched on.

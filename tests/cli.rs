@@ -240,8 +240,8 @@ fn a_degenerate_camera_is_an_error() {
 #[test]
 fn an_unsupported_openscad_node_is_an_error_not_skipped() {
     assert_eq!(
-        fails("group() {\n\tlinear_extrude(height = 10) import(file = \"a.dxf\");\n}\n"),
-        "error: `import` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) import(file = \"a.dxf\");\n  | \t                            ^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text and offset\n"
+        fails("group() {\n\tlinear_extrude(height = 10) projection(cut = true) cube(1);\n}\n"),
+        "error: `projection` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) projection(cut = true) cube(1);\n  | \t                            ^^^^^^^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import and offset\n"
     );
 }
 
@@ -298,6 +298,26 @@ fn a_missing_font_family_falls_back_to_the_built_in_font_with_a_warning() {
     let a = std::fs::read(dir.path().join("f.png")).unwrap();
     let b = std::fs::read(dir2.path().join("f.png")).unwrap();
     assert_eq!(a, b);
+}
+
+#[test]
+fn a_drawing_that_is_no_dxf_is_an_error_at_its_file() {
+    let (dir, _) = scene("d.csg", "linear_extrude(1) import(\"junk.dxf\");\n");
+    std::fs::write(
+        dir.path().join("junk.dxf"),
+        "  0\nSECTION\n  2\nENTITIES\n  0\nLINE\n 10\nnot a number\n",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["d.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .starts_with("error: `junk.dxf` is not a DXF drawing csgrt can read: "),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.contains(" --> d.csg:1:26\n"), "{}", r.stderr);
+    assert_eq!(files(dir.path()), ["d.csg", "junk.dxf"]);
 }
 
 #[test]
@@ -387,6 +407,16 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     assert_eq!(
         fails("linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n"),
         "error: offsetting an outline that crosses or touches itself is not supported yet\n --> bad.csg:1:19\n  |\n1 | linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n  |                   ^^^^^^ csgrt offsets simple polygons and circles, unions when growing\n"
+    );
+    // A drawing that is not there, a mesh csgrt does not import yet, and
+    // bytes that are no DXF: at the file argument.
+    assert_eq!(
+        fails("linear_extrude(1) import(file = \"nope.dxf\");\n"),
+        "error: cannot read drawing `nope.dxf`: No such file or directory (os error 2)\n --> bad.csg:1:33\n  |\n1 | linear_extrude(1) import(file = \"nope.dxf\");\n  |                                 ^^^^^^^^^^ expected a DXF file beside the scene\n"
+    );
+    assert_eq!(
+        fails("import(\"part.stl\");\n"),
+        "error: importing `.stl` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.stl\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings\n"
     );
     // A text that is no string, at the value; vertical text, at its
     // direction; a turned text, at the extrusion.

@@ -31,6 +31,20 @@ fn the_kept_fuzz_corpus_passes_the_harness() {
 }
 
 #[test]
+fn the_readers_corpus_passes_their_harness() {
+    // DXF drawings (whole and cut short) through the drawing and font
+    // readers (`fuzz/fuzz_targets/readers.rs`).
+    let files = inputs("fuzz/corpus/readers");
+    assert!(files.len() >= 3);
+    for f in files {
+        let data = std::fs::read(&f).unwrap();
+        if std::panic::catch_unwind(|| csgrt::harness::exercise_readers(&data)).is_err() {
+            panic!("{} fails the readers' harness", f.display());
+        }
+    }
+}
+
+#[test]
 fn inputs_that_once_crashed_pass_the_harness() {
     replay("fuzz/regressions", 1);
 }

@@ -41,6 +41,7 @@ MUTANTS = {
     "curves_as_chords": (["tests/openscad/text.csg"], True),
     "kerning_ignored": (["tests/openscad/text.csg"], False),
     "twist_reversed": (["tests/openscad/twist.csg"], True),
+    "drawing_unnested": (["tests/openscad/example015.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

@@ -148,6 +148,35 @@ def cross_section(f, n):
     if f[0] == "ellipse":
         A, c = f[1], f[2]
         return mf.CrossSection.circle(1.0, n).transform([[A[0, 0], A[0, 1], c[0]], [A[1, 0], A[1, 1], c[1]]])
+    if len(f) == 4 and f[3][0] == "drawing":
+        # A drawing: its own paths, arcs cut into steps of at most 2 pi / n
+        # (inscribed), and its circles, filled even-odd.
+        _, paths, circles = f[3]
+        loops = []
+        for path in paths:
+            pts = []
+            for i, (a, arc) in enumerate(path):
+                pts.append(a)
+                if arc is not None:
+                    b = path[(i + 1) % len(path)][0]
+                    c, r, mid = arc
+                    a0 = math.atan2(a[1] - c[1], a[0] - c[0])
+                    am = math.atan2(mid[1] - c[1], mid[0] - c[0])
+                    a1 = math.atan2(b[1] - c[1], b[0] - c[0])
+                    # The sweep from a0 through am to a1 (either way round).
+                    ccw = (am - a0) % (2 * math.pi) < (a1 - a0) % (2 * math.pi) or abs(a1 - a0) < 1e-15
+                    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
+                    if sweep == 0:
+                        sweep = 2 * math.pi
+                    k = max(1, math.ceil(abs(sweep) / (2 * math.pi / n)))
+                    for j in range(1, k):
+                        ang = a0 + sweep * j / k
+                        pts.append(c + r * np.array([math.cos(ang), math.sin(ang)]))
+            loops.append(np.array(pts))
+        for c, r in circles:
+            ang = 2 * math.pi * np.arange(n) / n
+            loops.append(np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang)]))
+        return mf.CrossSection([l.tolist() for l in loops if len(l) >= 3], mf.FillRule.EvenOdd)
     if len(f) == 4:
         # An offset: manifold's own (Clipper2's) of the child, then moved.
         join, d, child, m = f[3]

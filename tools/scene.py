@@ -213,6 +213,7 @@ PARAMS = {
     "circle": ["r", "d"],
     "polygon": ["points", "paths", "convexity"],
     "offset": ["r", "delta", "chamfer"],
+    "import": ["file", "layer", "convexity", "origin", "scale", "width", "height", "filename", "layername", "center", "dpi", "id", "timestamp"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
     "rotate_extrude": ["angle", "convexity", "file", "layer", "origin"],
@@ -235,7 +236,7 @@ PARAMS = {
     "point_light": ["color", "position"],
 }
 SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace")
-SHAPES_2D = ("square", "circle", "polygon", "text")
+SHAPES_2D = ("square", "circle", "polygon", "text", "import")
 EXTRUSIONS = ("linear_extrude", "rotate_extrude")
 TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
 SCENE = ("camera", "background", "ambient_light", "directional_light", "point_light")
@@ -606,6 +607,9 @@ class Reader:
             return ("ellipse", m[:2, :2] * r, m[:2, 2].copy())
         if k == "text":
             return text_2d(self, s, a, place)
+        if k == "import":
+            f = import_2d(self, s, a)
+            return None if f is None else flat_moved(f, m)
         pts = a.get("points")
         if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) for p in pts):
             raise self.err(s, "points of polygon must be a list of 2-D points")
@@ -1014,6 +1018,12 @@ def flat_moved(f, m):
     if f[0] == "curves":
         mv = lambda q: None if q is None else m[:2, :2] @ q + m[:2, 2]
         return ("curves", [[(mv(q), mv(c)) for q, c in l] for l in f[1]])
+    if len(f) == 4 and f[3][0] == "drawing":
+        _, paths, circles = f[3]
+        mv = lambda q: m[:2, :2] @ q + m[:2, 2]
+        arc = lambda x: None if x is None else (mv(x[0]), x[1] * math.sqrt(abs(np.linalg.det(m[:2, :2]))), mv(x[2]))
+        moved = ([[(mv(p), arc(x)) for p, x in path] for path in paths], [(mv(c), r * math.sqrt(abs(np.linalg.det(m[:2, :2])))) for c, r in circles])
+        return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("drawing",) + moved)
     if len(f) == 4:
         join, d, child, m0 = f[3]
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], (join, d, child, m @ m0))
@@ -1128,6 +1138,197 @@ def twist_frame(p, t):
     a = math.radians(p["twist"]) * t
     c, s_ = math.cos(a), math.sin(a)
     return np.array([[c, -s_], [s_, c]]) @ np.diag(1 / sg)
+
+
+# --------------------------------------------------------------------------
+# import(): a DXF drawing as OpenSCAD 2021.01 reads it (src/dxfdata.cc),
+# parsed by ezdxf: LINE, LWPOLYLINE, ARC, CIRCLE and INSERT entities of the
+# layer, points moved by -origin and scaled, pieces joined into paths where
+# their ends meet on a 2^-20 grid (open chains first, each closed by a
+# straight edge, then the closed loops), filled even-odd. Arcs stay arcs.
+# --------------------------------------------------------------------------
+
+DXF_GRID = 2.0**-20
+
+
+def dxf_pieces(path, layer, origin, scale):
+    """(pieces, circles): pieces (a, b, arc) with arc None or (centre,
+    radius, a point of the arc between its ends)."""
+    import ezdxf
+
+    doc = ezdxf.readfile(path)
+    pieces, circles = [], []
+
+    def add(e, m, k):
+        t = e.dxftype()
+        if t == "LINE":
+            pieces.append((m(e.dxf.start), m(e.dxf.end), None))
+        elif t == "LWPOLYLINE":
+            v = [m(p) for p in e.get_points("xy")]
+            pieces.extend((v[i], v[i + 1], None) for i in range(len(v) - 1))
+            if e.closed and len(v) > 1:
+                pieces.append((v[-1], v[0], None))
+        elif t == "CIRCLE":
+            circles.append((m(e.dxf.center), e.dxf.radius * k))
+        elif t == "ARC":
+            a0, a1 = e.dxf.start_angle, e.dxf.end_angle
+            if a1 <= a0:
+                a1 += 360.0
+            c, r = np.array([e.dxf.center[0], e.dxf.center[1]], float), e.dxf.radius
+            at = lambda a: c + r * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
+            pieces.append((m(at(a0)), m(at(a1)), (m(c), r * k, m(at((a0 + a1) / 2)))))
+
+    place = lambda p: (np.array([p[0], p[1]], float) - origin) * scale
+    for e in doc.modelspace():
+        if layer and e.dxf.layer != layer:
+            continue
+        if e.dxftype() == "INSERT":
+            blk = doc.blocks.get(e.dxf.name)
+            if blk is None:
+                continue
+            a = math.radians(e.dxf.rotation)
+            sx, sy = e.dxf.xscale, e.dxf.yscale
+            at = np.array([e.dxf.insert[0], e.dxf.insert[1]], float)
+
+            def m(p, a=a, sx=sx, sy=sy, at=at):
+                q = np.array([p[0] * sx, p[1] * sy])
+                return place(np.array([math.cos(a) * q[0] - math.sin(a) * q[1], math.sin(a) * q[0] + math.cos(a) * q[1]]) + at)
+
+            for be in blk:
+                add(be, m, scale * abs(sx))
+            continue
+        add(e, place, scale)
+    return pieces, circles
+
+
+def dxf_paths(pieces):
+    """Closed paths [(point, arc or None)] from pieces joined at their ends."""
+    pts, keys = [], {}
+
+    def key(p):
+        i, j = round(p[0] / DXF_GRID), round(p[1] / DXF_GRID)
+        for di in (-1, 0, 1):
+            for dj in (-1, 0, 1):
+                k = keys.get((i + di, j + dj))
+                if k is not None and abs(pts[k][0] - p[0]) <= DXF_GRID and abs(pts[k][1] - p[1]) <= DXF_GRID:
+                    return k
+        pts.append(np.asarray(p, float))
+        keys[(i, j)] = len(pts) - 1
+        return len(pts) - 1
+
+    ends = [(key(a), key(b)) for a, b, _ in pieces]
+    at = {}
+    for i, (a, b) in enumerate(ends):
+        at.setdefault(a, []).append(i)
+        at.setdefault(b, []).append(i)
+    used = [False] * len(pieces)
+
+    def walk(i, point):
+        chain = []
+        while True:
+            used[i] = True
+            fwd = ends[i][0] == point
+            chain.append((i, fwd))
+            point = ends[i][1] if fwd else ends[i][0]
+            nxt = [k for k in at[point] if not used[k]]
+            if not nxt:
+                return chain, point
+            i = nxt[0]
+
+    paths, n_open = [], 0
+    for i in range(len(pieces)):
+        for end in ends[i]:
+            if not used[i] and ends[i][0] != ends[i][1] and sum(not used[k] for k in at[end]) == 1:
+                chain, last = walk(i, end)
+                n_open += 1
+                path = [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain] + [(pts[last], None)]
+                if len(path) >= 3:
+                    paths.append(path)
+    for i in range(len(pieces)):
+        if not used[i]:
+            chain, last = walk(i, ends[i][0])
+            path = [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain]
+            paths.append(path)
+    return paths, n_open
+
+
+def import_2d(rd, s, a):
+    file = a.get("file", a.get("filename"))
+    if not isinstance(file, str):
+        raise rd.err(s, "import needs a file")
+    if not file.lower().endswith(".dxf"):
+        raise rd.err(s, f"import of {file} is not in the oracle")
+    path = os.path.join(os.path.dirname(os.path.abspath(rd.path)), file)
+    origin = np.array(a.get("origin", [0.0, 0.0])[:2], float)
+    pieces, circles = dxf_pieces(path, a.get("layer", a.get("layername", "")) or "", origin, num(rd.path, s, a, "scale", 1.0))
+    paths, _ = dxf_paths(pieces)
+    # A single arc closing on itself is a whole circle.
+    circles += [(path[0][1][0], path[0][1][1]) for path in paths if len(path) == 1 and path[0][1] is not None]
+    return drawing_tree([p for p in paths if len(p) >= 2], circles)
+
+
+def drawing_tree(paths, circles):
+    """A drawing as the oracle's 2-D tree: each path the polygon of its
+    chords minus the circular segments (the disc cut by the chord's
+    half-plane on the arc's side) of arcs bulging inward, plus those bulging
+    outward, a circle a disc; nested paths (a point of one's boundary inside
+    another) combined even-odd: each path of even depth minus the paths of
+    the next depth inside it. A 4th element carries the paths and circles
+    for the oracle's own mesh."""
+    disc = lambda c, r: ("ellipse", np.eye(2) * r, np.asarray(c, float))
+    regions = []  # (tree, inside(x), probe)
+    for c, r in circles:
+        c = np.asarray(c, float)
+        regions.append((disc(c, r), lambda x, c=c, r=r: np.linalg.norm(x - c) <= r, c + np.array([r, 0.0])))
+    for path in paths:
+        pts = [p for p, _ in path]
+        chord = np.array(pts) if len(pts) >= 3 else None
+        segs, inward, outward = [], [], []
+        for i, (a, arc) in enumerate(path):
+            if arc is None:
+                continue
+            b = path[(i + 1) % len(path)][0]
+            c, r, mid = arc
+            t = (b - a) / np.linalg.norm(b - a)
+            n = np.array([-t[1], t[0]])
+            if (mid - a) @ n < 0:
+                n = -n
+            rect = np.array([a - 2 * r * t, b + 2 * r * t, b + 2 * r * t + 2 * r * n, a - 2 * r * t + 2 * r * n])
+            seg = ("op", "intersection", [disc(c, r), ("poly", [rect])])
+            out = chord is None or not even_odd_inside([chord], mid)
+            (outward if out else inward).append(seg)
+            segs.append((a, b, c, r, mid, out))
+        parts = []
+        if chord is not None:
+            parts.append(("poly", [chord]) if not inward else ("op", "difference", [("poly", [chord])] + inward))
+        parts += outward
+        if not parts:
+            continue
+        tree = parts[0] if len(parts) == 1 else ("op", "union", parts)
+
+        def inside(x, chord=chord, segs=segs):
+            ins = chord is not None and even_odd_inside([chord], x)
+            for a, b, c, r, mid, out in segs:
+                n = np.array([a[1] - b[1], b[0] - a[0]])
+                if np.linalg.norm(x - c) <= r and ((x - a) @ n > 0) == ((mid - a) @ n > 0):
+                    ins = out
+            return ins
+
+        probe = path[0][1][2] if path[0][1] is not None else (pts[0] + pts[1 % len(pts)]) / 2
+        regions.append((tree, inside, probe))
+    m = len(regions)
+    holders = [[p for p in range(m) if p != q and regions[p][1](regions[q][2])] for q in range(m)]
+    depth = [len(h) for h in holders]
+    out = []
+    for p in range(m):
+        if depth[p] % 2:
+            continue
+        inner = [regions[q][0] for q in range(m) if depth[q] == depth[p] + 1 and p in holders[q]]
+        out.append(regions[p][0] if not inner else ("op", "difference", [regions[p][0]] + inner))
+    if not out:
+        return None
+    extra = ("drawing", paths, circles)
+    return ("op", "union", out, extra) if len(out) > 1 else ("op", "union", out + [out[0]], extra) if out[0][0] == "op" else out[0]
 
 
 def curve_pieces(f):

@@ -56,7 +56,10 @@ impl Lathe {
             }
             _ => return,
         };
-        let pad = 1e-9 * (z_hi - z_lo).abs().max(self.profile.hi.y.abs().max(self.profile.lo.y.abs()));
+        let pad = 1e-9
+            * (z_hi - z_lo)
+                .abs()
+                .max(self.profile.hi.y.abs().max(self.profile.lo.y.abs()));
         for (k, &(a, b)) in self.profile.edges.iter().enumerate() {
             if a.y.max(b.y) < z_lo - pad || a.y.min(b.y) > z_hi + pad {
                 continue;

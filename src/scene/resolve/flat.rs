@@ -88,6 +88,176 @@ impl Flat {
     }
 }
 
+/// The arguments `import` takes (OpenSCAD's, and the `timestamp` its CSG
+/// export adds).
+pub(super) const IMPORT_PARAMS: &[&str] = &[
+    "file",
+    "layer",
+    "convexity",
+    "origin",
+    "scale",
+    "width",
+    "height",
+    "filename",
+    "layername",
+    "center",
+    "dpi",
+    "id",
+    "timestamp",
+];
+
+/// A drawing as a 2-D tree (see [`crate::drawing`]). Each closed path is
+/// the polygon of its chords, minus the circular segments (disc ∩ the
+/// chord's half-plane on the arc's side) of arcs bulging inward, plus
+/// those bulging outward; a whole circle is a disc. Paths that do not
+/// cross nest: one is inside another when a point of its boundary is, its
+/// depth how many hold it; the even-odd region is each path of even depth
+/// minus the paths directly inside it.
+fn drawing_flat(d: &crate::drawing::Drawing) -> Option<Flat> {
+    use crate::drawing::Arc;
+    let disc = |c: DVec2, r: f64| {
+        Flat::Ellipse(DAffine2::from_scale_angle_translation(
+            DVec2::splat(r),
+            0.0,
+            c,
+        ))
+    };
+    // Each region: its tree, an inside test, and a point of its boundary.
+    struct Piece {
+        flat: Flat,
+        probe: DVec2,
+        chord: Option<Outlines>,
+        segs: Vec<(DVec2, DVec2, Arc, bool)>,
+        circle: Option<(DVec2, f64)>,
+    }
+    fn in_segment(x: DVec2, a: DVec2, b: DVec2, arc: &Arc) -> bool {
+        let n = (b - a).perp();
+        (x - arc.center).length() <= arc.radius
+            && ((x - a).dot(n) > 0.0) == ((arc.mid - a).dot(n) > 0.0)
+    }
+    impl Piece {
+        fn contains(&self, x: DVec2) -> bool {
+            if let Some((c, r)) = self.circle {
+                return (x - c).length() <= r;
+            }
+            let mut inside = self.chord.as_ref().is_some_and(|o| o.contains(x));
+            for (a, b, arc, outward) in &self.segs {
+                if in_segment(x, *a, *b, arc) {
+                    inside = *outward;
+                }
+            }
+            inside
+        }
+    }
+    let mut pieces: Vec<Piece> = d
+        .circles
+        .iter()
+        .map(|&(c, r)| Piece {
+            flat: disc(c, r),
+            probe: c + DVec2::new(r, 0.0),
+            chord: None,
+            segs: Vec::new(),
+            circle: Some((c, r)),
+        })
+        .collect();
+    for p in &d.paths {
+        let n = p.pts.len();
+        let chord = (n >= 3).then(|| Outlines::polygons(vec![p.pts.clone()]));
+        let mut segs = Vec::new();
+        let (mut inward, mut outward) = (Vec::new(), Vec::new());
+        for (i, arc) in p.arcs.iter().enumerate() {
+            let Some(arc) = arc else { continue };
+            let (a, b) = (p.pts[i], p.pts[(i + 1) % n]);
+            let (t, r) = ((b - a).normalize_or_zero(), arc.radius);
+            let mut nn = t.perp();
+            if (arc.mid - a).dot(nn) < 0.0 {
+                nn = -nn;
+            }
+            let rect = vec![
+                a - t * 2.0 * r,
+                b + t * 2.0 * r,
+                b + t * 2.0 * r + nn * 2.0 * r,
+                a - t * 2.0 * r + nn * 2.0 * r,
+            ];
+            let seg = Flat::Op(
+                Op::Intersection,
+                vec![
+                    disc(arc.center, r),
+                    Flat::Polygon(Outlines::polygons(vec![rect])),
+                ],
+            );
+            let out = !chord.as_ref().is_some_and(|o| o.contains(arc.mid));
+            if out {
+                outward.push(seg);
+            } else {
+                inward.push(seg);
+            }
+            segs.push((a, b, *arc, out));
+        }
+        let body = match chord.clone() {
+            Some(o) if inward.is_empty() => Some(Flat::Polygon(o)),
+            Some(o) => {
+                let mut v = vec![Flat::Polygon(o)];
+                v.extend(inward);
+                Some(Flat::Op(Op::Difference, v))
+            }
+            None => None,
+        };
+        let mut parts: Vec<Flat> = body.into_iter().collect();
+        parts.extend(outward);
+        let flat = match parts.len() {
+            0 => continue,
+            1 => parts.pop().unwrap(),
+            _ => Flat::Op(Op::Union, parts),
+        };
+        // A point of the boundary: the middle of the first edge (on its arc
+        // when it has one).
+        let probe = p.arcs[0].map_or(0.5 * (p.pts[0] + p.pts[1 % n]), |a| a.mid);
+        pieces.push(Piece {
+            flat,
+            probe,
+            chord,
+            segs,
+            circle: None,
+        });
+    }
+    let m = pieces.len();
+    let holders: Vec<Vec<usize>> = (0..m)
+        .map(|q| {
+            (0..m)
+                .filter(|&p| p != q && pieces[p].contains(pieces[q].probe))
+                .collect()
+        })
+        .collect();
+    let depth: Vec<usize> = if crate::mutant::active("drawing_unnested") {
+        vec![0; m]
+    } else {
+        holders.iter().map(|h| h.len()).collect()
+    };
+    let mut parts = Vec::new();
+    for p in 0..m {
+        if depth[p] % 2 == 1 {
+            continue;
+        }
+        let inner: Vec<Flat> = (0..m)
+            .filter(|&q| depth[q] == depth[p] + 1 && holders[q].contains(&p))
+            .map(|q| pieces[q].flat.clone())
+            .collect();
+        if inner.is_empty() {
+            parts.push(pieces[p].flat.clone());
+        } else {
+            let mut v = vec![pieces[p].flat.clone()];
+            v.extend(inner);
+            parts.push(Flat::Op(Op::Difference, v));
+        }
+    }
+    match parts.len() {
+        0 => None,
+        1 => parts.pop(),
+        _ => Some(Flat::Op(Op::Union, parts)),
+    }
+}
+
 /// How a linear extrusion sweeps its section: the top's scale in x and y,
 /// and the twist (radians, OpenSCAD's clockwise).
 #[derive(Clone, Copy, Debug)]
@@ -171,6 +341,10 @@ impl Resolver<'_> {
         }
         if name == "offset" {
             return self.offset(s, m, depth);
+        }
+        if name == "import" {
+            self.no_children(s)?;
+            return self.import(s, m);
         }
         if super::APPEARANCE.contains(&name) {
             // An extrusion is one new solid: colours below it are dropped,
@@ -378,6 +552,85 @@ impl Resolver<'_> {
                 "csgrt offsets simple polygons and circles, unions when growing",
             )),
         }
+    }
+
+    /// `import()` of a drawing (DXF), under `m`.
+    pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+        let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
+        let file = match (a.string("file")?, a.string("filename")?) {
+            (Some(f), _) | (None, Some(f)) => f,
+            (None, None) => {
+                return Err(a.error(
+                    a.list_span(),
+                    "`import` needs a `file`",
+                    "expected file = \"name.dxf\"",
+                ))
+            }
+        };
+        let span = if a.has("file") {
+            a.span_of("file")
+        } else {
+            a.span_of("filename")
+        };
+        let ext = std::path::Path::new(file)
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase())
+            .unwrap_or_default();
+        if ext != "dxf" {
+            return Err(self.src.error(
+                span,
+                format!("importing `.{ext}` files is not supported yet"),
+                "csgrt imports DXF drawings",
+            ));
+        }
+        let layer = match (a.string("layer")?, a.string("layername")?) {
+            (Some(l), _) | (None, Some(l)) => l,
+            _ => "",
+        };
+        let origin = a
+            .numbers("origin", &[2])?
+            .map_or(DVec2::ZERO, |v| DVec2::new(v[0], v[1]));
+        let scale = a.number("scale")?.unwrap_or(1.0);
+        let path = std::path::Path::new(&self.src.name)
+            .parent()
+            .unwrap_or(std::path::Path::new("."))
+            .join(file);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            self.src.error(
+                span,
+                format!("cannot read drawing `{}`: {e}", path.display()),
+                "expected a DXF file beside the scene",
+            )
+        })?;
+        let d = crate::drawing::read(&bytes, layer, origin, scale).map_err(|e| {
+            self.src.error(
+                span,
+                format!(
+                    "`{}` is not a DXF drawing csgrt can read: {e}",
+                    path.display()
+                ),
+                "expected a DXF file",
+            )
+        })?;
+        if !d.skipped.is_empty() {
+            let what: Vec<String> = d.skipped.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            self.warn(
+                span,
+                &format!("entities of the drawing left out: {}", what.join(", ")),
+                "OpenSCAD leaves them out too",
+            );
+        }
+        if d.open_paths > 0 {
+            self.warn(
+                span,
+                &format!(
+                    "{} path(s) of the drawing do not close: each is closed by a straight edge",
+                    d.open_paths
+                ),
+                "as OpenSCAD closes them",
+            );
+        }
+        Ok(drawing_flat(&d).map(|f| f.moved(m)))
     }
 
     /// A 2-D shape standing where a solid is expected: OpenSCAD's preview

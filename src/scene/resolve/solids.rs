@@ -34,7 +34,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("circle", Some(slab)),
     ("polygon", Some(slab)),
     ("text", Some(slab)),
-    ("import", None),
+    ("import", Some(slab)),
     ("surface", None),
     ("projection", None),
     ("offset", Some(slab)),
