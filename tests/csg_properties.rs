@@ -45,6 +45,7 @@ fn arb_shape() -> impl Strategy<Value = Shape> {
         Just(common::l_twisted(2.0, glam::DVec2::new(0.5, 1.2))),
         Just(common::curved_prism(0.6)),
         Just(common::l_lathe()),
+        Just(common::curved_lathe()),
     ]
 }
 

@@ -12,7 +12,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::{curved_prism, l_lathe, l_prism, l_twisted, Rng};
+use common::{curved_lathe, curved_prism, l_lathe, l_prism, l_twisted, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
@@ -34,6 +34,7 @@ fn shapes() -> Vec<(&'static str, Shape)> {
         ),
         ("twisted pyramid", l_twisted(3.0, glam::DVec2::ZERO)),
         ("lathe", l_lathe()),
+        ("curved lathe", curved_lathe()),
         ("sphere", Shape::Sphere(Sphere)),
         ("cube", Shape::Cuboid(Cuboid { centered: false })),
         ("centred cube", Shape::Cuboid(Cuboid { centered: true })),

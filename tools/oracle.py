@@ -303,8 +303,9 @@ def extrusion_facets(leaf, n):
         return dist, ang
     R = flat_extent(p["flat"])
     emax = max((s[0] for s in sv), default=0.0)
-    dist = (R + emax) * b + emax * b
-    ang = (2 if sv else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0)
+    qd, qa = quad_facets(leaf, n)
+    dist = (R + emax) * b + max(emax * b, qd)
+    ang = (2 if sv or qa else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0) + qa
     return dist, ang
 
 

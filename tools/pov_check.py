@@ -254,7 +254,8 @@ class PovLeaf:
             region = bezier_even_odd(p["segments"], flat) if "segments" in p else even_odd(p["loops"], flat)
             return (y >= p["h0"]) & (y <= p["h1"]) & (w > 0) & region
         if self.kind == "lathe":
-            return even_odd(p["loops"], np.column_stack([np.hypot(q[:, 0], q[:, 2]), q[:, 1]]))
+            rz = np.column_stack([np.hypot(q[:, 0], q[:, 2]), q[:, 1]])
+            return bezier_even_odd(p["segments"], rz) if "segments" in p else even_odd(p["loops"], rz)
         if self.kind == "torus":
             # rotate x*90 first: object (x, y, z) came from torus coords
             # (x, -z, y)... in POV-Ray the torus lies in the x-z plane.
@@ -332,7 +333,7 @@ def read_object(s, kind):
         if kind == "prism":
             p["sweep"] = s.take()
         spline = s.take()
-        if spline not in ("linear_spline", "bezier_spline") or spline == "bezier_spline" and kind != "prism":
+        if spline not in ("linear_spline", "bezier_spline"):
             raise ValueError(f"a {kind} with {spline}")
         if kind == "prism":
             p["h0"] = s.number()
@@ -348,7 +349,7 @@ def read_object(s, kind):
             p["segments"] = bezier_loops([np.array(x[:2]) for x in pts])
         else:
             p["loops"] = sub_polygons([np.array(x[:2]) for x in pts])
-        if kind == "lathe" and len(p["loops"]) != 1:
+        if kind == "lathe" and "loops" in p and len(p["loops"]) != 1:
             raise ValueError("a lathe of several outlines")
     else:
         axis = s.take()

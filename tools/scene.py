@@ -1373,7 +1373,8 @@ def clip_right(loops):
 def flat_mirror(f):
     """The tree mirrored in x = 0."""
     if f[0] == "curves":
-        raise ValueError("turning text is not in the oracle")
+        fl = lambda q: None if q is None else q * [-1.0, 1.0]
+        return ("curves", [[(fl(q), fl(c)) for q, c in l] for l in f[1]])
     if f[0] == "poly":
         return ("poly", [l * [-1.0, 1.0] for l in f[1]])
     if f[0] == "ellipse":
@@ -1497,6 +1498,11 @@ def extrusion_box(leaf):
     f, flip = revolve_setup(p)
 
     def rec(f):
+        if f[0] == "curves":
+            # Wholly at x >= 0 (the axis rule): its exact box, turned.
+            lo, hi = curve_extent(f)
+            r = max(hi[0], 0.0)
+            return corner_box(m, np.array([-r, -r, lo[1]]), np.array([r, r, hi[1]]))
         if f[0] == "poly":
             loops = clip_right(f[1])
             if not loops:

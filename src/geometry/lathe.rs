@@ -19,7 +19,7 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
-use crate::plane::Region;
+use crate::plane::{side_changes, Ctrl, Curve, Region};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -61,7 +61,101 @@ impl Lathe {
                 .abs()
                 .max(self.profile.hi.y.abs().max(self.profile.lo.y.abs()));
         for (k, &(a, b)) in self.profile.edges.iter().enumerate() {
-            if a.y.max(b.y) < z_lo - pad || a.y.min(b.y) > z_hi + pad {
+            let ctrl = self.profile.ctrl[k];
+            // An edge on the axis turns into no surface: the line's trace
+            // meets r = 0 only by touching it, where the region goes on.
+            if a.x == 0.0 && b.x == 0.0 && ctrl == Ctrl::Line {
+                continue;
+            }
+            let (zl, zh) = ctrl
+                .points()
+                .fold((a.y.min(b.y), a.y.max(b.y)), |(l, h), p| {
+                    (l.min(p.y), h.max(p.y))
+                });
+            if zh < z_lo - pad || zl > z_hi + pad {
+                continue;
+            }
+            if ctrl != Ctrl::Line {
+                // A curve (r, z) = B(u): the line's height reaches z = Z(u)
+                // at t(u) = (Z(u) − o_z)/d_z, where its squared distance
+                // from the axis is ρ²(t(u)), so the curve's side of the
+                // line's trace is the sign of X(u)² − ρ²(t(u)), a
+                // polynomial of degree ≤ 4 (2·degree) in u.
+                let c = Curve::new(a, ctrl, b, DVec2::ZERO);
+                let deg = c.degree;
+                let mut xs = [0.0f64; 5];
+                let mut ts = [0.0f64; 5];
+                for i in 0..=deg {
+                    xs[i] = c.k[i].x;
+                    ts[i] = c.k[i].y / d.z;
+                }
+                ts[0] -= o.z / d.z;
+                let mul = |p: &[f64; 5], q: &[f64; 5]| {
+                    let mut r = [0.0f64; 5];
+                    for i in 0..=deg {
+                        for j in 0..=deg {
+                            if i + j <= 4 {
+                                r[i + j] += p[i] * q[j];
+                            }
+                        }
+                    }
+                    r
+                };
+                let (x2, t2) = (mul(&xs, &xs), mul(&ts, &ts));
+                let mut f = [0.0f64; 5];
+                for i in 0..5 {
+                    f[i] = x2[i] - (a2 * t2[i] + b2 * ts[i]);
+                }
+                f[0] -= c2;
+                let value = |v: DVec2| {
+                    let t = (v.y - o.z) / d.z;
+                    v.x * v.x - rho2(t)
+                };
+                // The expanded polynomial cancels; each root is polished
+                // by Newton steps on X(u)² − |o_xy + t(u)·d_xy|² itself.
+                let g = |u: f64| {
+                    let q = c.at(u);
+                    let t = (q.y - o.z) / d.z;
+                    let w = oxy + dxy * t;
+                    let dq = c.tangent(u);
+                    let val = q.x * q.x - w.length_squared();
+                    let der = 2.0 * q.x * dq.x - 2.0 * w.dot(dxy) * dq.y / d.z;
+                    (val, der)
+                };
+                side_changes(value(a), value(b), &f, (2 * deg).min(4), |u| {
+                    let u = if u == 0.0 || u == 1.0 {
+                        u
+                    } else {
+                        let mut u = u;
+                        for _ in 0..3 {
+                            let (v, dv) = g(u);
+                            if dv == 0.0 {
+                                break;
+                            }
+                            let next = (u - v / dv).clamp(0.0, 1.0);
+                            if (next - u).abs() > 1e-3 {
+                                break;
+                            }
+                            u = next;
+                        }
+                        u
+                    };
+                    let q = match u {
+                        0.0 => a,
+                        1.0 => b,
+                        _ => c.at(u),
+                    };
+                    // t from the height, or, for a line nearer the
+                    // horizontal, from the radius (the root at that height).
+                    let mut t = (q.y - o.z) / d.z;
+                    if d.z.abs() * d.z.abs() < 0.25 * a2 {
+                        if let Roots::Two(t0, t1) = roots(a2, b2, c2 - q.x * q.x) {
+                            let off = |t: f64| (o.z + t * d.z - q.y).abs();
+                            t = if off(t0) <= off(t1) { t0 } else { t1 };
+                        }
+                    }
+                    cuts.push((t, k as u32));
+                });
                 continue;
             }
             let (ga, gb) = (side(a), side(b));
@@ -84,10 +178,38 @@ impl Lathe {
                 Some((p - a).dot(e) / e.length_squared())
             };
             // A flat edge (n_r = 0) is a plane z = const: one double root.
+            // A cone's roots are polished by Newton steps on the unsquared
+            // n_r ρ(t) − (w − n_z d_z t), whose rounding does not grow as
+            // the squared form's does where the cone narrows.
+            let polish = |t: f64| {
+                let mut t = t;
+                for _ in 0..2 {
+                    let q = oxy + dxy * t;
+                    let rho = q.length();
+                    if rho == 0.0 {
+                        break;
+                    }
+                    let h = n.x * rho - (w - nzd * t);
+                    let dh = n.x * q.dot(dxy) / rho + nzd;
+                    if dh == 0.0 {
+                        break;
+                    }
+                    let next = t - h / dh;
+                    if !(next - t).is_finite() || (next - t).abs() > 1e-6 * (t.abs() + 1.0) {
+                        break;
+                    }
+                    t = next;
+                }
+                t
+            };
             let r = if n.x == 0.0 {
                 Roots::One(w / nzd)
             } else {
-                roots(alpha, beta, gamma)
+                match roots(alpha, beta, gamma) {
+                    Roots::Two(t0, t1) => Roots::Two(polish(t0), polish(t1)),
+                    Roots::One(t) => Roots::One(polish(t)),
+                    Roots::None => Roots::None,
+                }
             };
             let found: smallvec::SmallVec<[(f64, f64); 2]> = match r {
                 Roots::None => smallvec::SmallVec::new(),
@@ -198,7 +320,8 @@ impl Solid for Lathe {
     }
 
     fn normal(&self, p: DVec3, part: Part) -> DVec3 {
-        let n = self.profile.normals[part as usize];
+        let q = DVec2::new(p.truncate().length(), p.z);
+        let n = self.profile.normal_at(part as usize, q);
         let r = p.truncate().length();
         if r == 0.0 {
             return DVec3::new(0.0, 0.0, n.y.signum());
@@ -208,7 +331,7 @@ impl Solid for Lathe {
 
     fn contains(&self, p: DVec3) -> bool {
         let q = DVec2::new(p.truncate().length(), p.z);
-        self.profile.outlines.contains(q)
+        self.profile.contains(q)
     }
 
     fn object_bounds(&self) -> Aabb {
@@ -217,15 +340,13 @@ impl Solid for Lathe {
         Aabb::new(DVec3::new(-r, -r, lo.y), DVec3::new(r, r, hi.y))
     }
 
-    /// The farthest point of the circles the profile's vertices turn on.
+    /// The farthest point of the circles the profile turns on: the
+    /// profile's farthest point along (|d_xy|, d_z), turned to d's azimuth.
     fn support(&self, d: DVec3) -> Option<DVec3> {
         let flat = d.truncate();
         let u = flat.try_normalize().unwrap_or(DVec2::ZERO);
-        self.profile
-            .edges
-            .iter()
-            .map(|(a, _)| (u * a.x).extend(a.y))
-            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+        let q = self.profile.farthest(DVec2::new(flat.length(), d.z));
+        Some((u * q.x).extend(q.y))
     }
 
     fn params(&self) -> Vec<(&'static str, Param)> {
@@ -236,19 +357,35 @@ impl Solid for Lathe {
     /// turns about z. A lathe takes one closed outline: a profile of
     /// several is the first minus the others (its holes).
     fn pov(&self) -> String {
-        let parts: Vec<String> = self
-            .profile
-            .outlines
+        let pt = |p: DVec2| format!("<{:?}, {:?}>", p.x, p.y);
+        let outlines = &self.profile.outlines;
+        let parts: Vec<String> = outlines
             .loops
             .iter()
-            .map(|l| {
-                let pts: Vec<String> = l
-                    .iter()
-                    .chain(l.first())
-                    .map(|p| format!("<{:?}, {:?}>", p.x, p.y))
-                    .collect();
+            .enumerate()
+            .map(|(j, l)| {
+                if !outlines.curved() {
+                    let pts: Vec<String> = l.iter().chain(l.first()).map(|&p| pt(p)).collect();
+                    return format!(
+                        "lathe {{ linear_spline {}, {} }}",
+                        pts.len(),
+                        pts.join(", ")
+                    );
+                }
+                // Four points a segment, a line or a quadratic raised to
+                // degree 3 exactly (as a prism's bezier_spline).
+                let mut pts = Vec::new();
+                for i in 0..l.len() {
+                    let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                    let (c1, c2) = match outlines.ctrl[j][i] {
+                        Ctrl::Line => (a + (b - a) / 3.0, b + (a - b) / 3.0),
+                        Ctrl::Quad(c) => (a + (c - a) * (2.0 / 3.0), b + (c - b) * (2.0 / 3.0)),
+                        Ctrl::Cubic(c1, c2) => (c1, c2),
+                    };
+                    pts.extend([pt(a), pt(c1), pt(c2), pt(b)]);
+                }
                 format!(
-                    "lathe {{ linear_spline {}, {} }}",
+                    "lathe {{ bezier_spline {}, {} }}",
                     pts.len(),
                     pts.join(", ")
                 )

@@ -153,6 +153,31 @@ fn l_region() -> csgrt::plane::Region {
     Region::new(outlines)
 }
 
+/// The curved region moved off the axis and turned about it (quadratic
+/// curves only, as a TrueType glyph's).
+pub fn curved_lathe() -> csgrt::geometry::Shape {
+    use csgrt::plane::{Ctrl, Outlines, Region};
+    let p = |x: f64, y: f64| glam::DVec2::new(x + 0.4, y - 1.0);
+    let outlines = Outlines {
+        loops: vec![
+            vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 2.0), p(0.0, 2.0)],
+            vec![p(0.3, 0.6), p(0.3, 1.4)],
+        ],
+        ctrl: vec![
+            vec![
+                Ctrl::Line,
+                Ctrl::Quad(p(2.2, 1.0)),
+                Ctrl::Quad(p(0.5, 2.6)),
+                Ctrl::Line,
+            ],
+            vec![Ctrl::Quad(p(0.9, 1.0)), Ctrl::Quad(p(0.5, 1.0))],
+        ],
+    };
+    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
+        profile: std::sync::Arc::new(Region::new(outlines)),
+    })
+}
+
 /// A region bounded by curves, as a glyph is: a D whose bow is a cubic
 /// with an S-bend (a curve with an inflection, crossed up to three times
 /// by a line) and whose top is a quadratic, with a lens-shaped hole of two
