@@ -419,7 +419,7 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         "error: importing `.stl` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.stl\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings\n"
     );
     // A text that is no string, at the value; vertical text, at its
-    // direction; a turned text, at the extrusion.
+    // direction; a twisted text, at the extrusion.
     assert_eq!(
         fails("text(text = 5);\n"),
         "error: `text` of `text` must be a string\n --> bad.csg:1:13\n  |\n1 | text(text = 5);\n  |             ^ expected a string, found a number\n"
@@ -429,8 +429,8 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         "error: vertical text (`direction` \"ttb\" or \"btt\") is not supported yet\n --> bad.csg:1:23\n  |\n1 | text(\"a\", direction = \"ttb\");\n  |                       ^^^^^ expected \"ltr\" or \"rtl\"\n"
     );
     assert_eq!(
-        fails("rotate_extrude() translate([5, 0]) text(\"J\");\n"),
-        "error: turning curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | rotate_extrude() translate([5, 0]) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt turns polygons and circles\n"
+        fails("linear_extrude(height = 1, twist = 10) text(\"J\");\n"),
+        "error: twisting or unevenly scaling curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | linear_extrude(height = 1, twist = 10) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt twists polygons and circles about their centre\n"
     );
     // OpenSCAD's error for a shape across the axis, with its range.
     assert_eq!(
