@@ -719,6 +719,7 @@ def main():
     ap.add_argument("--rays", type=int, default=12)
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--report", default=None)
+    ap.add_argument("--kinds", default=None, help="only these primitives (comma-separated)")
     a = ap.parse_args()
     rng = random.Random(20261122)
     worst = {}  # (kind, pose, case) -> (error, description)
@@ -726,7 +727,10 @@ def main():
     failures = []
     direction = [1.0, 0.7, 0.3]
     with tempfile.TemporaryDirectory() as work:
-        for kind in ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS:
+        kinds = ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS
+        if a.kinds:
+            kinds = [k for k in kinds if k in a.kinds.split(",")]
+        for kind in kinds:
             poses = ["plain", "rotated+scaled"] if kind in ("twisted", "glyph") else POSES
             for pose in poses:
                 for off in OFFSETS:
