@@ -1435,6 +1435,19 @@ def wedge_normals(angle, flip):
     return [np.array([0.0, -sg, 0.0]) * turn, np.array([-sa, ca * sg, 0.0]) * turn]
 
 
+def cone_box(m, A, c, s, z0, h):
+    """The exact box of the cone over the ellipse A x + c (z = z0) tapered
+    by s to z0 + h, placed by m: the hull of its two ellipses."""
+    L, t = m[:3, :3], m[:3, 3]
+    out = []
+    for k, z in ((1.0, z0), (s, z0 + h)):
+        C = L @ np.array([k * c[0], k * c[1], z]) + t
+        U, V = L @ np.array([k * A[0, 0], k * A[1, 0], 0.0]), L @ np.array([k * A[0, 1], k * A[1, 1], 0.0])
+        e = np.sqrt(U**2 + V**2)
+        out.append((C - e, C + e))
+    return combine_boxes("union", out)
+
+
 def extrusion_box(leaf):
     """The box of an extrusion, as csgrt frames it: the box of the solid
     each 2-D leaf sweeps (a prism's corners; a cone over an ellipse, a torus
@@ -1460,14 +1473,7 @@ def extrusion_box(leaf):
                     lo, hi = -grow * rho, grow * rho
                 return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
             if f[0] == "ellipse":
-                A = f[1]
-                out = []
-                for k, z in ((1.0, z0), (sx, z0 + h)):
-                    C = L @ np.array([0.0, 0.0, z]) + t
-                    U, V = L @ np.array([k * A[0, 0], k * A[1, 0], 0.0]), L @ np.array([k * A[0, 1], k * A[1, 1], 0.0])
-                    e = np.sqrt(U**2 + V**2)
-                    out.append((C - e, C + e))
-                return combine_boxes("union", out)
+                return cone_box(m, f[1], f[2], sx, z0, h)
             return combine_boxes(f[1], [rec(k) for k in f[2]])
 
         return rec(p["flat"])
@@ -1484,14 +1490,7 @@ def extrusion_box(leaf):
                 lo, hi = np.minimum(lo, lo * s), np.maximum(hi, hi * s)
                 return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
             if f[0] == "ellipse":
-                A, c = f[1], f[2]
-                out = []
-                for k, z in ((1.0, z0), (s, z0 + h)):
-                    C = L @ np.array([k * c[0], k * c[1], z]) + t
-                    U, V = L @ np.array([k * A[0, 0], k * A[1, 0], 0.0]), L @ np.array([k * A[0, 1], k * A[1, 1], 0.0])
-                    e = np.sqrt(U**2 + V**2)
-                    out.append((C - e, C + e))
-                return combine_boxes("union", out)
+                return cone_box(m, f[1], f[2], s, z0, h)
             return combine_boxes(f[1], [rec(k) for k in f[2]])
 
         return rec(p["flat"])

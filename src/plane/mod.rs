@@ -111,6 +111,22 @@ impl Curve {
         [k[0].dot(n) - c, k[1].dot(n), k[2].dot(n), k[3].dot(n), 0.0]
     }
 
+    /// Calls `f` with each u in (0, 1) where B′(u)·dir = 0 (where the
+    /// curve's extent along dir may be reached between its ends).
+    pub fn turning(&self, dir: DVec2, mut f: impl FnMut(f64)) {
+        let k = &self.k;
+        let d = [
+            k[1].dot(dir),
+            2.0 * k[2].dot(dir),
+            3.0 * k[3].dot(dir),
+            0.0,
+            0.0,
+        ];
+        let mut roots = [0.0; 4];
+        let n = roots_in(&d, self.degree - 1, 0.0, 1.0, &mut roots);
+        roots[..n].iter().for_each(|&u| f(u));
+    }
+
     /// The parameter of the point of the curve nearest `p` (a point on it,
     /// up to rounding): among the ends and the parameters where either
     /// coordinate of B equals p's (one of the two is never a double root
@@ -137,16 +153,7 @@ impl Curve {
             roots[..n].iter().for_each(|&u| try_u(u));
             // A coordinate's extreme value is a double root of its
             // equation: its critical points are candidates too.
-            let k = &self.k;
-            let d = [
-                k[1].dot(axis),
-                2.0 * k[2].dot(axis),
-                3.0 * k[3].dot(axis),
-                0.0,
-                0.0,
-            ];
-            let n = roots_in(&d, self.degree - 1, 0.0, 1.0, &mut roots);
-            roots[..n].iter().for_each(|&u| try_u(u));
+            self.turning(axis, &mut try_u);
         }
         best.1
     }
@@ -201,17 +208,7 @@ impl Outlines {
             add(a.dot(axis));
             if c != Ctrl::Line {
                 let curve = Curve::new(a, c, b, DVec2::ZERO);
-                let k = &curve.k;
-                let d = [
-                    k[1].dot(axis),
-                    2.0 * k[2].dot(axis),
-                    3.0 * k[3].dot(axis),
-                    0.0,
-                    0.0,
-                ];
-                let mut roots = [0.0; 4];
-                let n = roots_in(&d, curve.degree - 1, 0.0, 1.0, &mut roots);
-                roots[..n].iter().for_each(|&u| add(curve.at(u).dot(axis)));
+                curve.turning(axis, |u| add(curve.at(u).dot(axis)));
             }
         }
         r
@@ -356,17 +353,7 @@ impl Region {
             add(self.edges[e].0);
             if self.ctrl[e] != Ctrl::Line {
                 let curve = self.curve(e, DVec2::ZERO);
-                let k = &curve.k;
-                let d = [
-                    k[1].dot(dir),
-                    2.0 * k[2].dot(dir),
-                    3.0 * k[3].dot(dir),
-                    0.0,
-                    0.0,
-                ];
-                let mut roots = [0.0; 4];
-                let n = roots_in(&d, curve.degree - 1, 0.0, 1.0, &mut roots);
-                roots[..n].iter().for_each(|&u| add(curve.at(u)));
+                curve.turning(dir, |u| add(curve.at(u)));
             }
         }
         best.1

@@ -153,55 +153,46 @@ fn l_region() -> csgrt::plane::Region {
     Region::new(outlines)
 }
 
-/// The curved region moved off the axis and turned about it (quadratic
-/// curves only, as a TrueType glyph's).
-pub fn curved_lathe() -> csgrt::geometry::Shape {
+/// A region bounded by curves, as a glyph is: a D whose bow is `bow` (a
+/// cubic with an S-bend, crossed up to three times by a line, or a
+/// quadratic) and whose top is a quadratic, with a lens-shaped hole of two
+/// quadratics, moved by `shift`.
+fn curved_region(
+    bow: impl Fn(&dyn Fn(f64, f64) -> glam::DVec2) -> csgrt::plane::Ctrl,
+    shift: glam::DVec2,
+) -> csgrt::plane::Region {
     use csgrt::plane::{Ctrl, Outlines, Region};
-    let p = |x: f64, y: f64| glam::DVec2::new(x + 0.4, y - 1.0);
+    let p = |x: f64, y: f64| glam::DVec2::new(x, y) + shift;
     let outlines = Outlines {
         loops: vec![
             vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 2.0), p(0.0, 2.0)],
             vec![p(0.3, 0.6), p(0.3, 1.4)],
         ],
         ctrl: vec![
-            vec![
-                Ctrl::Line,
-                Ctrl::Quad(p(2.2, 1.0)),
-                Ctrl::Quad(p(0.5, 2.6)),
-                Ctrl::Line,
-            ],
+            vec![Ctrl::Line, bow(&p), Ctrl::Quad(p(0.5, 2.6)), Ctrl::Line],
             vec![Ctrl::Quad(p(0.9, 1.0)), Ctrl::Quad(p(0.5, 1.0))],
         ],
     };
+    Region::new(outlines)
+}
+
+/// The curved region with a quadratic bow, moved off the axis and turned
+/// about it (quadratic curves only, as a TrueType glyph's).
+pub fn curved_lathe() -> csgrt::geometry::Shape {
+    use csgrt::plane::Ctrl;
+    let region = curved_region(|p| Ctrl::Quad(p(2.2, 1.0)), glam::DVec2::new(0.4, -1.0));
     csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
-        profile: std::sync::Arc::new(Region::new(outlines)),
+        profile: std::sync::Arc::new(region),
     })
 }
 
-/// A region bounded by curves, as a glyph is: a D whose bow is a cubic
-/// with an S-bend (a curve with an inflection, crossed up to three times
-/// by a line) and whose top is a quadratic, with a lens-shaped hole of two
-/// quadratics, as a prism whose top section is scaled by `top`.
+/// The curved region with a cubic S-bend bow, as a prism whose top section
+/// is scaled by `top`.
 pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
-    use csgrt::plane::{Ctrl, Outlines, Region};
-    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
-    let outlines = Outlines {
-        loops: vec![
-            vec![p(0.0, 0.0), p(1.0, 0.0), p(1.0, 2.0), p(0.0, 2.0)],
-            vec![p(0.3, 0.6), p(0.3, 1.4)],
-        ],
-        ctrl: vec![
-            vec![
-                Ctrl::Line,
-                Ctrl::Cubic(p(2.6, 0.3), p(0.2, 1.3)),
-                Ctrl::Quad(p(0.5, 2.6)),
-                Ctrl::Line,
-            ],
-            vec![Ctrl::Quad(p(0.9, 1.0)), Ctrl::Quad(p(0.5, 1.0))],
-        ],
-    };
+    use csgrt::plane::Ctrl;
+    let region = curved_region(|p| Ctrl::Cubic(p(2.6, 0.3), p(0.2, 1.3)), glam::DVec2::ZERO);
     csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
-        region: std::sync::Arc::new(Region::new(outlines)),
+        region: std::sync::Arc::new(region),
         top,
         centered: true,
     })
