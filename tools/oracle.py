@@ -336,7 +336,9 @@ def twist_surface(p, a, e, u, t):
     xt = np.concatenate([np.array([sx - 1, sy - 1]) * rq + sg * drq, np.full(u.shape + (1,), p["h"])], axis=-1)
     X = np.concatenate([sg * rq, (p["z0"] + p["h"] * t)[..., None]], axis=-1)
     N = np.cross(xu, xt)
-    return X, N / np.linalg.norm(N, axis=-1, keepdims=True)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # (none where a pyramid's section has shrunk to its apex)
+        return X, N / np.linalg.norm(N, axis=-1, keepdims=True)
 
 
 def twisted_facets(leaf, n):
