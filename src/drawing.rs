@@ -253,6 +253,19 @@ fn join(pieces: Vec<Piece>, out: &mut Drawing) {
             }
             (chain, forward, point)
         };
+    // A chain's points (each piece's start, as walked) and its pieces' arcs.
+    let path_of = |chain: &[usize], forward: &[bool]| -> (Vec<DVec2>, Vec<Option<Arc>>) {
+        chain
+            .iter()
+            .zip(forward)
+            .map(|(&k, &fwd)| {
+                (
+                    points[if fwd { ends[k].0 } else { ends[k].1 }],
+                    pieces[k].arc,
+                )
+            })
+            .unzip()
+    };
     // Open chains: start at a point no other piece reaches.
     for i in 0..pieces.len() {
         if used[i] {
@@ -266,12 +279,7 @@ fn join(pieces: Vec<Piece>, out: &mut Drawing) {
                 // OpenSCAD closes it with a straight edge back to its start.
                 let (chain, forward, last) = walk(i, end, &mut used);
                 out.open_paths += 1;
-                let mut pts = Vec::new();
-                let mut arcs = Vec::new();
-                for (&k, &fwd) in chain.iter().zip(&forward) {
-                    pts.push(points[if fwd { ends[k].0 } else { ends[k].1 }]);
-                    arcs.push(pieces[k].arc);
-                }
+                let (mut pts, mut arcs) = path_of(&chain, &forward);
                 pts.push(points[last]);
                 arcs.push(None);
                 if pts.len() >= 3 {
@@ -290,13 +298,7 @@ fn join(pieces: Vec<Piece>, out: &mut Drawing) {
             out.open_paths += 1;
             continue;
         }
-        let mut pts = Vec::new();
-        let mut arcs = Vec::new();
-        for (&k, &fwd) in chain.iter().zip(&forward) {
-            let p = pieces[k];
-            pts.push(points[if fwd { ends[k].0 } else { ends[k].1 }]);
-            arcs.push(p.arc);
-        }
+        let (pts, arcs) = path_of(&chain, &forward);
         if pts.len() >= 3 || pts.len() == 2 && arcs.iter().any(|a| a.is_some()) {
             out.paths.push(Path { pts, arcs });
         } else if pts.len() == 1 {

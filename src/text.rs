@@ -369,17 +369,10 @@ fn lay_out_with(
         let advance = DVec2::new(pos.x_advance as f64, pos.y_advance as f64) * k_metric;
         // FreeType's grid-fitted control box, in 26.6 units.
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-        for q in contours.loops.iter().flatten().chain(
-            contours
-                .ctrl
-                .iter()
-                .flatten()
-                .flat_map(|c| c.points())
-                .collect::<Vec<_>>()
-                .iter(),
-        ) {
-            lo = lo.min(*q);
-            hi = hi.max(*q);
+        let ctrl = contours.ctrl.iter().flatten().flat_map(|c| c.points());
+        for q in contours.loops.iter().flatten().copied().chain(ctrl) {
+            lo = lo.min(q);
+            hi = hi.max(q);
         }
         if lo.x > hi.x {
             (lo, hi) = (DVec2::ZERO, DVec2::ZERO);

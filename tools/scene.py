@@ -1235,19 +1235,23 @@ def dxf_paths(pieces):
                 return chain, point
             i = nxt[0]
 
+    def as_path(chain):
+        """A chain's (start point as walked, arc) per piece."""
+        return [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain]
+
     paths, n_open = [], 0
     for i in range(len(pieces)):
         for end in ends[i]:
             if not used[i] and ends[i][0] != ends[i][1] and sum(not used[k] for k in at[end]) == 1:
                 chain, last = walk(i, end)
                 n_open += 1
-                path = [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain] + [(pts[last], None)]
+                path = as_path(chain) + [(pts[last], None)]
                 if len(path) >= 3:
                     paths.append(path)
     for i in range(len(pieces)):
         if not used[i]:
             chain, last = walk(i, ends[i][0])
-            path = [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain]
+            path = as_path(chain)
             paths.append(path)
     return paths, n_open
 

@@ -41,11 +41,12 @@ impl Lathe {
         );
         let rho2 = |t: f64| (a2 * t + b2) * t + c2;
         // Which side of the curve a profile point lies on: farther from
-        // the axis than the line at its height, or not.
-        let side = |v: DVec2| {
+        // the axis than the line at its height (value > 0), or not.
+        let value = |v: DVec2| {
             let t = (v.y - o.z) / d.z;
-            v.x * v.x - rho2(t) > 0.0
+            v.x * v.x - rho2(t)
         };
+        let side = |v: DVec2| value(v) > 0.0;
         // Where the line is within the profile's largest radius, and so
         // the heights it can meet the profile at.
         let rmax = self.profile.hi.x.max(0.0);
@@ -107,10 +108,6 @@ impl Lathe {
                     f[i] = x2[i] - (a2 * t2[i] + b2 * ts[i]);
                 }
                 f[0] -= c2;
-                let value = |v: DVec2| {
-                    let t = (v.y - o.z) / d.z;
-                    v.x * v.x - rho2(t)
-                };
                 // The expanded polynomial cancels; each root is polished
                 // by Newton steps on X(u)² − |o_xy + t(u)·d_xy|² itself.
                 let g = |u: f64| {
@@ -372,16 +369,11 @@ impl Solid for Lathe {
                         pts.join(", ")
                     );
                 }
-                // Four points a segment, a line or a quadratic raised to
-                // degree 3 exactly (as a prism's bezier_spline).
+                // Four points a segment (as a prism's bezier_spline).
                 let mut pts = Vec::new();
                 for i in 0..l.len() {
                     let (a, b) = (l[i], l[(i + 1) % l.len()]);
-                    let (c1, c2) = match outlines.ctrl[j][i] {
-                        Ctrl::Line => (a + (b - a) / 3.0, b + (a - b) / 3.0),
-                        Ctrl::Quad(c) => (a + (c - a) * (2.0 / 3.0), b + (c - b) * (2.0 / 3.0)),
-                        Ctrl::Cubic(c1, c2) => (c1, c2),
-                    };
+                    let (c1, c2) = outlines.ctrl[j][i].cubic(a, b);
                     pts.extend([pt(a), pt(c1), pt(c2), pt(b)]);
                 }
                 format!(

@@ -40,11 +40,7 @@ pub struct Prism {
 impl Prism {
     /// The bottom's height.
     fn z_lo(&self) -> f64 {
-        if self.centered {
-            -0.5
-        } else {
-            0.0
-        }
+        super::cone::bottom(self.centered)
     }
 
     /// The section's scale s(z) at height z (from the bottom).
@@ -253,13 +249,8 @@ impl Solid for Prism {
                     pts.push(pt(a));
                     continue;
                 }
-                // Every edge a cubic Bézier segment of four points: a line
-                // or a quadratic raised to degree 3 exactly.
-                let (c1, c2) = match self.region.outlines.ctrl[j][i] {
-                    Ctrl::Line => (a + (b - a) / 3.0, b + (a - b) / 3.0),
-                    Ctrl::Quad(c) => (a + (c - a) * (2.0 / 3.0), b + (c - b) * (2.0 / 3.0)),
-                    Ctrl::Cubic(c1, c2) => (c1, c2),
-                };
+                // Every edge a cubic Bézier segment of four points.
+                let (c1, c2) = self.region.outlines.ctrl[j][i].cubic(a, b);
                 pts.extend([pt(a), pt(c1), pt(c2), pt(b)]);
             }
             if !curved {

@@ -73,6 +73,15 @@ impl Quad {
     fn max_abs_d(&self, l: f64, h: f64) -> f64 {
         self.d(l).abs().max(self.d(h).abs())
     }
+    /// u·p + v·q.
+    fn comb(p: Quad, q: Quad, u: f64, v: f64) -> Quad {
+        Quad([
+            u * p.0[0] + v * q.0[0],
+            u * p.0[1] + v * q.0[1],
+            u * p.0[2] + v * q.0[2],
+        ])
+    }
+
     fn mul_lin(a: [f64; 2], b: [f64; 2]) -> Quad {
         Quad([a[0] * b[0], a[0] * b[1] + a[1] * b[0], a[1] * b[1]])
     }
@@ -235,11 +244,7 @@ fn union2(a: Spans, b: Spans) -> Spans {
 impl Twisted {
     /// The bottom's height.
     fn z_lo(&self) -> f64 {
-        if self.centered {
-            -0.5
-        } else {
-            0.0
-        }
+        super::cone::bottom(self.centered)
     }
 
     fn sigma(&self, z: f64) -> DVec2 {
@@ -283,17 +288,11 @@ impl Twisted {
         for (e, &(a, b)) in self.region.edges.iter().enumerate() {
             let n = self.region.normals[e];
             let c = n.dot(a);
-            let comb = |p: Quad, q: Quad, u: f64, v: f64| {
-                Quad([
-                    u * p.0[0] + v * q.0[0],
-                    u * p.0[1] + v * q.0[1],
-                    u * p.0[2] + v * q.0[2],
-                ])
-            };
+            let comb = Quad::comb;
             let side = SideFn {
                 a: comb(wx, wy, n.x, n.y),
                 b: comb(wx, wy, n.y, -n.x),
-                c: Quad([c * ss.0[0], c * ss.0[1], c * ss.0[2]]),
+                c: Quad(ss.0.map(|x| c * x)),
                 phi,
             };
             // The edge lies between distances ρ₀ and ρ₁ of the axis, so

@@ -42,6 +42,17 @@ impl Ctrl {
         }
     }
 
+    /// The two inner control points of the edge a→b as one cubic Bézier
+    /// segment: a line or a quadratic raised to degree 3 exactly (POV-Ray's
+    /// `bezier_spline` takes only cubics).
+    pub fn cubic(self, a: DVec2, b: DVec2) -> (DVec2, DVec2) {
+        match self {
+            Ctrl::Line => (a + (b - a) / 3.0, b + (a - b) / 3.0),
+            Ctrl::Quad(c) => (a + (c - a) * (2.0 / 3.0), b + (c - b) * (2.0 / 3.0)),
+            Ctrl::Cubic(c1, c2) => (c1, c2),
+        }
+    }
+
     /// The control points.
     pub fn points(&self) -> impl Iterator<Item = DVec2> {
         let (a, b) = match *self {
@@ -228,13 +239,7 @@ impl Outlines {
     /// the crossings of the line through p along +x beyond p, half-open in
     /// y so that a vertex on it is counted once.
     pub fn contains(&self, p: DVec2) -> bool {
-        let mut inside = false;
-        crossings(numbered(self.edges()), p, DVec2::X, |s, _| {
-            if s > 0.0 {
-                inside = !inside;
-            }
-        });
-        inside
+        inside_by(numbered(self.edges()), p)
     }
 
     /// The sorted spans `(s_in, s_out)` of the line `o + s·d` inside the
@@ -361,13 +366,7 @@ impl Region {
 
     /// Whether point `p` is inside.
     pub fn contains(&self, p: DVec2) -> bool {
-        let mut inside = false;
-        crossings(self.edges_near(p, DVec2::X), p, DVec2::X, |s, _| {
-            if s > 0.0 {
-                inside = !inside;
-            }
-        });
-        inside
+        inside_by(self.edges_near(p, DVec2::X), p)
     }
 
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
@@ -520,6 +519,18 @@ impl EdgeTree {
     }
 }
 
+/// Whether `p` is inside `edges` (even-odd): the crossings of the line from
+/// p along +x beyond p, by the rule of [`crossings`] (half-open in y).
+fn inside_by(edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>, p: DVec2) -> bool {
+    let mut inside = false;
+    crossings(edges, p, DVec2::X, |s, _| {
+        if s > 0.0 {
+            inside = !inside;
+        }
+    });
+    inside
+}
+
 /// Edges numbered in order.
 fn numbered<'a>(
     edges: impl Iterator<Item = (DVec2, Ctrl, DVec2)> + 'a,
@@ -615,6 +626,16 @@ mod tests {
     use super::*;
     use glam::DVec3;
 
+    /// Uniform numbers in [0, 1) from a linear congruential generator.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
     fn square_with_hole() -> Outlines {
         let sq = |c: f64, h: f64| {
             vec![
@@ -650,13 +671,7 @@ mod tests {
         let s = r.spans(DVec2::new(-5.0, 0.5), DVec2::new(2.0, 0.0));
         assert_eq!(s, vec![(1.5, 2.0), (3.0, 3.5)]);
         // Many lines, checked on a grid of points between and around cuts.
-        let mut seed = 12345u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(12345);
         for _ in 0..500 {
             let o = DVec2::new(next() * 8.0 - 4.0, next() * 8.0 - 4.0);
             let a = next() * std::f64::consts::TAU;
@@ -680,13 +695,7 @@ mod tests {
     fn the_edge_tree_finds_every_crossing_testing_all_edges_finds() {
         // A 240-point wavy ring with a curved hole: lines at random, lines
         // through vertices and along edges, far away and near.
-        let mut seed = 99u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(99);
         let outer: Vec<DVec2> = (0..240)
             .map(|i| {
                 let a = i as f64 * std::f64::consts::TAU / 240.0;

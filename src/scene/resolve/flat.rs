@@ -68,6 +68,15 @@ impl Flat {
         }
     }
 
+    /// The disc of radius r about c.
+    pub(super) fn disc(c: DVec2, r: f64) -> Flat {
+        Flat::Ellipse(DAffine2::from_scale_angle_translation(
+            DVec2::splat(r),
+            0.0,
+            c,
+        ))
+    }
+
     /// The tree moved by `m`.
     pub(super) fn moved(&self, m: DAffine2) -> Flat {
         match self {
@@ -115,13 +124,7 @@ pub(super) const IMPORT_PARAMS: &[&str] = &[
 /// minus the paths directly inside it.
 fn drawing_flat(d: &crate::drawing::Drawing) -> Option<Flat> {
     use crate::drawing::Arc;
-    let disc = |c: DVec2, r: f64| {
-        Flat::Ellipse(DAffine2::from_scale_angle_translation(
-            DVec2::splat(r),
-            0.0,
-            c,
-        ))
-    };
+    let disc = Flat::disc;
     // Each region: its tree, an inside test, and a point of its boundary.
     struct Piece {
         flat: Flat,
@@ -269,7 +272,7 @@ pub(super) struct Sweep {
 }
 
 /// Whether a 2×2 matrix maps the unit circle to a circle.
-fn is_circle(m: glam::DMat2) -> bool {
+pub(super) fn is_circle(m: glam::DMat2) -> bool {
     let (x, y) = (m.x_axis, m.y_axis);
     let r2 = x.length_squared();
     x.dot(y).abs() <= 1e-12 * r2 && (y.length_squared() - r2).abs() <= 1e-12 * r2

@@ -25,10 +25,10 @@
 //! shrinking a union, growing an intersection, either of a difference — and
 //! ellipses, curved (text) or self-crossing outlines are not supported yet.
 
-use super::flat::Flat;
+use super::flat::{is_circle, Flat};
 use crate::csg::spans::Op;
 use crate::plane::{Outlines, Region};
-use glam::{DAffine2, DVec2};
+use glam::DVec2;
 
 /// How corners are joined.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -80,19 +80,11 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             }
         )),
         Flat::Ellipse(e) => {
-            let (x, y) = (e.matrix2.x_axis, e.matrix2.y_axis);
-            let r = x.length();
-            if x.dot(y).abs() > 1e-12 * r * r || (y.length() - r).abs() > 1e-12 * r {
+            if !is_circle(e.matrix2) {
                 return Err("offsetting an ellipse is not supported yet".into());
             }
-            let r2 = r + d;
-            Ok((r2 > 0.0).then(|| {
-                Flat::Ellipse(DAffine2::from_scale_angle_translation(
-                    DVec2::splat(r2),
-                    0.0,
-                    e.translation,
-                ))
-            }))
+            let r2 = e.matrix2.x_axis.length() + d;
+            Ok((r2 > 0.0).then(|| Flat::disc(e.translation, r2)))
         }
         Flat::Polygon(o) => polygon(o, join, d),
     }
@@ -149,11 +141,7 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
             }
             let cos = n1.dot(n2);
             match join {
-                Join::Round => parts.push(Flat::Ellipse(DAffine2::from_scale_angle_translation(
-                    DVec2::splat(k),
-                    0.0,
-                    v,
-                ))),
+                Join::Round => parts.push(Flat::disc(v, k)),
                 Join::Miter if 1.0 + cos >= MITER_LIMIT => {
                     let miter = v + (n1 + n2) * (k / (1.0 + cos));
                     parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
