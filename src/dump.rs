@@ -30,6 +30,11 @@ fn node(csg: &Csg, id: u32) -> Value {
     let kids = |ch: &Vec<u32>| Value::Array(ch.iter().map(|&c| node(csg, c)).collect());
     match &n.kind {
         NodeKind::Op(op, ch) => json!({"op": op.name(), "children": kids(ch)}),
+        &NodeKind::Section(c, k) => json!({
+            "section": k,
+            "matrix": matrix(&csg.sections[k as usize].xf.to_world),
+            "child": node(csg, c),
+        }),
         NodeKind::Leaf(p) => {
             let prim = &csg.prims[*p as usize];
             let mut v = json!({

@@ -22,6 +22,7 @@ pub const NAMES: &[&str] = &[
     "kerning_ignored",
     "twist_reversed",
     "drawing_unnested",
+    "section_unflattened",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -34,12 +34,21 @@ fn matrix(m: &DAffine3) -> String {
     format!("matrix <{}>", nums.join(", "))
 }
 
+/// POV-Ray has no solid made from another's slice: the export stops
+/// POV-Ray with the reason.
+pub const SECTION_ERROR: &str =
+    "#error \"csgrt: projection(cut = true) has no POV-Ray equivalent\"";
+
 fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
     let pad = "  ".repeat(depth);
     let n = &csg.nodes[id as usize];
     let (word, kids) = match &n.kind {
         // POV-Ray's union, intersection and difference mean the same.
         NodeKind::Op(op, ch) => (op.name(), ch),
+        NodeKind::Section(..) => {
+            let _ = writeln!(out, "{pad}{SECTION_ERROR}\n{pad}sphere {{ <0, 0, 0>, 0 }}");
+            return;
+        }
         NodeKind::Leaf(p) => {
             let prim = &csg.prims[*p as usize];
             let solid = prim.shape.pov();

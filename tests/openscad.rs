@@ -149,7 +149,7 @@ fn message(node: &str, line: usize, col: usize, source: &str) -> String {
         lead + &caret[col - 1..]
     };
     format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import and offset\n"
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, projection and offset\n"
     )
 }
 
@@ -188,9 +188,9 @@ fn each_unsupported_node_stops_the_run_with_its_place() {
 
 #[test]
 fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
-    // OpenSCAD writes the sphere inside the projection on line 2, after a
-    // tab; the projection itself is reported first.
-    let text = std::fs::read_to_string(fixtures().join("unsupported/projection.csg")).unwrap();
+    // OpenSCAD writes the cube inside the hull on line 2, after a tab; the
+    // hull itself is reported first.
+    let text = std::fs::read_to_string(fixtures().join("unsupported/hull.csg")).unwrap();
     let wrapped = format!(
         "group() {{\n\t{}}}\n",
         text.replace('\n', "\n\t").trim_end_matches('\t')
@@ -200,6 +200,21 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
     let r = csgrt(dir.path(), &["x.csg", "-q"]);
     assert_eq!(r.status, 2);
     let line2 = wrapped.lines().nth(1).unwrap();
-    assert!(line2.starts_with("\tprojection("));
-    assert_eq!(r.stderr, message("projection", 2, 2, line2));
+    assert!(line2.starts_with("\thull("));
+    assert_eq!(r.stderr, message("hull", 2, 2, line2));
+}
+
+#[test]
+fn a_projection_that_is_a_shadow_is_refused_at_its_cut() {
+    // OpenSCAD's own export writes `cut = false` for a plain projection().
+    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tsphere(r = 5);\n\t}\n}\n";
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("x.csg"), text).unwrap();
+    let r = csgrt(dir.path(), &["x.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    assert_eq!(
+        r.stderr,
+        "error: projection(cut = false), the shadow of a solid, is not supported yet\n --> x.csg:2:19\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t                 ^^^^^ csgrt renders projection(cut = true), the slice at z = 0\n"
+    );
+    assert!(files(dir.path()) == vec!["x.csg".to_string()], "no output");
 }

@@ -43,6 +43,7 @@ MUTANTS = {
     "kerning_ignored": (["tests/openscad/text.csg"], False),
     "twist_reversed": (["tests/openscad/twist.csg"], ["twisted"]),
     "drawing_unnested": (["tests/openscad/example015.csg"], False),
+    "section_unflattened": (["tests/openscad/projection_cut.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

@@ -530,6 +530,7 @@ def flat_leaves(f):
 
 
 TWIST_ERROR = '#error "csgrt: a twisted or unevenly scaled linear_extrude has no POV-Ray equivalent"'
+SECTION_ERROR = '#error "csgrt: projection(cut = true) has no POV-Ray equivalent"'
 
 
 def extrusion_parts(leaf, q):
@@ -649,6 +650,10 @@ def check(path, binary):
             # with the reason, and only for a scene that twists.
             twists = [x for x in sc.leaves if x.kind == "linear_extrude" and reader.twisted(x.params)]
             return [] if twists else ["the export refuses a twisted prism the file does not have"]
+        if SECTION_ERROR in text:
+            # Nor a solid made of another's slice: the same, for projections.
+            cuts = [x for x in sc.leaves if reader.has_slice(x)]
+            return [] if cuts else ["the export refuses a projection the file does not have"]
         sdl = read_sdl(text)
     bad = []
     # Camera, lights, background.

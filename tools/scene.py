@@ -213,6 +213,7 @@ PARAMS = {
     "circle": ["r", "d"],
     "polygon": ["points", "paths", "convexity"],
     "offset": ["r", "delta", "chamfer"],
+    "projection": ["cut", "convexity"],
     "import": ["file", "layer", "convexity", "origin", "scale", "width", "height", "filename", "layername", "center", "dpi", "id", "timestamp"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
@@ -248,6 +249,7 @@ class Leaf:
     def __init__(self, kind, params, matrix, material, stmt):
         self.kind, self.params, self.matrix, self.material = kind, params, matrix, material
         self.line, self.col = stmt.line, stmt.col
+        self.stmt = stmt
         self.id = None
 
 
@@ -409,14 +411,14 @@ class Reader:
             if s.children:
                 raise self.err(s, f"{name} takes no children")
             return self.solid(s, a, xf, mat)
-        if name in SHAPES_2D:
+        if name in SHAPES_2D or name == "projection":
             # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
             # centred on its plane, 1.1 when subtracted.
-            f = self.flat(s, np.eye(3))
+            f = self.sections_out(s, self.flat(s, np.eye(3)))
             if f is None:
                 return None
             h = 1.1 if self.subtracted else 1.0
-            return self.leaf(s, "linear_extrude", dict(flat=f, h=h, z0=-h / 2, scale=1.0), xf, mat)
+            return self.leaf(s, "linear_extrude", dict(flat=f[0], frame=f[1], h=h, z0=-h / 2, scale=1.0), xf, mat)
         if name in EXTRUSIONS:
             return self.extrusion(s, a, xf, mat)
         kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
@@ -539,8 +541,55 @@ class Reader:
             return self.flat_kids(s, "union", m)
         if name == "offset":
             return self.offset(s, a, m)
+        if name == "projection":
+            if a.get("cut", False) is not True:
+                raise self.err(s, "projection(cut = false) is not in the oracle")
+            # The children as solids, kept out of the scene's leaves: read
+            # again, exactly, when the slice is extruded.
+            n0 = len(self.scene.leaves)
+            node = self.union([k for k in (self.node(c, np.eye(4), dict(CORNFIELD)) for c in s.children) if k is not None])
+            del self.scene.leaves[n0:]
+            return None if node is None else ("section", node, m, s)
         op = name if name in ("intersection", "difference") else "union"
         return self.flat_kids(s, op, m)
+
+    def sections_out(self, s, f):
+        """(exact tree, framing tree) of a 2-D tree: each projection's
+        slice computed exactly (see `section_tree`), and in the framing
+        tree wrapped as ("framed", slice, lo, hi) with csgrt's box of it —
+        the xy box of its children's box; None when empty."""
+        if f is None:
+            return None
+        if f[0] == "section":
+            _, node, m, st = f
+            M = np.eye(4)
+            M[np.ix_([0, 1, 3], [0, 1, 3])] = m
+            moved = moved_node(node, M)
+            lo, hi = box(moved)
+            if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
+                raise self.err(st, "the projection of an unbounded solid is not in the oracle")
+            if lo[2] > 0 or hi[2] < 0 or np.any(lo > hi):
+                return None
+            size = hi - lo
+            big = (lo[:2] - size[:2] - 1.0, hi[:2] + size[:2] + 1.0)
+            try:
+                t = section_tree(moved, big)
+            except ValueError as e:
+                raise self.err(st, str(e))
+            return None if t is None else (t, ("framed", t, lo[:2], hi[:2]))
+        if f[0] != "op":
+            return f, f
+        parts = [self.sections_out(s, k) for k in f[2]]
+        if f[1] == "intersection" and any(p is None for p in parts):
+            return None
+        if f[1] == "difference" and parts[0] is None:
+            return None
+        live = [p for p in parts if p is not None]
+        if not live:
+            return None
+        if len(live) == 1:
+            return live[0]
+        return ("op", f[1], [p[0] for p in live]) + tuple(f[3:]), ("op", f[1], [p[1] for p in live])
 
     def offset(self, s, a, m):
         """offset(r | delta, chamfer) of the children's union, in its own
@@ -557,6 +606,8 @@ class Reader:
         child = self.flat_kids(s, "union", np.eye(3))
         if child is None:
             return None
+        if has_section(child):
+            raise self.err(s, "an offset of a projection is not in the oracle")
         if d == 0:
             return flat_moved(child, m)
         try:
@@ -632,6 +683,19 @@ class Reader:
             if key in a:
                 raise self.err(s, f"{key} of {s.name} is not in the oracle")
         f = self.flat_kids(s, "union", np.eye(3))
+        if has_section(f):
+            if s.name == "rotate_extrude":
+                raise self.err(s, "turning a projection is not in the oracle")
+            twist = num(self.path, s, a, "twist", 0.0)
+            sc = a.get("scale", 1.0)
+            if twist != 0 or sc != 1.0 and sc != [1.0, 1.0]:
+                raise self.err(s, "a twisted or scaled projection is not in the oracle")
+            f = self.sections_out(s, f)
+            h = num(self.path, s, a, "height", 100.0)
+            if f is None or h <= 0:
+                return None
+            z0 = -h / 2 if a.get("center", False) else 0.0
+            return self.leaf(s, "linear_extrude", dict(flat=f[0], frame=f[1], h=h, z0=z0, scale=1.0), xf, mat)
         if s.name == "linear_extrude":
             twist = num(self.path, s, a, "twist", 0.0)
             h = num(self.path, s, a, "height", 100.0)
@@ -1011,6 +1075,8 @@ def text_2d(rd, s, a, place):
 
 def flat_moved(f, m):
     """A 2-D tree moved by the plane matrix m (3x3, homogeneous)."""
+    if f[0] == "section":
+        return ("section", f[1], m @ f[2], f[3])
     if f[0] == "poly":
         return ("poly", [l @ m[:2, :2].T + m[:2, 2] for l in f[1]])
     if f[0] == "ellipse":
@@ -1108,6 +1174,129 @@ def offset_pieces(f, join, d):
                 pieces.append(("poly", [np.array([v, v + k * n1, v + k * n1 + run * u1, v + k * n2 - run * u2, v + k * n2])]))
     body = ("poly", loops)
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
+
+
+def has_section(f):
+    return f is not None and (f[0] == "section" or f[0] == "op" and any(has_section(k) for k in f[2]))
+
+
+def has_slice(leaf):
+    """Whether an extrusion leaf holds a projection's slice."""
+    rec = lambda f: f[0] == "framed" or f[0] == "op" and any(rec(k) for k in f[2])
+    return "frame" in leaf.params and rec(leaf.params["frame"])
+
+
+def moved_node(node, M):
+    """A 3-D tree with every leaf placed by M first."""
+    if isinstance(node, Leaf):
+        x = Leaf(node.kind, node.params, M @ node.matrix, node.material, node.stmt)
+        return x
+    return Op(node.op, [moved_node(c, M) for c in node.children])
+
+
+def clip_poly(poly, g, c):
+    """The convex polygon poly (k x 2) cut to g . p <= c (Sutherland-Hodgman)."""
+    out = []
+    k = len(poly)
+    for i in range(k):
+        a, b = poly[i], poly[(i + 1) % k]
+        fa, fb = g @ a - c, g @ b - c
+        if fa <= 0:
+            out.append(a)
+        if (fa < 0 < fb) or (fb < 0 < fa):
+            out.append(a + (b - a) * (fa / (fa - fb)))
+    return np.array(out) if len(out) >= 3 else None
+
+
+def half_planes(poly, rows):
+    """poly cut by each (g, c): g . p <= c; None when nothing is left. A
+    row with g = 0 keeps all or nothing."""
+    for g, c in rows:
+        if not np.any(g):
+            if 0.0 > c:
+                return None
+            continue
+        poly = clip_poly(poly, g, c)
+        if poly is None:
+            return None
+    return poly
+
+
+def slab_rows(P, w, i, lo, hi):
+    """The half-planes lo <= (P p + w)_i <= hi, a row exactly zero when P's
+    row is negligible (a face parallel to the plane)."""
+    g = P[i].copy()
+    if np.linalg.norm(g) <= 1e-13 * np.linalg.norm(P):
+        g[:] = 0.0
+    return [(g, hi - w[i]), (-g, w[i] - lo)]
+
+
+def conic_ellipse(Q, w, r):
+    """The ellipse {p : |Q p + w| <= r} for Q of full column rank, as
+    ("ellipse", A, c) (the image of the unit disc), or None when empty."""
+    G = Q.T @ Q
+    c = -np.linalg.solve(G, Q.T @ w)
+    k = r * r - w @ w + c @ G @ c
+    if k <= 0:
+        return None
+    A = math.sqrt(k) * np.linalg.cholesky(np.linalg.inv(G))
+    return ("ellipse", A, c)
+
+
+def section_tree(node, big):
+    """The slice z = 0 of a 3-D tree of spheres, boxes, cylinders and
+    halfspaces, exactly, as a 2-D tree: a point p of the plane is in a
+    leaf when its object point u = P p + w is (P, w from the leaf's inverse
+    matrix). A sphere gives the ellipse |u| <= r; a box the polygon of its
+    six half-planes; a cylinder the ellipse |u_xy| <= r (or, with its axis
+    in the plane, a strip) met with its caps' half-planes; a halfspace a
+    half-plane. Polygons are cut from the square `big`."""
+    if isinstance(node, Op):
+        kids = [section_tree(c, big) for c in node.children]
+        if node.op == "intersection" and any(k is None for k in kids):
+            return None
+        if node.op == "difference" and kids[0] is None:
+            return None
+        live = [k for k in kids if k is not None]
+        if not live:
+            return None
+        return live[0] if len(live) == 1 else ("op", node.op, live)
+    lo, hi = big
+    square = np.array([lo, [hi[0], lo[1]], hi, [lo[0], hi[1]]], dtype=float)
+    inv = np.linalg.inv(node.matrix)
+    P, w = inv[:3, :2], inv[:3, 3]
+    p = node.params
+    poly = lambda rows: (lambda q: None if q is None else ("poly", [q]))(half_planes(square, rows))
+    if node.kind == "sphere":
+        return conic_ellipse(P, w, p["r"])
+    if node.kind == "cube":
+        s0 = -p["size"] / 2 if p["center"] else np.zeros(3)
+        return poly([r for i in range(3) for r in slab_rows(P, w, i, s0[i], s0[i] + p["size"][i])])
+    if node.kind == "cylinder" and p["r1"] == p["r2"]:
+        z0 = -p["h"] / 2 if p["center"] else 0.0
+        caps = slab_rows(P, w, 2, z0, z0 + p["h"])
+        Q, r = P[:2], p["r1"]
+        U, S, Vt = np.linalg.svd(Q)
+        if S[1] <= 1e-13 * S[0]:
+            # The axis in the plane: |w + e s| <= r with s = g . p, a strip.
+            e, g = U[:, 0], S[0] * Vt[0]
+            b, cc = e @ w[:2], w[:2] @ w[:2] - r * r
+            disc = b * b - cc
+            if disc <= 0:
+                return None
+            s0, s1 = -b - math.sqrt(disc), -b + math.sqrt(disc)
+            return poly(caps + [(g, s1), (-g, -s0)])
+        ell = conic_ellipse(Q, w[:2], r)
+        if ell is None:
+            return None
+        if not np.any(caps[0][0]):
+            return ell if caps[0][1] >= 0 and caps[1][1] >= 0 else None
+        box_ = poly(caps)
+        return None if box_ is None else ("op", "intersection", [ell, box_])
+    if node.kind == "halfspace":
+        n = p["normal"]
+        return poly([(n @ P, p["offset"] - n @ w)])
+    raise ValueError(f"the slice of a {node.kind} is not in the oracle")
 
 
 def check_twistable(rd, s, f, twist, sc):
@@ -1485,6 +1674,8 @@ def extrusion_box(leaf):
         h, z0, s = p["h"], p["z0"], p["scale"]
 
         def rec(f):
+            if f[0] == "framed":
+                return corner_box(m, np.array([f[2][0], f[2][1], z0]), np.array([f[3][0], f[3][1], z0 + h]))
             if f[0] in ("poly", "curves"):
                 if f[0] == "poly":
                     pts = np.concatenate(f[1])
@@ -1497,7 +1688,7 @@ def extrusion_box(leaf):
                 return cone_box(m, f[1], f[2], s, z0, h)
             return combine_boxes(f[1], [rec(k) for k in f[2]])
 
-        return rec(p["flat"])
+        return rec(p.get("frame", p["flat"]))
     f, flip = revolve_setup(p)
 
     def rec(f):

@@ -26,6 +26,10 @@ pub struct Primitive {
     pub material: u32,
     /// World bounding box ([`Aabb::EVERYTHING`] if unbounded).
     pub bounds: Aabb,
+    /// The innermost [`Section`] the primitive lies in, if any: its
+    /// surface is then met along the ray projected into that section's
+    /// plane (and so on outwards).
+    pub section: Option<u32>,
 }
 
 impl Primitive {
@@ -36,6 +40,58 @@ impl Primitive {
             xf,
             material,
             bounds,
+            section: None,
+        }
+    }
+}
+
+/// `projection(cut = true)` extruded: the solid of the points whose foot
+/// in the plane z = 0 of `xf`'s frame lies in the child. A ray crosses it
+/// exactly where the ray's own foot — the line projected along the
+/// frame's z into that plane, with the same parameter t — crosses the
+/// child, so the child's spans along that line are the section's, and the
+/// normal there is the child's with its z part (in the frame) removed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Section {
+    pub xf: Transform,
+    /// The section this one lies in, if any.
+    pub outer: Option<u32>,
+}
+
+impl Section {
+    /// The foot of `ray` in the plane: `None` for a ray along the frame's
+    /// z, whose foot is one point.
+    pub fn project(&self, ray: &Ray) -> Option<Ray> {
+        let (o, d) = self.xf.ray_to_object(ray);
+        if d.x == 0.0 && d.y == 0.0 {
+            return None;
+        }
+        let m = &self.xf.to_world;
+        Some(Ray::new(
+            m.transform_point3(DVec3::new(o.x, o.y, 0.0)),
+            m.matrix3 * DVec3::new(d.x, d.y, 0.0),
+        ))
+    }
+
+    /// The foot of a world point in the plane.
+    pub fn foot(&self, p: DVec3) -> DVec3 {
+        let q = self.xf.point_to_object(p);
+        self.xf.to_world.transform_point3(DVec3::new(q.x, q.y, 0.0))
+    }
+
+    /// The section's normal where the child's unit world normal is `n`:
+    /// in the frame, the child's normal less its z part.
+    pub fn normal(&self, n: DVec3) -> DVec3 {
+        let mut local = self.xf.to_world.matrix3.transpose() * n;
+        if crate::mutant::active("section_unflattened") {
+            return n;
+        }
+        local.z = 0.0;
+        let w = self.xf.normal * local;
+        if w == DVec3::ZERO {
+            n
+        } else {
+            w.normalize()
         }
     }
 }
@@ -46,6 +102,9 @@ pub enum NodeKind {
     /// An operation over two or more children; a difference is the first
     /// child minus the rest.
     Op(Op, Vec<u32>),
+    /// The child (a node) seen through [`Csg::sections`]`[k]`: unbounded
+    /// along the section's z, so it stands under an intersection.
+    Section(u32, u32),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -77,6 +136,7 @@ pub struct UnionIndex {
 pub struct Csg {
     pub prims: Vec<Primitive>,
     pub nodes: Vec<Node>,
+    pub sections: Vec<Section>,
     pub root: Option<u32>,
 }
 
@@ -142,6 +202,52 @@ impl Csg {
         };
         node.index = index;
         self.add_node(node)
+    }
+
+    /// Adds the section of node `child` (built with its primitives placed
+    /// in the frame of `xf`): the primitives and sections added since
+    /// `first_prim` and `first_section` that lie in no section yet now
+    /// lie in this one. Unbounded: see [`NodeKind::Section`].
+    pub fn add_section(
+        &mut self,
+        child: u32,
+        xf: Transform,
+        first_prim: usize,
+        first_section: usize,
+    ) -> u32 {
+        let k = self.sections.len() as u32;
+        for p in &mut self.prims[first_prim..] {
+            p.section.get_or_insert(k);
+        }
+        for s in &mut self.sections[first_section..] {
+            s.outer.get_or_insert(k);
+        }
+        self.sections.push(Section { xf, outer: None });
+        self.add_node(Node {
+            kind: NodeKind::Section(child, k),
+            bounds: Aabb::EVERYTHING,
+            index: None,
+        })
+    }
+
+    /// The box of `node` with every primitive moved by `m` first (the same
+    /// rules as the nodes' own boxes; a section is unbounded).
+    pub fn bounds_in(&self, node: u32, m: &glam::DAffine3) -> Aabb {
+        match &self.nodes[node as usize].kind {
+            NodeKind::Leaf(p) => {
+                let p = &self.prims[*p as usize];
+                p.shape.world_bounds(&(*m * p.xf.to_world))
+            }
+            NodeKind::Section(..) => Aabb::EVERYTHING,
+            NodeKind::Op(op, ch) => {
+                let mut bs = ch.iter().map(|&c| self.bounds_in(c, m));
+                match op {
+                    Op::Union => bs.fold(Aabb::EMPTY, |a, x| a.union(&x)),
+                    Op::Intersection => bs.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
+                    Op::Difference => bs.next().unwrap_or(Aabb::EMPTY),
+                }
+            }
+        }
     }
 
     fn union_index(&self, children: &[u32]) -> Option<Box<UnionIndex>> {
@@ -216,6 +322,27 @@ impl Csg {
         let base = q.sc.stack.len();
         match &n.kind {
             NodeKind::Leaf(p) => self.push_prim_spans(*p, q),
+            &NodeKind::Section(c, k) => match self.sections[k as usize].project(q.ray) {
+                Some(foot) => self.push_spans(
+                    c,
+                    &mut Query {
+                        ray: &foot,
+                        tmin: q.tmin,
+                        tmax: q.tmax,
+                        st: &mut *q.st,
+                        sc: &mut *q.sc,
+                    },
+                ),
+                // Along the frame's z: all of the line or none of it.
+                None => {
+                    if self.contains(c, self.sections[k as usize].foot(q.ray.origin)) {
+                        q.sc.stack.push(Span {
+                            enter: Boundary::open(f64::NEG_INFINITY),
+                            exit: Boundary::open(f64::INFINITY),
+                        });
+                    }
+                }
+            },
             NodeKind::Op(Op::Union, ch) => {
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
                 let ch: &[u32] = match &n.index {
@@ -373,9 +500,26 @@ impl Csg {
     pub fn surface(&self, ray: &Ray, b: &Boundary, st: &mut Stats) -> SurfaceHit {
         st.normals_computed += 1;
         let p = &self.prims[b.prim as usize];
-        let (o, d) = p.xf.ray_to_object(ray);
+        // A primitive in sections is met along the ray's foot in each,
+        // the outermost first; its normal flattened from the innermost out.
+        let mut chain: SmallVec<[u32; 4]> = SmallVec::new();
+        let mut at = p.section;
+        while let Some(k) = at {
+            chain.push(k);
+            at = self.sections[k as usize].outer;
+        }
+        let mut foot = *ray;
+        for &k in chain.iter().rev() {
+            if let Some(r) = self.sections[k as usize].project(&foot) {
+                foot = r;
+            }
+        }
+        let (o, d) = p.xf.ray_to_object(&foot);
         let n_obj = p.shape.normal(o + b.t * d, b.part());
-        let n = p.xf.normal_to_world(n_obj);
+        let mut n = p.xf.normal_to_world(n_obj);
+        for &k in &chain {
+            n = self.sections[k as usize].normal(n);
+        }
         SurfaceHit {
             t: b.t,
             point: ray.at(b.t),
@@ -395,6 +539,7 @@ impl Csg {
                 let prim = &self.prims[*i as usize];
                 prim.shape.contains(prim.xf.point_to_object(p))
             }
+            &NodeKind::Section(c, k) => self.contains(c, self.sections[k as usize].foot(p)),
             NodeKind::Op(Op::Union, ch) => ch.iter().any(|&c| self.contains(c, p)),
             NodeKind::Op(Op::Intersection, ch) => ch.iter().all(|&c| self.contains(c, p)),
             NodeKind::Op(Op::Difference, ch) => {

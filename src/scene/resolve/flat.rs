@@ -21,7 +21,7 @@ use super::transforms::{basis_from_z, sin_cos_deg};
 use super::{combine, Resolver};
 use crate::csg::spans::Op;
 use crate::error::Result;
-use crate::geometry::{Cone, Halfspace, Lathe, Prism, Shape, Sphere, Torus, Twisted};
+use crate::geometry::{Cone, Cuboid, Halfspace, Lathe, Prism, Shape, Sphere, Torus, Twisted};
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
 use crate::scene::Material;
@@ -39,6 +39,10 @@ pub(crate) enum Flat {
     Polygon(Outlines),
     /// The image of the unit disc.
     Ellipse(DAffine2),
+    /// `projection(cut = true)`: the slice z = 0 of its children, moved
+    /// in the plane by the transform. The children are read only when the
+    /// slice is extruded, in the extrusion's frame.
+    Section(Box<Statement>, DAffine2),
     Op(Op, Vec<Flat>),
 }
 
@@ -52,6 +56,8 @@ impl Flat {
                 let h = DVec2::new(e.matrix2.x_axis.x, e.matrix2.y_axis.x).length();
                 (e.translation.x - h, e.translation.x + h)
             }
+            // Not asked: a section is refused before (see `has_section`).
+            Flat::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
             Flat::Op(op, kids) => {
                 let rs = kids.iter().map(|k| k.x_range());
                 match op {
@@ -82,6 +88,7 @@ impl Flat {
         match self {
             Flat::Polygon(o) => Flat::Polygon(o.map(|p| m.transform_point2(p))),
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
+            Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
         }
     }
@@ -92,7 +99,17 @@ impl Flat {
         match self {
             Flat::Polygon(o) => Flat::Polygon(o.map(|p| DVec2::new(-p.x, p.y))),
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
+            Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
+        }
+    }
+
+    /// The first `projection` in the tree, if any.
+    pub(super) fn section(&self) -> Option<&Statement> {
+        match self {
+            Flat::Section(s, _) => Some(s),
+            Flat::Op(_, kids) => kids.iter().find_map(|k| k.section()),
+            _ => None,
         }
     }
 }
@@ -348,6 +365,25 @@ impl Resolver<'_> {
         if name == "import" {
             self.no_children(s)?;
             return self.import(s, m);
+        }
+        if name == "projection" {
+            let a = Args::bind(self.src, s, &["cut", "convexity"])?;
+            if !a.boolean("cut")?.unwrap_or(false) {
+                let place = if a.has("cut") {
+                    a.span_of("cut")
+                } else {
+                    s.name_span
+                };
+                return Err(self.src.error(
+                    place,
+                    "projection(cut = false), the shadow of a solid, is not supported yet",
+                    "csgrt renders projection(cut = true), the slice at z = 0",
+                ));
+            }
+            if s.children.iter().all(super::skipped) {
+                return Ok(None);
+            }
+            return Ok(Some(Flat::Section(Box::new(s.clone()), m)));
         }
         if super::APPEARANCE.contains(&name) {
             // An extrusion is one new solid: colours below it are dropped,
@@ -736,6 +772,24 @@ impl Resolver<'_> {
                 let shape = Shape::Cone(Cone { r0, r1, centered });
                 self.leaf(s, shape, xf * local, mat)
             }
+            Flat::Section(p, at) => {
+                if !even || top != 1.0 || sweep.twist != 0.0 {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "twisting or scaling a projection is not supported yet",
+                        "csgrt extrudes a projection straight",
+                    ));
+                }
+                let z0 = if centered { -0.5 } else { 0.0 };
+                let frame = xf
+                    * local
+                    * DAffine3::from_translation(DVec3::new(0.0, 0.0, z0))
+                    * DAffine3::from_mat3_translation(
+                        DMat3::from_mat2(at.matrix2),
+                        at.translation.extend(0.0),
+                    );
+                self.section(p, frame, mat)
+            }
             Flat::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {
@@ -744,6 +798,50 @@ impl Resolver<'_> {
                 Ok(self.op(*op, parts))
             }
         }
+    }
+
+    /// The section z = 0 of projection `p`'s children (placed by `frame`)
+    /// swept from z = 0 to 1 in `frame`: the section node met with the box
+    /// of the children's slice (its caps; framing, as the oracle's).
+    fn section(&mut self, p: &Statement, frame: DAffine3, mat: Material) -> Result<Option<u32>> {
+        let xf = match crate::geometry::Transform::new(frame) {
+            Ok(xf) => xf,
+            Err(_) => {
+                return Err(self.src.error(
+                    p.name_span,
+                    "this projection is flattened or out of range",
+                    "expected an extrusion with a nonzero, finite size",
+                ))
+            }
+        };
+        let (prims, sections) = (self.b.csg.prims.len(), self.b.csg.sections.len());
+        let ids = self.children(p, frame, mat, 0)?;
+        let Some(child) = self.union(ids) else {
+            return Ok(None);
+        };
+        // Colours below a projection are dropped, as in OpenSCAD.
+        let material = self.b.material_id(mat);
+        for q in &mut self.b.csg.prims[prims..] {
+            q.material = material;
+        }
+        let b = self.b.csg.bounds_in(child, &xf.to_object);
+        if !b.is_bounded() {
+            return Err(self.src.error(
+                p.name_span,
+                "the projection of an unbounded solid (a halfspace) is not supported yet",
+                "expected bounded children",
+            ));
+        }
+        if b.min.z > 0.0 || b.max.z < 0.0 || b.min.x > b.max.x || b.min.y > b.max.y {
+            return Ok(None);
+        }
+        let node = self.b.csg.add_section(child, xf, prims, sections);
+        let size = DVec3::new(b.max.x - b.min.x, b.max.y - b.min.y, 1.0);
+        let lo = DVec3::new(b.min.x, b.min.y, 0.0);
+        let cap =
+            frame * DAffine3::from_scale_rotation_translation(size, glam::DQuat::IDENTITY, lo);
+        let caps = self.leaf(p, Shape::Cuboid(Cuboid { centered: false }), cap, mat)?;
+        Ok(self.op(Op::Intersection, vec![Some(node), caps]))
     }
 
     /// `linear_extrude(height, center, convexity, twist, slices, scale)`.
@@ -819,6 +917,13 @@ impl Resolver<'_> {
         };
         if angle == 0.0 {
             return self.empty(s, "its angle is zero");
+        }
+        if let Some(p) = f.section() {
+            return Err(self.src.error(
+                p.name_span,
+                "turning a projection is not supported yet",
+                "csgrt extrudes a projection with linear_extrude",
+            ));
         }
         let (lo, hi) = f.x_range();
         if lo < 0.0 && hi > 0.0 {
@@ -935,6 +1040,7 @@ impl Resolver<'_> {
                 let shape = Shape::Torus(Torus { minor: ra / c.x });
                 self.leaf(s, shape, xf * local, mat)
             }
+            Flat::Section(..) => unreachable!("refused by rotate_extrude"),
             Flat::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {

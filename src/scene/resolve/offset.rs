@@ -87,6 +87,7 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             Ok((r2 > 0.0).then(|| Flat::disc(e.translation, r2)))
         }
         Flat::Polygon(o) => polygon(o, join, d),
+        Flat::Section(..) => Err("offsetting a projection is not supported yet".into()),
     }
 }
 

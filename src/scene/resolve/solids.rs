@@ -36,7 +36,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("text", Some(slab)),
     ("import", Some(slab)),
     ("surface", None),
-    ("projection", None),
+    ("projection", Some(slab)),
     ("offset", Some(slab)),
     ("hull", None),
     ("minkowski", None),
@@ -47,7 +47,8 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
 ];
 
 /// The statements of [`SOLIDS`] that take children (2-D shapes to lift).
-pub(crate) const WITH_CHILDREN: &[&str] = &["linear_extrude", "rotate_extrude", "offset"];
+pub(crate) const WITH_CHILDREN: &[&str] =
+    &["linear_extrude", "rotate_extrude", "offset", "projection"];
 
 /// The OpenSCAD solids csgrt does not render yet.
 pub fn unsupported() -> impl Iterator<Item = &'static str> {
