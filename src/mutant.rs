@@ -23,6 +23,7 @@ pub const NAMES: &[&str] = &[
     "twist_reversed",
     "drawing_unnested",
     "section_unflattened",
+    "resize_auto_ignored",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -149,7 +149,7 @@ fn message(node: &str, line: usize, col: usize, source: &str) -> String {
         lead + &caret[col - 1..]
     };
     format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, projection and offset\n"
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, projection, offset and resize\n"
     )
 }
 
@@ -215,6 +215,22 @@ fn a_projection_that_is_a_shadow_is_refused_at_its_cut() {
     assert_eq!(
         r.stderr,
         "error: projection(cut = false), the shadow of a solid, is not supported yet\n --> x.csg:2:19\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t                 ^^^^^ csgrt renders projection(cut = true), the slice at z = 0\n"
+    );
+    assert!(files(dir.path()) == vec!["x.csg".to_string()], "no output");
+}
+
+#[test]
+fn a_resize_whose_extent_cannot_be_shown_exact_is_refused_at_its_place() {
+    // A cube cut by a ball through its far corner: the extent of what is
+    // left is not the cube's, and csgrt will not guess it.
+    let text = "resize(newsize = [2, 0, 0]) {\n\tdifference() {\n\t\tcube(1);\n\t\tsphere(r = 0.5);\n\t}\n}\n";
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("x.csg"), text).unwrap();
+    let r = csgrt(dir.path(), &["x.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    assert_eq!(
+        r.stderr,
+        "error: `resize` of these children is not supported yet\n --> x.csg:1:1\n  |\n1 | resize(newsize = [2, 0, 0]) {\n  | ^^^^^^ csgrt resizes from an exact extent, and cannot show the extent of a difference that cuts its far side\n"
     );
     assert!(files(dir.path()) == vec!["x.csg".to_string()], "no output");
 }

@@ -44,6 +44,7 @@ MUTANTS = {
     "twist_reversed": (["tests/openscad/twist.csg"], ["twisted"]),
     "drawing_unnested": (["tests/openscad/example015.csg"], False),
     "section_unflattened": (["tests/openscad/projection_cut.csg"], False),
+    "resize_auto_ignored": (["tests/openscad/resize.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

@@ -214,6 +214,7 @@ PARAMS = {
     "polygon": ["points", "paths", "convexity"],
     "offset": ["r", "delta", "chamfer"],
     "projection": ["cut", "convexity"],
+    "resize": ["newsize", "auto", "convexity"],
     "import": ["file", "layer", "convexity", "origin", "scale", "width", "height", "filename", "layername", "center", "dpi", "id", "timestamp"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
@@ -411,7 +412,9 @@ class Reader:
             if s.children:
                 raise self.err(s, f"{name} takes no children")
             return self.solid(s, a, xf, mat)
-        if name in SHAPES_2D or name == "projection":
+        if name == "resize" and not flat_stmt(s):
+            return self.resize(s, a, xf, mat)
+        if name in SHAPES_2D or name in ("projection", "resize"):
             # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
             # centred on its plane, 1.1 when subtracted.
             f = self.sections_out(s, self.flat(s, np.eye(3)))
@@ -541,6 +544,22 @@ class Reader:
             return self.flat_kids(s, "union", m)
         if name == "offset":
             return self.offset(s, a, m)
+        if name == "resize":
+            newsize, auto = resize_args(self, s, a)
+            child = self.flat_kids(s, "union", np.eye(3))
+            if child is None:
+                return None
+            size = [0.0, 0.0]
+            for i in range(2):
+                if newsize[i] > 0 or auto[i]:
+                    lo, hi = flat_extent_exact(self, s, child, i)
+                    size[i] = hi - lo
+            # Polygon2d::resize
+            maxdim = 1 if newsize[1] and newsize[1] > newsize[0] else 0
+            sc = [newsize[i] / size[i] if newsize[i] > 0 else 1.0 for i in range(2)]
+            autoscale = newsize[maxdim] / size[maxdim] if newsize[maxdim] > 0 else 1.0
+            k = [sc[i] if not auto[i] or newsize[i] > 0 else autoscale for i in range(2)]
+            return flat_moved(child, m @ np.diag([k[0], k[1], 1.0]))
         if name == "projection":
             if a.get("cut", False) is not True:
                 raise self.err(s, "projection(cut = false) is not in the oracle")
@@ -552,6 +571,33 @@ class Reader:
             return None if node is None else ("section", node, m, s)
         op = name if name in ("intersection", "difference") else "union"
         return self.flat_kids(s, op, m)
+
+    def resize(self, s, a, xf, mat):
+        """3-D resize: the children's exact box in the resize's frame, then
+        CGAL_Nef_polyhedron::resize's scale about the origin."""
+        newsize, auto = resize_args(self, s, a)
+        n0 = len(self.scene.leaves)
+        node = self.union([k for k in (self.node(c, np.eye(4), mat) for c in s.children) if k is not None])
+        del self.scene.leaves[n0:]
+        if node is None:
+            return None
+        lo, hi = exact_box(self, s, node)
+        size = hi - lo
+        scale = [1.0, 1.0, 1.0]
+        imax = 0
+        for i in range(3):
+            if newsize[i]:
+                if size[i] == 0:
+                    return self.union([k for k in (self.node(c, xf, mat) for c in s.children) if k is not None])
+                scale[i] = newsize[i] / size[i]
+                if newsize[i] > newsize[imax]:
+                    imax = i
+        autoscale = newsize[imax] / size[imax] if newsize[imax] else 1.0
+        for i in range(3):
+            if auto[i] and newsize[i] == 0:
+                scale[i] = autoscale
+        S = np.diag(scale + [1.0])
+        return self.union([k for k in (self.node(c, xf @ S, mat) for c in s.children) if k is not None])
 
     def sections_out(self, s, f):
         """(exact tree, framing tree) of a 2-D tree: each projection's
@@ -1178,6 +1224,73 @@ def offset_pieces(f, join, d):
 
 def has_section(f):
     return f is not None and (f[0] == "section" or f[0] == "op" and any(has_section(k) for k in f[2]))
+
+
+def flat_stmt(s):
+    """Whether a statement makes a 2-D shape (its first live child decides
+    for transforms, operations, colours and resize)."""
+    if s.name in SHAPES_2D and s.name != "import" or s.name in ("offset", "projection"):
+        return True
+    if s.name == "import":
+        f = next((v for k, v in s.args if k in ("file", None) and isinstance(v, str)), "")
+        return f.lower().endswith((".dxf", ".svg"))
+    if s.name in TRANSFORMS or s.name in ("union", "intersection", "difference", "group", "render", "color", "material", "resize"):
+        live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+        return bool(live) and flat_stmt(live[0])
+    return False
+
+
+def resize_args(rd, s, a):
+    ns = a.get("newsize", [])
+    ns = [float(x) for x in ns] if isinstance(ns, list) else []
+    ns = (ns + [0.0, 0.0, 0.0])[:3]
+    au = a.get("auto", False)
+    au = [bool(x) for x in au] if isinstance(au, list) else [bool(au)] * 3
+    return ns, (au + [False, False, False])[:3]
+
+
+def flat_extent_exact(rd, s, f, i):
+    """The exact extent of a 2-D tree along axis i: leaves exactly, a union
+    the join, a difference its first operand's when no subtracted box
+    reaches its sides; anything else is not in the oracle."""
+    if f[0] == "poly":
+        v = np.concatenate([l[:, i] for l in f[1]])
+        return v.min(), v.max()
+    if f[0] == "curves":
+        lo, hi = curve_extent(f)
+        return lo[i], hi[i]
+    if f[0] == "ellipse":
+        h = float(np.linalg.norm(f[1][i]))
+        return f[2][i] - h, f[2][i] + h
+    if f[0] == "section":
+        raise rd.err(s, "a resized projection is not in the oracle")
+    rs = [flat_extent_exact(rd, s, k, i) for k in f[2]]
+    if f[1] == "union":
+        return min(r[0] for r in rs), max(r[1] for r in rs)
+    if f[1] == "difference" and all(r[0] > rs[0][0] and r[1] < rs[0][1] for r in rs[1:]):
+        return rs[0]
+    raise rd.err(s, f"the extent of this 2-D {f[1]} is not in the oracle")
+
+
+def exact_box(rd, s, node):
+    """The exact box of a 3-D tree: each primitive's closed form (an
+    extrusion's only under an axis-aligned matrix, where csgrt's framing
+    box is exact), a union's join, a difference's first operand's when no
+    subtracted box reaches its sides; anything else is not in the oracle."""
+    if isinstance(node, Leaf):
+        if node.kind in EXTRUSIONS:
+            L = node.matrix[:3, :3]
+            if node.kind != "linear_extrude" or twisted(node.params) or np.count_nonzero(L - np.diag(np.diag(L))):
+                raise rd.err(s, "the exact extent of this extrusion is not in the oracle")
+        if node.kind == "halfspace":
+            raise rd.err(s, "the extent of a halfspace is not in the oracle")
+        return leaf_box(node)
+    bs = [exact_box(rd, s, c) for c in node.children]
+    if node.op == "union":
+        return combine_boxes("union", bs)
+    if node.op == "difference" and all(np.all(b[0] > bs[0][0]) and np.all(b[1] < bs[0][1]) for b in bs[1:]):
+        return bs[0]
+    raise rd.err(s, f"the extent of this {node.op} is not in the oracle")
 
 
 def has_slice(leaf):

@@ -124,7 +124,7 @@ impl<'a> Args<'a> {
         self.get(name).is_some()
     }
 
-    fn get(&self, name: &str) -> Option<&'a Value> {
+    pub(crate) fn get(&self, name: &str) -> Option<&'a Value> {
         let i = self
             .params
             .iter()
@@ -147,7 +147,7 @@ impl<'a> Args<'a> {
         self.src.error(span, message, label)
     }
 
-    fn wrong_type(&self, name: &str, v: &Value, want: &str) -> Error {
+    pub(crate) fn wrong_type(&self, name: &str, v: &Value, want: &str) -> Error {
         self.src.error(
             v.span,
             format!("`{name}` of `{}` must be {want}", self.stmt.name),

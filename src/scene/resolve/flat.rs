@@ -50,16 +50,22 @@ impl Flat {
     /// The extent in x (exact for leaves; a union joins, an intersection
     /// meets, a difference keeps its first operand's).
     fn x_range(&self) -> (f64, f64) {
+        self.range(DVec2::X)
+    }
+
+    /// The extent along `axis`, by the rules of [`Flat::x_range`].
+    pub(super) fn range(&self, axis: DVec2) -> (f64, f64) {
         match self {
-            Flat::Polygon(o) => o.extent(DVec2::X),
+            Flat::Polygon(o) => o.extent(axis),
             Flat::Ellipse(e) => {
-                let h = DVec2::new(e.matrix2.x_axis.x, e.matrix2.y_axis.x).length();
-                (e.translation.x - h, e.translation.x + h)
+                let h = (e.matrix2.transpose() * axis).length();
+                let c = e.translation.dot(axis);
+                (c - h, c + h)
             }
             // Not asked: a section is refused before (see `has_section`).
             Flat::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
             Flat::Op(op, kids) => {
-                let rs = kids.iter().map(|k| k.x_range());
+                let rs = kids.iter().map(|k| k.range(axis));
                 match op {
                     Op::Union => rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
                         (a.min(c), b.max(d))
@@ -68,7 +74,7 @@ impl Flat {
                         .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (c, d)| {
                             (a.max(c), b.min(d))
                         }),
-                    Op::Difference => kids[0].x_range(),
+                    Op::Difference => kids[0].range(axis),
                 }
             }
         }
@@ -366,6 +372,9 @@ impl Resolver<'_> {
             self.no_children(s)?;
             return self.import(s, m);
         }
+        if name == "resize" {
+            return self.resize_flat(s, m, depth);
+        }
         if name == "projection" {
             let a = Args::bind(self.src, s, &["cut", "convexity"])?;
             if !a.boolean("cut")?.unwrap_or(false) {
@@ -422,7 +431,7 @@ impl Resolver<'_> {
         Err(self.src.error(s.name_span, message, label))
     }
 
-    fn flat_children(
+    pub(super) fn flat_children(
         &mut self,
         s: &Statement,
         op: Op,

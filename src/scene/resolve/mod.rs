@@ -8,6 +8,7 @@
 mod appearance;
 mod flat;
 mod offset;
+mod resize;
 mod solids;
 mod statements;
 mod transforms;

@@ -40,15 +40,20 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("offset", Some(slab)),
     ("hull", None),
     ("minkowski", None),
-    ("resize", None),
+    ("resize", Some(resize)),
     ("polyhedron", None),
     ("roof", None),
     ("fill", None),
 ];
 
 /// The statements of [`SOLIDS`] that take children (2-D shapes to lift).
-pub(crate) const WITH_CHILDREN: &[&str] =
-    &["linear_extrude", "rotate_extrude", "offset", "projection"];
+pub(crate) const WITH_CHILDREN: &[&str] = &[
+    "linear_extrude",
+    "rotate_extrude",
+    "offset",
+    "projection",
+    "resize",
+];
 
 /// The OpenSCAD solids csgrt does not render yet.
 pub fn unsupported() -> impl Iterator<Item = &'static str> {
@@ -245,4 +250,14 @@ fn rotate_extrude(
     depth: usize,
 ) -> Result<Option<u32>> {
     res.rotate_extrude(s, xf, mat, depth)
+}
+
+fn resize(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    depth: usize,
+) -> Result<Option<u32>> {
+    res.resize(s, xf, mat, depth)
 }

@@ -1,0 +1,276 @@
+//! `resize(newsize, auto)`: a scale about the origin, from the extent of
+//! the children, as OpenSCAD 2021.01 computes it (`CGAL_Nef_polyhedron::
+//! resize` in 3-D, `Polygon2d::resize` in 2-D) but from the exact extent
+//! of the exact solid, not of its mesh.
+//!
+//! The extent along an axis is exact where it can be shown to be: a
+//! leaf's from its support point; a union's the largest of its
+//! children's; an intersection's the smallest, when that child's extreme
+//! point lies in every other; a difference's its first operand's, when
+//! that extreme point lies in no subtracted solid. Anything else (an
+//! unbounded or twisted leaf, a slice, an extreme point cut away) is "not
+//! supported yet", never a guess.
+
+use super::flat::Flat;
+use super::{Resolver, TRANSFORMS};
+use crate::csg::spans::Op;
+use crate::csg::{Csg, NodeKind};
+use crate::error::Result;
+use crate::scene::args::Args;
+use crate::scene::Material;
+use crate::syntax::ast::{Statement, ValueKind};
+use glam::{DAffine2, DAffine3, DVec2, DVec3};
+
+/// The far point of node `node` along `e` and its value `e·p`, or why it
+/// cannot be shown exact.
+pub(crate) fn extreme(csg: &Csg, node: u32, e: DVec3) -> Result<(f64, DVec3), &'static str> {
+    match &csg.nodes[node as usize].kind {
+        NodeKind::Leaf(p) => {
+            let p = &csg.prims[*p as usize];
+            let m = &p.xf.to_world;
+            let q = p
+                .shape
+                .support(m.matrix3.transpose() * e)
+                .ok_or("the extent of a halfspace or a twisted extrusion")?;
+            let w = m.transform_point3(q);
+            Ok((e.dot(w), w))
+        }
+        NodeKind::Section(..) => Err("the extent of a projection"),
+        NodeKind::Op(op, ch) => {
+            let mut far = Vec::with_capacity(ch.len());
+            if *op == Op::Difference {
+                let first = extreme(csg, ch[0], e)?;
+                if ch[1..].iter().any(|&c| csg.contains(c, first.1)) {
+                    return Err("the extent of a difference that cuts its far side");
+                }
+                return Ok(first);
+            }
+            for &c in ch {
+                far.push(extreme(csg, c, e)?);
+            }
+            let pick = far.iter().copied().reduce(|a, b| match (op, b.0 > a.0) {
+                (Op::Union, true) | (Op::Intersection, false) => b,
+                _ => a,
+            });
+            let best = pick.ok_or("the extent of nothing")?;
+            if *op == Op::Intersection && !ch.iter().all(|&c| csg.contains(c, best.1)) {
+                return Err("the extent of an intersection whose far point is cut away");
+            }
+            Ok(best)
+        }
+    }
+}
+
+/// The exact extent (lo, hi) of a 2-D tree along `axis`, or why not.
+fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
+    match f {
+        Flat::Polygon(_) | Flat::Ellipse(_) => Ok(f.range(axis)),
+        Flat::Section(..) => Err("the extent of a projection"),
+        Flat::Op(Op::Union, kids) => {
+            let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+            for k in kids {
+                let (a, b) = flat_extent(k, axis)?;
+                r = (r.0.min(a), r.1.max(b));
+            }
+            Ok(r)
+        }
+        // The first operand's, where no subtracted shape's box reaches its
+        // far sides.
+        Flat::Op(Op::Difference, kids) => {
+            let r = flat_extent(&kids[0], axis)?;
+            for k in &kids[1..] {
+                let (a, b) = k.range(axis);
+                if a <= r.0 || b >= r.1 {
+                    return Err("the extent of a 2-D difference that cuts its far sides");
+                }
+            }
+            Ok(r)
+        }
+        Flat::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
+    }
+}
+
+/// `newsize` (0 for axes not given) and `auto` of a resize.
+fn sizes(a: &Args) -> Result<([f64; 3], [bool; 3])> {
+    let mut size = [0.0; 3];
+    if let Some(v) = a.numbers("newsize", &[1, 2, 3])? {
+        size[..v.len()].copy_from_slice(&v);
+    }
+    let mut auto = [false; 3];
+    if let Some(v) = a.get("auto") {
+        match &v.kind {
+            ValueKind::Vector(items) if items.len() <= 3 => {
+                for (i, it) in items.iter().enumerate() {
+                    auto[i] = match it.kind {
+                        ValueKind::Bool(b) => b,
+                        ValueKind::Number(x) => x != 0.0,
+                        _ => return Err(a.wrong_type("auto", it, "`true` or `false`")),
+                    };
+                }
+            }
+            _ => auto = [a.boolean("auto")?.unwrap_or(false); 3],
+        }
+    }
+    if crate::mutant::active("resize_auto_ignored") {
+        auto = [false; 3];
+    }
+    Ok((size, auto))
+}
+
+const PARAMS: &[&str] = &["newsize", "auto", "convexity"];
+
+/// Whether a statement makes a 2-D shape (its first live child decides
+/// for transforms and operations, as OpenSCAD's dimension rule).
+pub(super) fn is_flat(s: &Statement) -> bool {
+    let name = s.name.as_str();
+    if super::flat::SHAPES_2D.contains(&name) || ["offset", "projection"].contains(&name) {
+        return true;
+    }
+    if name == "import" {
+        // Drawings are 2-D; meshes (STL, OFF, ...) are solids.
+        let file = s.args.iter().find_map(|a| match (&a.name, &a.value.kind) {
+            (Some((n, _)), ValueKind::Str(f)) if n == "file" => Some(f.to_lowercase()),
+            (None, ValueKind::Str(f)) => Some(f.to_lowercase()),
+            _ => None,
+        });
+        return file.is_some_and(|f| f.ends_with(".dxf") || f.ends_with(".svg"));
+    }
+    let passes = TRANSFORMS.contains(&name)
+        || super::OPERATIONS.contains(&name)
+        || super::APPEARANCE.contains(&name)
+        || name == "resize";
+    passes
+        && s.children
+            .iter()
+            .find(|c| !super::skipped(c))
+            .is_some_and(is_flat)
+}
+
+impl Resolver<'_> {
+    /// 3-D `resize`: the children read once in the resize's own frame to
+    /// find their extent (and dropped), then again under the scale.
+    pub(super) fn resize(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        if is_flat(s) {
+            return self.slab(s, xf, mat);
+        }
+        let a = Args::bind(self.src, s, PARAMS)?;
+        let (newsize, auto) = sizes(&a)?;
+        let csg = &self.b.csg;
+        let marks = (csg.prims.len(), csg.nodes.len(), csg.sections.len());
+        let warned = self.b.warnings.len();
+        let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
+        let Some(child) = self.union(ids) else {
+            return Ok(None);
+        };
+        let mut size = [0.0; 3];
+        for (i, e) in [DVec3::X, DVec3::Y, DVec3::Z].into_iter().enumerate() {
+            if newsize[i] == 0.0 && !auto[i] {
+                continue;
+            }
+            let csg = &self.b.csg;
+            let hi = extreme(csg, child, e).map_err(|why| self.not_yet(s, why))?;
+            let lo = extreme(csg, child, -e).map_err(|why| self.not_yet(s, why))?;
+            size[i] = hi.0 + lo.0;
+        }
+        let csg = &mut self.b.csg;
+        csg.prims.truncate(marks.0);
+        csg.nodes.truncate(marks.1);
+        csg.sections.truncate(marks.2);
+        self.b.warnings.truncate(warned);
+        // CGAL_Nef_polyhedron::resize, line for line.
+        let mut scale = [1.0; 3];
+        let mut max_at = 0;
+        for i in 0..3 {
+            if newsize[i] != 0.0 {
+                if size[i] == 0.0 {
+                    self.warn(
+                        s.name_span,
+                        "Resize in direction normal to flat object is not implemented",
+                        "the children are left as they are, as in OpenSCAD",
+                    );
+                    let ids = self.children(s, xf, mat, depth)?;
+                    return Ok(self.union(ids));
+                }
+                scale[i] = newsize[i] / size[i];
+                if newsize[i] > newsize[max_at] {
+                    max_at = i;
+                }
+            }
+        }
+        let autoscale = if newsize[max_at] != 0.0 {
+            newsize[max_at] / size[max_at]
+        } else {
+            1.0
+        };
+        for i in 0..3 {
+            if auto[i] && newsize[i] == 0.0 {
+                scale[i] = autoscale;
+            }
+        }
+        let local = DAffine3::from_scale(DVec3::from_array(scale));
+        let ids = self.children(s, xf * local, mat, depth)?;
+        Ok(self.union(ids))
+    }
+
+    /// 2-D `resize` under the plane transform `m`.
+    pub(super) fn resize_flat(
+        &mut self,
+        s: &Statement,
+        m: DAffine2,
+        depth: usize,
+    ) -> Result<Option<Flat>> {
+        let a = Args::bind(self.src, s, PARAMS)?;
+        let (newsize, auto) = sizes(&a)?;
+        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+            return Ok(None);
+        };
+        let mut size = [0.0; 2];
+        for (i, e) in [DVec2::X, DVec2::Y].into_iter().enumerate() {
+            if newsize[i] > 0.0 || auto[i] {
+                let (lo, hi) = flat_extent(&f, e).map_err(|why| self.not_yet(s, why))?;
+                size[i] = hi - lo;
+            }
+        }
+        // Polygon2d::resize, line for line.
+        let max_at = if newsize[1] != 0.0 && newsize[1] > newsize[0] {
+            1
+        } else {
+            0
+        };
+        let scale = |i: usize| {
+            if newsize[i] > 0.0 {
+                newsize[i] / size[i]
+            } else {
+                1.0
+            }
+        };
+        let autoscale = if newsize[max_at] > 0.0 {
+            newsize[max_at] / size[max_at]
+        } else {
+            1.0
+        };
+        let pick = |i: usize| {
+            if !auto[i] || newsize[i] > 0.0 {
+                scale(i)
+            } else {
+                autoscale
+            }
+        };
+        let local = DAffine2::from_scale(DVec2::new(pick(0), pick(1)));
+        Ok(Some(f.moved(m * local)))
+    }
+
+    fn not_yet(&self, s: &Statement, why: &str) -> crate::error::Error {
+        self.src.error(
+            s.name_span,
+            "`resize` of these children is not supported yet",
+            format!("csgrt resizes from an exact extent, and cannot show {why}"),
+        )
+    }
+}
