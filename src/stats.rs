@@ -10,6 +10,8 @@ pub struct Stats {
     pub refracted_rays: u64,
     /// Ray–primitive intersection calls.
     pub primitive_tests: u64,
+    /// Ray–triangle tests inside meshes.
+    pub triangle_tests: u64,
     /// Ray–bounding-box tests of CSG nodes.
     pub bound_tests: u64,
     /// Subtrees skipped because the ray missed their box.
@@ -33,6 +35,7 @@ impl Stats {
         self.reflected_rays += o.reflected_rays;
         self.refracted_rays += o.refracted_rays;
         self.primitive_tests += o.primitive_tests;
+        self.triangle_tests += o.triangle_tests;
         self.bound_tests += o.bound_tests;
         self.bound_culled += o.bound_culled;
         self.normals_computed += o.normals_computed;

@@ -234,9 +234,45 @@ def extrusion_mesh(leaf, n):
     return m
 
 
+def polyhedron_triangles(p):
+    """The oracle's own triangulation of a polyhedron's faces (manifold's
+    polygon triangulator, each face projected across its Newell normal),
+    turned counter-clockwise seen from outside (OpenSCAD lists faces
+    clockwise)."""
+    pts = p["points"]
+    tris = []
+    for f in p["faces"]:
+        q = pts[f]
+        nrm = np.zeros(3)
+        for i in range(len(f)):
+            a, b = q[i], q[(i + 1) % len(f)]
+            nrm += [(a[1] - b[1]) * (a[2] + b[2]), (a[2] - b[2]) * (a[0] + b[0]), (a[0] - b[0]) * (a[1] + b[1])]
+        k = int(np.argmax(np.abs(nrm)))
+        i, j = [(1, 2), (2, 0), (0, 1)][k]
+        flat = q[:, [i, j]]
+        if nrm[k] < 0:
+            flat = flat * [1.0, -1.0]
+        for t in np.asarray(mf.triangulate([flat.tolist()])):
+            tris.append([f[t[0]], f[t[2]], f[t[1]]])
+    tris = np.array(tris, dtype=np.uint32)
+    # A solid whatever its winding (csgrt's parity rule): turned outward
+    # when its signed volume is negative.
+    a, b, c = pts[tris[:, 0]], pts[tris[:, 1]], pts[tris[:, 2]]
+    if np.einsum("ij,ij->i", a, np.cross(b, c)).sum() < 0:
+        tris = tris[:, [0, 2, 1]]
+    return tris
+
+
 def leaf_mesh(leaf, n, big):
     p = leaf.params
     k = leaf.kind
+    if k == "polyhedron":
+        if not hasattr(leaf, "_tris"):
+            leaf._tris = polyhedron_triangles(p)
+        m = mf.Manifold(mf.Mesh64(vert_properties=np.asarray(p["points"], dtype=np.float64), tri_verts=leaf._tris))
+        if m.status() != mf.Error.NoError or m.is_empty():
+            raise ValueError(f"the oracle's manifold3d cannot take this polyhedron: {m.status()}")
+        return m.transform(leaf.matrix[:3, :].tolist()).as_original()
     if k in reader.EXTRUSIONS:
         return extrusion_mesh(leaf, n).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k == "sphere":
@@ -516,6 +552,7 @@ def largest_radius(leaf):
         "torus": lambda: p["R"] + p["r"],
         "linear_extrude": lambda: max(flat_extent(p["flat"]) * max([1.0] + list(p.get("scale2") or [p["scale"]])), p["h"]),
         "rotate_extrude": lambda: flat_extent(p["flat"]),
+        "polyhedron": lambda: float(np.abs(p["points"]).max()),
     }.get(leaf.kind, lambda: 0.0)()
     return r * smax
 
@@ -562,6 +599,19 @@ def face_class(leaf, x):
         return int(np.argmin(d))
     if leaf.kind in reader.EXTRUSIONS:
         return extrusion_face(leaf, object_point(leaf, x))
+    if leaf.kind == "polyhedron":
+        # The face whose plane (through its first point) is nearest.
+        q = object_point(leaf, x)
+        pts = leaf.params["points"]
+        best, at = math.inf, 0
+        for i, f in enumerate(leaf.params["faces"]):
+            a, b, c = pts[f[0]], pts[f[1]], pts[f[2]]
+            nrm = np.cross(b - a, c - a)
+            ln = np.linalg.norm(nrm)
+            d = abs(float((q - a) @ nrm)) / ln if ln > 0 else math.inf
+            if d < best:
+                best, at = d, i
+        return at
     return 0
 
 

@@ -93,7 +93,7 @@ class Sdl:
             depth += {"{": 1, "}": -1}.get(x, 0)
 
 
-SHAPES = ("box", "sphere", "cylinder", "cone", "torus", "plane", "prism", "lathe")
+SHAPES = ("box", "sphere", "cylinder", "cone", "torus", "plane", "prism", "lathe", "mesh2")
 
 
 def even_odd(loops, q):
@@ -256,6 +256,10 @@ class PovLeaf:
         if self.kind == "lathe":
             rz = np.column_stack([np.hypot(q[:, 0], q[:, 2]), q[:, 1]])
             return bezier_even_odd(p["segments"], rz) if "segments" in p else even_odd(p["loops"], rz)
+        if self.kind == "mesh2":
+            # POV-Ray's inside test of a mesh: the parity of its crossings
+            # along inside_vector.
+            return ray_parity(p["verts"], p["tris"], q, p["inside"])
         if self.kind == "torus":
             # rotate x*90 first: object (x, y, z) came from torus coords
             # (x, -z, y)... in POV-Ray the torus lies in the x-z plane.
@@ -281,6 +285,45 @@ def combine(op, ins):
     if op == "intersection":
         return np.all(ins, axis=0)
     return ins[0] & ~np.any(ins[1:], axis=0)
+
+
+def ray_parity(verts, tris, q, d):
+    """Whether each point q is inside the triangles by the parity of their
+    crossings with the half-line q + t d, t > 0 (Möller–Trumbore)."""
+    a, b, c = verts[tris[:, 0]], verts[tris[:, 1]], verts[tris[:, 2]]
+    e1, e2 = b - a, c - a
+    pv = np.cross(d, e2)
+    det = np.einsum("ij,ij->i", e1, pv)
+    ok = np.abs(det) > 1e-300
+    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+    count = np.zeros(len(q), dtype=np.int64)
+    for k in range(0, len(q), 512):
+        qq = q[k : k + 512][:, None, :]
+        tv = qq - a[None]
+        u = np.einsum("pij,ij->pi", tv, pv) * inv
+        qv = np.cross(tv, e1[None])
+        v = (qv @ d) * inv
+        t = np.einsum("pij,ij->pi", qv, e2) * inv
+        hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
+        count[k : k + 512] = hit.sum(axis=1)
+    return count % 2 == 1
+
+
+def winding_inside(pts, faces, q):
+    """Whether points q are inside a polyhedron of planar faces (any
+    shape, wound alike): its generalized winding number, the sum of its
+    faces' solid angles over 4 pi (each face as the fan from its first
+    point, which sums signed triangles right for non-convex faces too)."""
+    tris = np.array([[f[0], f[k], f[k + 1]] for f in faces for k in range(1, len(f) - 1)])
+    w = np.zeros(len(q))
+    for k in range(0, len(q), 512):
+        qq = q[k : k + 512][:, None, :]
+        a, b, c = pts[tris[:, 0]][None] - qq, pts[tris[:, 1]][None] - qq, pts[tris[:, 2]][None] - qq
+        la, lb, lc = (np.linalg.norm(x, axis=2) for x in (a, b, c))
+        num = np.einsum("pij,pij->pi", a, np.cross(b, c))
+        den = la * lb * lc + np.einsum("pij,pij->pi", a, b) * lc + np.einsum("pij,pij->pi", a, c) * lb + np.einsum("pij,pij->pi", b, c) * la
+        w[k : k + 512] = 2 * np.arctan2(num, den).sum(axis=1) / (4 * math.pi)
+    return np.abs(w) > 0.5
 
 
 def frustum_inside(q, z0, z1, r0, r1):
@@ -329,6 +372,19 @@ def read_object(s, kind):
         p["R"] = s.number()
         s.take(",")
         p["r"] = s.number()
+    elif kind == "mesh2":
+        for section, key in (("vertex_vectors", "verts"), ("face_indices", "tris")):
+            s.take(section)
+            s.take("{")
+            count = int(s.number())
+            rows = []
+            for _ in range(count):
+                s.take(",")
+                rows.append(s.vector())
+            s.take("}")
+            p[key] = np.array(rows, dtype=float if key == "verts" else np.int64).reshape(-1, 3)
+        s.take("inside_vector")
+        p["inside"] = np.array(s.vector(), dtype=float)
     elif kind in ("prism", "lathe"):
         if kind == "prism":
             p["sweep"] = s.take()
@@ -583,6 +639,8 @@ def leaf_inside(leaf, pts):
         return frustum_inside(q, z0, z0 + p["h"], p["r1"], p["r2"])
     if leaf.kind == "torus":
         return (np.hypot(q[:, 0], q[:, 1]) - p["R"]) ** 2 + q[:, 2] ** 2 <= p["r"] ** 2
+    if leaf.kind == "polyhedron":
+        return winding_inside(p["points"], p["faces"], q)
     return q @ p["normal"] <= p["offset"]
 
 

@@ -208,6 +208,7 @@ PARAMS = {
     "sphere": ["r", "d"],
     "cylinder": ["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
     "torus": ["R", "r"],
+    "polyhedron": ["points", "faces", "convexity", "triangles"],
     "halfspace": ["normal", "offset"],
     "square": ["size", "center"],
     "circle": ["r", "d"],
@@ -237,7 +238,7 @@ PARAMS = {
     "directional_light": ["color", "direction"],
     "point_light": ["color", "position"],
 }
-SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace")
+SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace", "polyhedron")
 SHAPES_2D = ("square", "circle", "polygon", "text", "import")
 EXTRUSIONS = ("linear_extrude", "rotate_extrude")
 TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
@@ -457,6 +458,21 @@ class Reader:
 
     def solid(self, s, a, xf, mat):
         k = s.name
+        if k == "polyhedron":
+            pts = a.get("points")
+            if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) != 3 for p in pts):
+                raise self.err(s, "points of polyhedron must be a list of 3-D points")
+            pts = np.array(pts, dtype=float)
+            faces = a.get("faces", a.get("triangles"))
+            if not isinstance(faces, list):
+                raise self.err(s, "polyhedron needs faces")
+            out = []
+            for f in faces:
+                idx = [int(i) for i in f]
+                if len(idx) < 3 or any(i != j or i < 0 or i >= len(pts) for i, j in zip(idx, f)):
+                    raise self.err(s, "a face of polyhedron has fewer than 3 points or an index out of range")
+                out.append(idx)
+            return self.leaf(s, k, dict(points=pts, faces=out), xf, mat)
         if k == "cube":
             size = vec(self.path, s, a, "size", 1.0, scalar=True)
             center = bool(a.get("center", False))
@@ -944,6 +960,12 @@ def leaf_box(leaf):
     if leaf.kind in EXTRUSIONS:
         return extrusion_box(leaf)
     m, p = leaf.matrix, leaf.params
+    if leaf.kind == "polyhedron":
+        # The box of the placed vertices (of the faces; a point no face
+        # uses is not part of the solid).
+        used = sorted({i for f in p["faces"] for i in f})
+        w = p["points"][used] @ m[:3, :3].T + m[:3, 3]
+        return w.min(axis=0), w.max(axis=0)
     L, t = m[:3, :3], m[:3, 3]
     row = lambda cols: np.sqrt(sum(L[:, c] ** 2 for c in cols))
     if leaf.kind == "sphere":

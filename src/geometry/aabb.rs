@@ -72,16 +72,23 @@ impl Aabb {
         // nothing.
         let lt = |a: f64, b: f64| if a < b { a } else { b };
         let gt = |a: f64, b: f64| if a > b { a } else { b };
-        let widen = 1.0 + 2.0 * GAMMA3;
         let mut lo = tmin;
         let mut hi = tmax;
         for i in 0..3 {
             let (a, b) = (t0[i], t1[i]);
             lo = gt(lt(a, b), lo);
-            hi = lt(gt(a, b) * widen, hi);
+            hi = lt(widened(gt(a, b)), hi);
         }
         (lo <= hi).then_some(lo)
     }
+}
+
+/// A far slab distance moved outward by 2γ₃ of itself, before the origin
+/// as after it (a mesh counts its crossings from the line's start).
+#[inline(always)]
+fn widened(t: f64) -> f64 {
+    const WIDEN: f64 = 1.0 + 2.0 * GAMMA3;
+    t * if t >= 0.0 { WIDEN } else { 1.0 / WIDEN }
 }
 
 /// Two boxes laid out axis by axis, so that one slab test serves both
@@ -108,7 +115,6 @@ impl AabbPair {
     pub fn entries(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; 2] {
         let lt = |a: f64, b: f64| if a < b { a } else { b };
         let gt = |a: f64, b: f64| if a > b { a } else { b };
-        let widen = 1.0 + 2.0 * GAMMA3;
         let mut lo = [tmin; 2];
         let mut hi = [tmax; 2];
         for i in 0..3 {
@@ -117,7 +123,7 @@ impl AabbPair {
                 let a = (self.min[i][k] - o) * inv;
                 let b = (self.max[i][k] - o) * inv;
                 lo[k] = gt(lt(a, b), lo[k]);
-                hi[k] = lt(gt(a, b) * widen, hi[k]);
+                hi[k] = lt(widened(gt(a, b)), hi[k]);
             }
         }
         [

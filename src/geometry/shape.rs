@@ -2,7 +2,7 @@
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Part, Prism, Sphere, Torus, Twisted};
+use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Sphere, Torus, Twisted};
 use glam::{DAffine3, DVec3};
 
 /// Not `Copy`: a leaf may carry shared data (a prism's region).
@@ -16,6 +16,7 @@ pub enum Shape {
     Prism(Prism),
     Lathe(Lathe),
     Twisted(Twisted),
+    Mesh(Mesh),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -30,6 +31,7 @@ macro_rules! each {
             Shape::Prism($s) => $e,
             Shape::Lathe($s) => $e,
             Shape::Twisted($s) => $e,
+            Shape::Mesh($s) => $e,
         }
     };
 }

@@ -41,7 +41,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("hull", None),
     ("minkowski", None),
     ("resize", Some(resize)),
-    ("polyhedron", None),
+    ("polyhedron", Some(polyhedron)),
     ("roof", None),
     ("fill", None),
 ];
@@ -260,4 +260,48 @@ fn resize(
     depth: usize,
 ) -> Result<Option<u32>> {
     res.resize(s, xf, mat, depth)
+}
+
+/// `polyhedron(points, faces | triangles, convexity)`: a mesh leaf (see
+/// [`crate::geometry::mesh`]); faces of any size, triangulated.
+fn polyhedron(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
+    use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
+    let a = Args::bind(res.src, s, &["points", "faces", "convexity", "triangles"])?;
+    let pts = a.points("points", &[3], 0)?;
+    let pts = a.require("points", pts)?;
+    let key = if a.has("faces") { "faces" } else { "triangles" };
+    let faces = a.index_lists(key, pts.len(), 3)?;
+    let faces = a.require("faces", faces)?;
+    let mut tris = Vec::new();
+    for f in &faces {
+        tris.extend(triangulate(&pts, f));
+    }
+    if tris.len() > MAX_TRIANGLES {
+        return Err(a.error(
+            a.span_of(key),
+            "the polyhedron has too many triangles",
+            format!("expected at most {MAX_TRIANGLES}, found {}", tris.len()),
+        ));
+    }
+    if tris.is_empty() {
+        return res.empty(s, "its faces have no area");
+    }
+    let (open, many) = edge_use(&tris);
+    if open > 0 || many > 0 {
+        res.warn(
+            s.name_span,
+            &format!(
+                "this polyhedron is not closed: {open} edge(s) border one face only, {many} edge(s) three faces or more"
+            ),
+            "inside is decided by parity: even-odd crossings along each ray",
+        );
+    }
+    let data = std::sync::Arc::new(MeshData::new(pts, tris));
+    res.leaf(s, Shape::Mesh(Mesh { data }), xf, mat)
 }

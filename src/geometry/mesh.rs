@@ -1,0 +1,442 @@
+//! A triangle mesh as an exact leaf: `polyhedron`, and meshes imported
+//! from files.
+//!
+//! A line's spans are read from its sorted crossings with the triangles,
+//! by even-odd parity: inside between the first crossing and the second,
+//! and so on. Parity needs no orientation, so a closed mesh renders right
+//! whichever way its faces are wound (OpenSCAD's clockwise polyhedra,
+//! STL's counter-clockwise files, and the many files that mix them); a
+//! crossing's normal is turned to face the ray where the line enters and
+//! along it where it leaves. An open mesh is closed by the same rule (a
+//! line through a hole in it changes side once fewer); the resolver warns
+//! with its counts.
+//!
+//! Crossings come from the watertight ray–triangle test of Woop, Benthin
+//! and Wald (JCGT 2013) in f64: the line is sheared so that it runs along
+//! z through the origin, and each triangle's three edge functions are
+//! computed from its two end points alone, so that a shared edge gets the
+//! same value, negated, from both of its triangles. A line exactly on an
+//! edge or a vertex (an edge function exactly zero) is given to one
+//! triangle only, by the top-left rule of rasterisers applied with each
+//! triangle turned counter-clockwise as seen along the line: no crack, no
+//! double crossing. Candidate triangles come from a [`Bvh`] over their
+//! boxes in object space.
+
+use super::bvh::Bvh;
+use super::solid::{Param, Probe, RawSpan, Solid};
+use super::{Aabb, Part, Ray, NO_PART};
+use glam::{DAffine3, DVec3};
+use smallvec::SmallVec;
+use std::sync::Arc;
+
+/// The most triangles a mesh may have: a crossing's part is its triangle
+/// and one bit for its normal's side, in 31 bits.
+pub const MAX_TRIANGLES: usize = 1 << 28;
+
+/// Triangles a leaf of the hierarchy holds.
+const LEAF: usize = 4;
+
+/// The vertices, triangles and hierarchy of a mesh, shared by every leaf
+/// placing it.
+#[derive(Debug)]
+pub struct MeshData {
+    pub verts: Vec<DVec3>,
+    pub tris: Vec<[u32; 3]>,
+    bvh: Bvh,
+    bounds: Aabb,
+}
+
+impl PartialEq for MeshData {
+    fn eq(&self, o: &MeshData) -> bool {
+        self.verts == o.verts && self.tris == o.tris
+    }
+}
+
+impl MeshData {
+    /// A mesh of `tris` over `verts` (indices in range, at most
+    /// [`MAX_TRIANGLES`]; degenerate triangles are kept and never hit).
+    /// Vertices no triangle uses are dropped: they are not in the solid
+    /// (its box, its hull).
+    pub fn new(verts: Vec<DVec3>, mut tris: Vec<[u32; 3]>) -> MeshData {
+        assert!(tris.len() <= MAX_TRIANGLES);
+        let mut new_index = vec![u32::MAX; verts.len()];
+        let mut kept = Vec::new();
+        for t in &mut tris {
+            for i in t.iter_mut() {
+                let k = &mut new_index[*i as usize];
+                if *k == u32::MAX {
+                    *k = kept.len() as u32;
+                    kept.push(verts[*i as usize]);
+                }
+                *i = *k;
+            }
+        }
+        let verts = kept;
+        let items: Vec<(u32, Aabb)> = tris
+            .iter()
+            .enumerate()
+            .map(|(i, t)| {
+                let b = Aabb::EMPTY
+                    .include(verts[t[0] as usize])
+                    .include(verts[t[1] as usize])
+                    .include(verts[t[2] as usize]);
+                (i as u32, b)
+            })
+            .collect();
+        let bounds = items.iter().fold(Aabb::EMPTY, |a, (_, b)| a.union(b));
+        let bvh = Bvh::build(&items, LEAF);
+        MeshData {
+            verts,
+            tris,
+            bvh,
+            bounds,
+        }
+    }
+
+    fn corners(&self, i: u32) -> [DVec3; 3] {
+        let t = self.tris[i as usize];
+        [
+            self.verts[t[0] as usize],
+            self.verts[t[1] as usize],
+            self.verts[t[2] as usize],
+        ]
+    }
+
+    /// The crossings `(t, triangle, the triangle's normal faces along d)`
+    /// of the line `o + t·d` in triangles whose boxes it meets in [t0,
+    /// t1], at most t1 (none is dropped for lying a rounding before t0),
+    /// sorted by t.
+    pub fn crossings(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        t0: f64,
+        t1: f64,
+        st: &mut crate::stats::Stats,
+    ) -> SmallVec<[(f64, u32, bool); 16]> {
+        let mut out: SmallVec<[(f64, u32, bool); 16]> = SmallVec::new();
+        let Some(w) = Watertight::new(o, d) else {
+            return out;
+        };
+        let ray = Ray::new(o, d);
+        let mut tested = 0;
+        self.bvh.visit(&ray, t0, t1, st, |i| {
+            tested += 1;
+            if let Some((t, along)) = w.hit(self.corners(i)) {
+                if t <= t1 {
+                    out.push((t, i, along));
+                }
+            }
+        });
+        st.triangle_tests += tested;
+        out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        out
+    }
+}
+
+/// A line sheared to run along +z through the origin (Woop, Benthin and
+/// Wald's set-up, once a line).
+struct Watertight {
+    o: DVec3,
+    k: [usize; 3],
+    s: DVec3,
+}
+
+impl Watertight {
+    fn new(o: DVec3, d: DVec3) -> Option<Watertight> {
+        let a = d.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        if d[kz] == 0.0 || !d[kz].is_finite() {
+            return None;
+        }
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        Some(Watertight {
+            o,
+            k: [kx, ky, kz],
+            s: DVec3::new(d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]),
+        })
+    }
+
+    /// `(t, whether the triangle's normal (b − a) × (c − a) faces along
+    /// d)` where the line crosses it, if it does (by the rules above).
+    #[inline]
+    fn hit(&self, p: [DVec3; 3]) -> Option<(f64, bool)> {
+        let [kx, ky, kz] = self.k;
+        let s = self.s;
+        let q = p.map(|v| {
+            let r = v - self.o;
+            (r[kx] - s.x * r[kz], r[ky] - s.y * r[kz], s.z * r[kz])
+        });
+        let (a, b, c) = (q[0], q[1], q[2]);
+        // Edge functions: u of edge b→c, v of c→a, w of a→b.
+        let mut u = c.0 * b.1 - c.1 * b.0;
+        let mut v = a.0 * c.1 - a.1 * c.0;
+        let mut w = b.0 * a.1 - b.1 * a.0;
+        let mut det = u + v + w;
+        if det == 0.0 || det.is_nan() {
+            return None;
+        }
+        // Seen along the line the triangle turns clockwise when det < 0:
+        // its normal faces along d. Turned counter-clockwise, its edges
+        // run the other way.
+        let along = det < 0.0;
+        let (mut e_bc, mut e_ca, mut e_ab) = (
+            (c.0 - b.0, c.1 - b.1),
+            (a.0 - c.0, a.1 - c.1),
+            (b.0 - a.0, b.1 - a.1),
+        );
+        if along {
+            u = -u;
+            v = -v;
+            w = -w;
+            det = -det;
+            e_bc = (-e_bc.0, -e_bc.1);
+            e_ca = (-e_ca.0, -e_ca.1);
+            e_ab = (-e_ab.0, -e_ab.1);
+        }
+        // Top-left: an edge owns the line on it when it runs down, or
+        // along +x.
+        let owns = |e: (f64, f64)| e.1 < 0.0 || (e.1 == 0.0 && e.0 > 0.0);
+        let inside = |f: f64, e| f > 0.0 || (f == 0.0 && owns(e));
+        if !(inside(u, e_bc) && inside(v, e_ca) && inside(w, e_ab)) {
+            return None;
+        }
+        // Turning negated the edge functions and their sum alike.
+        let t = u * a.2 + v * b.2 + w * c.2;
+        Some((t / det, along))
+    }
+}
+
+/// A mesh placed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mesh {
+    pub data: Arc<MeshData>,
+}
+
+impl Solid for Mesh {
+    const NAME: &'static str = "polyhedron";
+
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        let m = &self.data;
+        let ray = Ray::new(q.o, q.d);
+        // Outside before the mesh's box: every crossing up to tmax is
+        // counted, from the line's start.
+        if !m.bounds.hit(&ray, f64::NEG_INFINITY, q.tmax) {
+            return;
+        }
+        let xs = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmax, q.st);
+        // A crossing's part: its triangle, and whether its normal is to be
+        // turned (an entry faces against d, an exit along it).
+        let part = |(_, i, along): (f64, u32, bool), entering: bool| -> Part {
+            (i << 1) | u32::from(along == entering)
+        };
+        let mut k = 0;
+        while k < xs.len() {
+            let a = xs[k];
+            match xs.get(k + 1) {
+                Some(&b) => {
+                    if b.0 > a.0 {
+                        emit((a.0, part(a, true), b.0, part(b, false)));
+                    }
+                }
+                None => emit((a.0, part(a, true), f64::INFINITY, NO_PART)),
+            }
+            k += 2;
+        }
+    }
+
+    fn normal(&self, _p: DVec3, part: Part) -> DVec3 {
+        let [a, b, c] = self.data.corners(part >> 1);
+        let n = (b - a).cross(c - a);
+        if part & 1 == 1 {
+            -n
+        } else {
+            n
+        }
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        // Parity along a fixed line with no special direction.
+        let d = DVec3::new(0.573_462_1, 0.614_379_3, 0.542_058_7);
+        let mut st = crate::stats::Stats::default();
+        let b = &self.data.bounds;
+        if p.cmplt(b.min).any() || p.cmpgt(b.max).any() {
+            return false;
+        }
+        self.data
+            .crossings(p, d, 0.0, f64::INFINITY, &mut st)
+            .iter()
+            .filter(|x| x.0 > 0.0)
+            .count()
+            % 2
+            == 1
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        self.data.bounds
+    }
+
+    /// The box of the placed vertices: exact.
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        self.data
+            .verts
+            .iter()
+            .fold(Aabb::EMPTY, |b, &v| b.include(m.transform_point3(v)))
+    }
+
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        self.data
+            .verts
+            .iter()
+            .copied()
+            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![
+            ("vertices", Param::Num(self.data.verts.len() as f64)),
+            ("triangles", Param::Num(self.data.tris.len() as f64)),
+        ]
+    }
+
+    /// POV-Ray's `mesh2`: the same vertices and triangles, with an
+    /// `inside_vector` so that it is a solid in CSG (POV-Ray counts
+    /// crossings along it: the same parity).
+    fn pov(&self) -> String {
+        let m = &self.data;
+        let v: Vec<String> = m
+            .verts
+            .iter()
+            .map(|p| format!("<{:?}, {:?}, {:?}>", p.x, p.y, p.z))
+            .collect();
+        let f: Vec<String> = m
+            .tris
+            .iter()
+            .map(|t| format!("<{}, {}, {}>", t[0], t[1], t[2]))
+            .collect();
+        format!(
+            "mesh2 {{ vertex_vectors {{ {}, {} }} face_indices {{ {}, {} }} inside_vector <0.5734621, 0.6143793, 0.5420587>",
+            v.len(),
+            v.join(", "),
+            f.len(),
+            f.join(", ")
+        )
+    }
+}
+
+/// A face of `points` (indices, in order, at least 3) as triangles over
+/// the same indices: consecutive repeats dropped, then ear clipping in the
+/// plane across the face's Newell normal (robust to non-planar and
+/// non-convex faces; a face whose outline crosses itself is finished as a
+/// fan once no ear is left). A face with no area gives no triangle.
+pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
+    let mut f: Vec<u32> = Vec::with_capacity(face.len());
+    for &i in face {
+        if f.last() != Some(&i) {
+            f.push(i);
+        }
+    }
+    while f.len() > 1 && f.first() == f.last() {
+        f.pop();
+    }
+    if f.len() < 3 {
+        return Vec::new();
+    }
+    if f.len() == 3 {
+        return vec![[f[0], f[1], f[2]]];
+    }
+    // Newell's normal: the face's mean plane, whatever its shape.
+    let mut n = DVec3::ZERO;
+    for k in 0..f.len() {
+        let (a, b) = (points[f[k] as usize], points[f[(k + 1) % f.len()] as usize]);
+        n += DVec3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
+    }
+    let a = n.abs();
+    let (i, j) = if a.z >= a.x && a.z >= a.y {
+        (0, 1)
+    } else if a.x >= a.y {
+        (1, 2)
+    } else {
+        (2, 0)
+    };
+    // Seen from the side n points to, the face turns counter-clockwise.
+    let sign = if n[3 - i - j] >= 0.0 { 1.0 } else { -1.0 };
+    let p2 = |k: u32| {
+        let p = points[k as usize];
+        (p[i], p[j])
+    };
+    let cross = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
+        sign * ((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0))
+    };
+    let mut out = Vec::with_capacity(f.len() - 2);
+    let mut ring = f;
+    while ring.len() > 3 {
+        let m = ring.len();
+        let ear = (0..m).find(|&k| {
+            let (pa, pb, pc) = (ring[(k + m - 1) % m], ring[k], ring[(k + 1) % m]);
+            let (a, b, c) = (p2(pa), p2(pb), p2(pc));
+            if cross(a, b, c) <= 0.0 {
+                return false;
+            }
+            // No other vertex inside or on the ear.
+            ring.iter().all(|&q| {
+                if q == pa || q == pb || q == pc {
+                    return true;
+                }
+                let x = p2(q);
+                !(cross(a, b, x) >= 0.0 && cross(b, c, x) >= 0.0 && cross(c, a, x) >= 0.0)
+            })
+        });
+        let Some(k) = ear else {
+            break;
+        };
+        out.push([ring[(k + m - 1) % m], ring[k], ring[(k + 1) % m]]);
+        ring.remove(k);
+    }
+    // What is left: a triangle, or a knot with no ear (a fan of it).
+    for k in 1..ring.len() - 1 {
+        out.push([ring[0], ring[k], ring[k + 1]]);
+    }
+    out
+}
+
+/// How a mesh's edges are shared: (edges of one face only, edges of three
+/// or more faces), for the warnings about open and non-manifold meshes.
+pub fn edge_use(tris: &[[u32; 3]]) -> (usize, usize) {
+    let mut edges: Vec<(u32, u32)> = tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+        .filter(|(a, b)| a != b)
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    let (mut open, mut many) = (0, 0);
+    let mut k = 0;
+    while k < edges.len() {
+        let mut n = 1;
+        while k + n < edges.len() && edges[k + n] == edges[k] {
+            n += 1;
+        }
+        match n {
+            1 => open += 1,
+            2 => {}
+            _ => many += 1,
+        }
+        k += n;
+    }
+    (open, many)
+}
