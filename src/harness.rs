@@ -60,3 +60,37 @@ pub fn exercise_readers(data: &[u8]) {
     }
     let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
 }
+
+/// Any bytes as a mesh file of format `ext` (`fuzz/fuzz_targets/mesh_*.rs`):
+/// the reader must answer a mesh or an error, never panic, and a mesh it
+/// answers must be one csgrt can place and cast rays through.
+pub fn exercise_mesh(ext: &str, data: &[u8]) {
+    use crate::geometry::mesh::{triangulate, Mesh, MeshData};
+    use crate::geometry::{Probe, Solid};
+    let Ok(m) = crate::meshfile::read(ext, data) else {
+        return;
+    };
+    assert!(m.points.iter().all(|p| p.is_finite()));
+    let mut tris = Vec::new();
+    for f in &m.faces {
+        assert!(f.len() >= 3 && f.iter().all(|&i| (i as usize) < m.points.len()));
+        tris.extend(triangulate(&m.points, f));
+    }
+    if tris.is_empty() || tris.len() > 100_000 {
+        return;
+    }
+    let mesh = Mesh {
+        data: std::sync::Arc::new(MeshData::new(m.points, tris)),
+    };
+    let mut st = crate::stats::Stats::default();
+    for d in [glam::DVec3::X, glam::DVec3::new(0.3, -0.5, 0.8)] {
+        let mut q = Probe {
+            o: glam::DVec3::new(-1e3, 0.1, 0.2),
+            d,
+            tmin: f64::NEG_INFINITY,
+            tmax: f64::INFINITY,
+            st: &mut st,
+        };
+        mesh.spans(&mut q, &mut |(t0, _, t1, _)| assert!(t0 < t1));
+    }
+}

@@ -19,6 +19,7 @@ pub mod error;
 pub mod geometry;
 #[doc(hidden)]
 pub mod harness;
+pub mod meshfile;
 #[doc(hidden)]
 pub mod mutant;
 pub mod plane;

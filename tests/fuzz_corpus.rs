@@ -48,3 +48,24 @@ fn the_readers_corpus_passes_their_harness() {
 fn inputs_that_once_crashed_pass_the_harness() {
     replay("fuzz/regressions", 1);
 }
+
+#[test]
+fn the_mesh_corpora_pass_the_mesh_harness() {
+    // Each mesh reader's corpus (`fuzz/fuzz_targets/mesh_*.rs`): files
+    // whole, cut short and malformed.
+    for (dir, ext) in [
+        ("stl", "stl"),
+        ("off", "off"),
+        ("obj", "obj"),
+        ("threemf", "3mf"),
+    ] {
+        let files = inputs(&format!("fuzz/corpus/mesh_{dir}"));
+        assert!(!files.is_empty(), "{dir}");
+        for f in files {
+            let data = std::fs::read(&f).unwrap();
+            if std::panic::catch_unwind(|| csgrt::harness::exercise_mesh(ext, &data)).is_err() {
+                panic!("{} fails the mesh harness", f.display());
+            }
+        }
+    }
+}

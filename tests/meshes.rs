@@ -253,3 +253,131 @@ fn lines_along_a_face_or_an_edge_never_leave_a_span_open() {
     }
     assert!(seen > 500, "{seen}");
 }
+
+/// Runs `import("NAME")` of a file holding `bytes`; (status, stderr, the
+/// files left in the folder).
+fn import_run(name: &str, bytes: &[u8]) -> (i32, String, Vec<String>) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join(name), bytes).unwrap();
+    let scene = format!("import(file = \"{name}\", convexity = 1);\n");
+    std::fs::write(dir.path().join("x.csg"), &scene).unwrap();
+    let r = common::csgrt(dir.path(), &["x.csg", "-q"]);
+    (r.status, r.stderr, common::files(dir.path()))
+}
+
+#[test]
+fn a_bad_mesh_file_is_an_error_at_the_import_naming_the_file_and_line() {
+    let caret = "  |\n1 | import(file = \"F\", convexity = 1);\n  |               ^^^^^^^";
+    let cases: [(&str, &[u8], &str); 5] = [
+        (
+            "a.off",
+            b"OFF\n4 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 9\n",
+            "error: `a.off`, line 7: point index 9 is out of range: expected 0 to 3",
+        ),
+        (
+            "b.off",
+            b"OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n",
+            "error: `b.off`, line 4: expected a coordinate, found `x`",
+        ),
+        (
+            "c.stl",
+            b"solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zero\n",
+            "error: `c.stl`, line 5: `zero` is not a number",
+        ),
+        (
+            "d.stl",
+            b"not an stl",
+            "error: `d.stl`: neither a binary STL (84 + 50·n bytes) nor an ASCII one (beginning with `solid`)",
+        ),
+        (
+            "e.off",
+            b"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n",
+            "error: `e.off`, line 6: a face of 2 points: expected 3 or more",
+        ),
+    ];
+    for (name, bytes, first) in cases {
+        let (status, stderr, files) = import_run(name, bytes);
+        assert_eq!(status, 2, "{name}: {stderr}");
+        let ext = name.rsplit('.').next().unwrap();
+        let want = format!(
+            "{first}\n --> x.csg:1:15\n{} expected a .{ext} mesh\n",
+            caret.replace('F', name)
+        );
+        assert_eq!(stderr, want, "{name}");
+        assert_eq!(files.len(), 2, "{name}: no output, {files:?}");
+    }
+    // A missing file: the same place, the system's reason.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("x.csg"), "import(\"gone.stl\");\n").unwrap();
+    let r = common::csgrt(dir.path(), &["x.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    assert!(
+        r.stderr.starts_with("error: cannot read mesh `gone.stl`: "),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.contains("x.csg:1:8"), "{}", r.stderr);
+}
+
+#[test]
+fn stl_binary_and_ascii_of_the_same_triangles_are_the_same_mesh() {
+    // A tetrahedron written both ways, with coordinates f32 holds exactly.
+    let tris = [
+        [[0.0f32, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.5]],
+        [[0.0, 0.0, 0.0], [0.0, 0.0, 1.5], [0.0, 1.0, 0.0]],
+        [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.5]],
+    ];
+    let mut bin = vec![0u8; 80];
+    bin.extend_from_slice(&(tris.len() as u32).to_le_bytes());
+    let mut ascii = String::from("solid t\n");
+    for t in &tris {
+        bin.extend_from_slice(&[0u8; 12]);
+        ascii += " facet normal 0 0 0\n  outer loop\n";
+        for v in t {
+            for c in v {
+                bin.extend_from_slice(&c.to_le_bytes());
+            }
+            ascii += &format!("   vertex {} {} {}\n", v[0], v[1], v[2]);
+        }
+        bin.extend_from_slice(&[0, 0]);
+        ascii += "  endloop\n endfacet\n";
+    }
+    ascii += "endsolid t\n";
+    let a = csgrt::meshfile::read("stl", &bin).unwrap();
+    let b = csgrt::meshfile::read("stl", ascii.as_bytes()).unwrap();
+    assert_eq!(a.points, b.points);
+    assert_eq!(a.faces, b.faces);
+    // Shared corners are merged: 4 points, each face three of them.
+    assert_eq!(a.points.len(), 4);
+    assert_eq!(a.faces.len(), 4);
+}
+
+#[test]
+fn obj_and_3mf_bring_the_points_and_faces_they_list() {
+    // The same tetrahedron (corners 0 and 10 on each axis) as OBJ text
+    // (1-based indices, one face a quad split later) and as a 3MF package.
+    let obj = b"v 0 0 0\nv 10 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    let a = csgrt::meshfile::read("obj", obj).unwrap();
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmf = std::fs::read(root.join("tests/openscad/meshes/tetra.3mf")).unwrap();
+    let b = csgrt::meshfile::read("3mf", &tmf).unwrap();
+    let corners = [
+        [0.0, 0.0, 0.0],
+        [10.0, 0.0, 0.0],
+        [0.0, 10.0, 0.0],
+        [0.0, 0.0, 10.0],
+    ];
+    let want = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]].map(|f| f.map(|i| corners[i]));
+    for m in [&a, &b] {
+        // The faces' corners, in order (a reader may number points its own
+        // way: tobj by first use).
+        let faces: Vec<[[f64; 3]; 3]> = m
+            .faces
+            .iter()
+            .map(|f| [0, 1, 2].map(|k| m.points[f[k] as usize].to_array()))
+            .collect();
+        assert_eq!(faces, want);
+        assert_eq!(m.points.len(), 4);
+    }
+}

@@ -415,6 +415,11 @@ class Reader:
             return self.solid(s, a, xf, mat)
         if name == "resize" and not flat_stmt(s):
             return self.resize(s, a, xf, mat)
+        if name == "import" and not flat_stmt(s):
+            if s.children:
+                raise self.err(s, "import takes no children")
+            pts, faces = import_mesh(self, s, a)
+            return self.leaf(s, "polyhedron", dict(points=pts, faces=faces), xf, mat)
         if name in SHAPES_2D or name in ("projection", "resize"):
             # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
             # centred on its plane, 1.1 when subtracted.
@@ -1578,6 +1583,40 @@ def dxf_paths(pieces):
             path = as_path(chain)
             paths.append(path)
     return paths, n_open
+
+
+def import_mesh(rd, s, a):
+    """(points, faces) of a mesh file, read here: STL (binary when its size
+    is 84 + 50 n for the n in its header, else ASCII `vertex` lines) and
+    OFF; identical points merged."""
+    file = a.get("file", a.get("filename"))
+    path = os.path.join(os.path.dirname(os.path.abspath(rd.path)), file)
+    with open(path, "rb") as f:
+        data = f.read()
+    ext = file.lower().rsplit(".", 1)[-1]
+    if ext == "stl":
+        n = int.from_bytes(data[80:84], "little") if len(data) >= 84 else -1
+        if len(data) == 84 + 50 * n:
+            rec = np.frombuffer(data[84:], dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
+            pts = rec["v"].reshape(-1, 3).astype(float)
+        else:
+            vals = [ln.split()[1:4] for ln in data.decode().splitlines() if ln.strip().startswith("vertex")]
+            pts = np.array(vals, dtype=float)
+        faces = np.arange(len(pts)).reshape(-1, 3)
+    elif ext == "off":
+        words = [ln.split("#")[0].split() for ln in data.decode().splitlines()]
+        words = [w for w in words if w]
+        head = words.pop(0)
+        if head[0] == "OFF":
+            head = head[1:] or words.pop(0)
+        nv, nf = int(head[0]), int(head[1])
+        pts = np.array([w[:3] for w in words[:nv]], dtype=float)
+        faces = [[int(x) for x in w[1 : 1 + int(w[0])]] for w in words[nv : nv + nf]]
+    else:
+        raise rd.err(s, f"import of .{ext} is not in the oracle")
+    uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)
+    inv = inv.reshape(-1)
+    return uniq, [[int(inv[i]) for i in f] for f in faces]
 
 
 def import_2d(rd, s, a):

@@ -603,15 +603,19 @@ impl Resolver<'_> {
     }
 
     /// `import()` of a drawing (DXF), under `m`.
-    pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
-        let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
+    /// The file `import` names: (its name, the argument's place, its
+    /// extension in lower case, its path beside the scene).
+    pub(super) fn import_file<'b>(
+        &self,
+        a: &Args<'b>,
+    ) -> Result<(&'b str, crate::error::TextRange, String, std::path::PathBuf)> {
         let file = match (a.string("file")?, a.string("filename")?) {
             (Some(f), _) | (None, Some(f)) => f,
             (None, None) => {
                 return Err(a.error(
                     a.list_span(),
                     "`import` needs a `file`",
-                    "expected file = \"name.dxf\"",
+                    "expected file = \"name.dxf\" or \"name.stl\"",
                 ))
             }
         };
@@ -624,12 +628,29 @@ impl Resolver<'_> {
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
+        let path = std::path::Path::new(&self.src.name)
+            .parent()
+            .unwrap_or(std::path::Path::new("."))
+            .join(file);
+        Ok((file, span, ext, path))
+    }
+
+    pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+        let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
+        let (_, span, ext, path) = self.import_file(&a)?;
         if ext != "dxf" {
-            return Err(self.src.error(
-                span,
-                format!("importing `.{ext}` files is not supported yet"),
-                "csgrt imports DXF drawings",
-            ));
+            let (message, label) = if crate::meshfile::FORMATS.contains(&ext.as_str()) {
+                (
+                    format!("a `.{ext}` mesh is a solid and cannot stand in a 2-D shape"),
+                    "expected a DXF drawing here",
+                )
+            } else {
+                (
+                    format!("importing `.{ext}` files is not supported yet"),
+                    "csgrt imports DXF drawings and STL, OFF, OBJ and 3MF meshes",
+                )
+            };
+            return Err(self.src.error(span, message, label));
         }
         let layer = match (a.string("layer")?, a.string("layername")?) {
             (Some(l), _) | (None, Some(l)) => l,
@@ -639,10 +660,6 @@ impl Resolver<'_> {
             .numbers("origin", &[2])?
             .map_or(DVec2::ZERO, |v| DVec2::new(v[0], v[1]));
         let scale = a.number("scale")?.unwrap_or(1.0);
-        let path = std::path::Path::new(&self.src.name)
-            .parent()
-            .unwrap_or(std::path::Path::new("."))
-            .join(file);
         let bytes = std::fs::read(&path).map_err(|e| {
             self.src.error(
                 span,

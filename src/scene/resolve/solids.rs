@@ -34,7 +34,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("circle", Some(slab)),
     ("polygon", Some(slab)),
     ("text", Some(slab)),
-    ("import", Some(slab)),
+    ("import", Some(import)),
     ("surface", None),
     ("projection", Some(slab)),
     ("offset", Some(slab)),
@@ -271,37 +271,85 @@ fn polyhedron(
     mat: Material,
     _depth: usize,
 ) -> Result<Option<u32>> {
-    use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
     let a = Args::bind(res.src, s, &["points", "faces", "convexity", "triangles"])?;
     let pts = a.points("points", &[3], 0)?;
     let pts = a.require("points", pts)?;
     let key = if a.has("faces") { "faces" } else { "triangles" };
     let faces = a.index_lists(key, pts.len(), 3)?;
     let faces = a.require("faces", faces)?;
-    let mut tris = Vec::new();
-    for f in &faces {
-        tris.extend(triangulate(&pts, f));
+    res.mesh_leaf(s, a.span_of(key), pts, &faces, xf, mat)
+}
+
+/// `import(file, ...)` where a solid stands: a mesh file, or a drawing
+/// shown as OpenSCAD's preview shows 2-D shapes.
+fn import(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
+    let a = Args::bind(res.src, s, super::flat::IMPORT_PARAMS)?;
+    let (_, span, ext, path) = res.import_file(&a)?;
+    if !crate::meshfile::FORMATS.contains(&ext.as_str()) {
+        return res.slab(s, xf, mat);
     }
-    if tris.len() > MAX_TRIANGLES {
-        return Err(a.error(
-            a.span_of(key),
-            "the polyhedron has too many triangles",
-            format!("expected at most {MAX_TRIANGLES}, found {}", tris.len()),
-        ));
+    let bytes = std::fs::read(&path).map_err(|e| {
+        res.src.error(
+            span,
+            format!("cannot read mesh `{}`: {e}", path.display()),
+            "expected a mesh file beside the scene",
+        )
+    })?;
+    let m = crate::meshfile::read(&ext, &bytes).map_err(|e| {
+        let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
+        res.src.error(
+            span,
+            format!("`{}`{at}: {}", path.display(), e.message),
+            format!("expected a .{ext} mesh"),
+        )
+    })?;
+    res.mesh_leaf(s, span, m.points, &m.faces, xf, mat)
+}
+
+impl Resolver<'_> {
+    /// A mesh leaf of `faces` over `pts`, triangulated; warnings for an
+    /// open or non-manifold mesh at the statement.
+    fn mesh_leaf(
+        &mut self,
+        s: &Statement,
+        place: crate::error::TextRange,
+        pts: Vec<DVec3>,
+        faces: &[Vec<u32>],
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
+        let mut tris = Vec::new();
+        for f in faces {
+            tris.extend(triangulate(&pts, f));
+            if tris.len() > MAX_TRIANGLES {
+                return Err(self.src.error(
+                    place,
+                    "the mesh has too many triangles",
+                    format!("expected at most {MAX_TRIANGLES}"),
+                ));
+            }
+        }
+        if tris.is_empty() {
+            return self.empty(s, "its faces have no area");
+        }
+        let (open, many) = edge_use(&tris);
+        if open > 0 || many > 0 {
+            self.warn(
+                s.name_span,
+                &format!(
+                    "this mesh is not closed: {open} edge(s) border one face only, {many} edge(s) three faces or more"
+                ),
+                "inside is decided by parity: even-odd crossings along each ray",
+            );
+        }
+        let data = std::sync::Arc::new(MeshData::new(pts, tris));
+        self.leaf(s, Shape::Mesh(Mesh { data }), xf, mat)
     }
-    if tris.is_empty() {
-        return res.empty(s, "its faces have no area");
-    }
-    let (open, many) = edge_use(&tris);
-    if open > 0 || many > 0 {
-        res.warn(
-            s.name_span,
-            &format!(
-                "this polyhedron is not closed: {open} edge(s) border one face only, {many} edge(s) three faces or more"
-            ),
-            "inside is decided by parity: even-odd crossings along each ray",
-        );
-    }
-    let data = std::sync::Arc::new(MeshData::new(pts, tris));
-    res.leaf(s, Shape::Mesh(Mesh { data }), xf, mat)
 }

@@ -1,0 +1,354 @@
+//! Mesh files for `import()`: STL (ASCII and binary), OFF, OBJ and 3MF,
+//! read into points and faces with every coordinate as the file gives it.
+//!
+//! STL and OFF are read here: the crates for them (`stl_io`, `off-rs`)
+//! keep coordinates in f32, which moves an ASCII file's points by up to
+//! 6·10⁻⁸ of their size, while OpenSCAD reads them as doubles; both
+//! formats are a few lines of text or fixed records. STL follows
+//! OpenSCAD 2021.01's `import_stl.cc`: binary when the size is exactly
+//! 84 + 50·n for the count n in the header, else ASCII when the file
+//! begins with `solid`, its `vertex` lines read three by three. OFF is
+//! Geomview's (CGAL's reader, which OpenSCAD uses): an optional `OFF`
+//! header, the counts, the points, then each face as its size and
+//! indices, `#` comments. OBJ comes from `tobj` (in f64), 3MF from
+//! `threemf` (every mesh object of the model, as OpenSCAD 2021.01's
+//! lib3mf import takes them, units not applied).
+//!
+//! Identical points are merged (exact equality), so that shared edges are
+//! shared by index.
+
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// The most triangles (after splitting faces) and points a mesh file may
+/// bring.
+pub const MAX_POINTS: usize = 1 << 26;
+
+/// Points and faces (index lists, at least 3 each).
+#[derive(Debug, Default)]
+pub struct MeshFile {
+    pub points: Vec<DVec3>,
+    pub faces: Vec<Vec<u32>>,
+}
+
+/// What is wrong with a file, and on which of its lines (1-based) when
+/// it is text.
+#[derive(Debug, PartialEq)]
+pub struct FileError {
+    pub line: Option<usize>,
+    pub message: String,
+}
+
+fn err(line: Option<usize>, message: impl Into<String>) -> FileError {
+    FileError {
+        line,
+        message: message.into(),
+    }
+}
+
+/// The formats by extension (lower case), for messages.
+pub const FORMATS: &[&str] = &["stl", "off", "obj", "3mf"];
+
+/// Reads a mesh file of the format its extension `ext` names.
+pub fn read(ext: &str, bytes: &[u8]) -> Result<MeshFile, FileError> {
+    let mut m = match ext {
+        "stl" => stl(bytes)?,
+        "off" => off(bytes)?,
+        "obj" => obj(bytes)?,
+        "3mf" => three_mf(bytes)?,
+        _ => {
+            return Err(err(
+                None,
+                format!("`.{ext}` is not a mesh format csgrt reads"),
+            ))
+        }
+    };
+    merge(&mut m);
+    Ok(m)
+}
+
+/// Merges points with the same coordinates (bit for bit, −0 as 0).
+fn merge(m: &mut MeshFile) {
+    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
+    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(m.points.len());
+    let mut kept = Vec::with_capacity(m.points.len());
+    let remap: Vec<u32> = m
+        .points
+        .iter()
+        .map(|&p| {
+            *index.entry(key(p)).or_insert_with(|| {
+                kept.push(p);
+                kept.len() as u32 - 1
+            })
+        })
+        .collect();
+    for f in &mut m.faces {
+        for i in f.iter_mut() {
+            *i = remap[*i as usize];
+        }
+    }
+    m.points = kept;
+}
+
+fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
+    if bytes.len() >= 84 {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        if bytes.len() as u64 == 84 + 50 * n as u64 {
+            if 3 * n > MAX_POINTS {
+                return Err(err(None, format!("more than {MAX_POINTS} points")));
+            }
+            let mut m = MeshFile::default();
+            for k in 0..n {
+                let r = &bytes[84 + 50 * k..84 + 50 * (k + 1)];
+                let f = |i: usize| f32::from_le_bytes([r[i], r[i + 1], r[i + 2], r[i + 3]]) as f64;
+                let base = m.points.len() as u32;
+                for v in 0..3 {
+                    let at = 12 + 12 * v;
+                    m.points.push(DVec3::new(f(at), f(at + 4), f(at + 8)));
+                }
+                m.faces.push(vec![base, base + 1, base + 2]);
+            }
+            return finite(m);
+        }
+    }
+    if !bytes.starts_with(b"solid") {
+        return Err(err(
+            None,
+            "neither a binary STL (84 + 50·n bytes) nor an ASCII one (beginning with `solid`)",
+        ));
+    }
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        err(Some(line), "a byte that is not UTF-8 text")
+    })?;
+    let mut m = MeshFile::default();
+    let mut pending = 0;
+    for (no, line) in text.lines().enumerate().skip(1) {
+        let no = Some(no + 1);
+        let line = line.trim();
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("outer") => pending = 0,
+            Some("vertex") => {
+                if pending == 3 {
+                    return Err(err(no, "a fourth vertex in one facet"));
+                }
+                let mut xyz = [0.0; 3];
+                for c in &mut xyz {
+                    let w = words
+                        .next()
+                        .ok_or_else(|| err(no, "expected three numbers after `vertex`"))?;
+                    *c = w
+                        .parse::<f64>()
+                        .map_err(|_| err(no, format!("`{w}` is not a number")))?;
+                }
+                if m.points.len() >= MAX_POINTS {
+                    return Err(err(no, format!("more than {MAX_POINTS} points")));
+                }
+                m.points.push(DVec3::from_array(xyz));
+                pending += 1;
+                if pending == 3 {
+                    let b = m.points.len() as u32 - 3;
+                    m.faces.push(vec![b, b + 1, b + 2]);
+                }
+            }
+            _ => {}
+        }
+    }
+    finite(m)
+}
+
+fn finite(m: MeshFile) -> Result<MeshFile, FileError> {
+    if m.points.iter().any(|p| !p.is_finite()) {
+        return Err(err(None, "a point is not finite"));
+    }
+    Ok(m)
+}
+
+fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        err(Some(line), "a byte that is not UTF-8 text")
+    })?;
+    // The lines that say something, comments dropped, with their numbers.
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            (
+                i + 1,
+                l.split('#')
+                    .next()
+                    .unwrap_or("")
+                    .split_whitespace()
+                    .collect::<Vec<_>>(),
+            )
+        })
+        .filter(|(_, w)| !w.is_empty());
+    let mut last = 1;
+    let mut next = |what: &str| {
+        let l = lines.next().ok_or_else(|| {
+            err(
+                Some(last),
+                format!("the file ends where {what} was expected"),
+            )
+        })?;
+        last = l.0;
+        Ok::<_, FileError>(l)
+    };
+    let (mut line, mut head) = next("`OFF`")?;
+    if head[0].ends_with("OFF") {
+        if head[0] != "OFF" && head[0] != "COFF" {
+            return Err(err(
+                Some(line),
+                format!("`{}` files are not supported yet", head[0]),
+            ));
+        }
+        head.remove(0);
+        if head.is_empty() {
+            (line, head) = next("the numbers of points, faces and edges")?;
+        }
+    }
+    let count = |line: usize, w: Option<&&str>, what: &str| -> Result<usize, FileError> {
+        let w = w.ok_or_else(|| err(Some(line), format!("expected {what}")))?;
+        w.parse::<usize>()
+            .map_err(|_| err(Some(line), format!("expected {what}, found `{w}`")))
+    };
+    let nv = count(line, head.first(), "the number of points")?;
+    let nf = count(line, head.get(1), "the number of faces")?;
+    if nv > MAX_POINTS || nf > MAX_POINTS {
+        return Err(err(
+            Some(line),
+            format!("more than {MAX_POINTS} points or faces"),
+        ));
+    }
+    let mut m = MeshFile::default();
+    for _ in 0..nv {
+        let (l, w) = next("a point")?;
+        if w.len() < 3 {
+            return Err(err(Some(l), "expected a point's three coordinates"));
+        }
+        let mut xyz = [0.0; 3];
+        for (c, word) in xyz.iter_mut().zip(&w) {
+            *c = word
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| err(Some(l), format!("expected a coordinate, found `{word}`")))?;
+        }
+        m.points.push(DVec3::from_array(xyz));
+    }
+    for _ in 0..nf {
+        // A face's size and indices; a colour may follow on its line.
+        let (l, w) = next("a face")?;
+        let k = count(l, w.first(), "the number of a face's points")?;
+        if k < 3 {
+            return Err(err(
+                Some(l),
+                format!("a face of {k} points: expected 3 or more"),
+            ));
+        }
+        if w.len() < k + 1 {
+            return Err(err(
+                Some(l),
+                format!("a face of {k} points lists {}", w.len() - 1),
+            ));
+        }
+        let mut f = Vec::with_capacity(k);
+        for word in &w[1..=k] {
+            let i = count(l, Some(word), "a point index")?;
+            if i >= nv {
+                return Err(err(
+                    Some(l),
+                    format!(
+                        "point index {i} is out of range: expected 0 to {}",
+                        nv.saturating_sub(1)
+                    ),
+                ));
+            }
+            f.push(i as u32);
+        }
+        m.faces.push(f);
+    }
+    Ok(m)
+}
+
+fn obj(bytes: &[u8]) -> Result<MeshFile, FileError> {
+    let opts = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let mut reader = std::io::BufReader::new(bytes);
+    let (models, _) =
+        tobj::load_obj_buf(&mut reader, &opts, |_| Err(tobj::LoadError::OpenFileFailed))
+            .map_err(|e| err(None, format!("not a readable OBJ file: {e}")))?;
+    let mut m = MeshFile::default();
+    for model in models {
+        let mesh = &model.mesh;
+        let base = m.points.len() as u32;
+        for p in mesh.positions.chunks_exact(3) {
+            m.points.push(DVec3::new(p[0], p[1], p[2]));
+        }
+        let arities: Vec<u32> = if mesh.face_arities.is_empty() {
+            vec![3; mesh.indices.len() / 3]
+        } else {
+            mesh.face_arities.clone()
+        };
+        let mut at = 0usize;
+        for k in arities {
+            let k = k as usize;
+            let f: Vec<u32> = mesh.indices[at..at + k].iter().map(|&i| base + i).collect();
+            at += k;
+            if f.len() >= 3 {
+                m.faces.push(f);
+            }
+        }
+        if m.points.len() > MAX_POINTS {
+            return Err(err(None, format!("more than {MAX_POINTS} points")));
+        }
+    }
+    finite(m)
+}
+
+fn three_mf(bytes: &[u8]) -> Result<MeshFile, FileError> {
+    let models = threemf::read(std::io::Cursor::new(bytes))
+        .map_err(|e| err(None, format!("not a readable 3MF file: {e}")))?;
+    let mut m = MeshFile::default();
+    for model in models {
+        for o in &model.resources.object {
+            let Some(mesh) = &o.mesh else { continue };
+            let base = m.points.len() as u32;
+            for v in &mesh.vertices.vertex {
+                m.points.push(DVec3::new(v.x, v.y, v.z));
+            }
+            let n = mesh.vertices.vertex.len();
+            for t in &mesh.triangles.triangle {
+                let ix = [t.v1, t.v2, t.v3];
+                if ix.iter().any(|&i| i >= n) {
+                    return Err(err(
+                        None,
+                        format!(
+                            "a triangle's point index is out of range: expected 0 to {}",
+                            n.saturating_sub(1)
+                        ),
+                    ));
+                }
+                m.faces.push(ix.iter().map(|&i| base + i as u32).collect());
+            }
+            if m.points.len() > MAX_POINTS {
+                return Err(err(None, format!("more than {MAX_POINTS} points")));
+            }
+        }
+    }
+    finite(m)
+}
