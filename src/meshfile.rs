@@ -352,3 +352,146 @@ fn three_mf(bytes: &[u8]) -> Result<MeshFile, FileError> {
     }
     finite(m)
 }
+
+/// A height grid for `surface()`: `z[(row, column)]`, missing entries 0
+/// (OpenSCAD's map default), and its size.
+#[derive(Debug, Default, PartialEq)]
+pub struct Heights {
+    pub rows: usize,
+    pub columns: usize,
+    pub z: HashMap<(usize, usize), f64>,
+}
+
+/// The most grid points a surface may have.
+pub const MAX_HEIGHTS: usize = 1 << 24;
+
+/// `surface()`'s heights, as OpenSCAD 2021.01's `surface.cc` reads them:
+/// a PNG (by its signature) gives row `height − 1 − y`, column x the
+/// value 100/255 · p (or 100/255 · (1 − p) when `invert`, OpenSCAD's own
+/// formula) for the pixel's p = 0.2126 r + 0.7152 g + 0.0722 b; anything
+/// else is a `.dat` text grid: lines (blank ones and those starting with
+/// `#` skipped) of numbers separated by spaces or tabs, reading stopping,
+/// with a warning, at the first word that is not a number.
+pub fn heights(bytes: &[u8], invert: bool) -> Result<(Heights, Option<FileError>), FileError> {
+    let mut h = Heights::default();
+    if bytes.starts_with(&[0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a]) {
+        let img = image::load_from_memory_with_format(bytes, image::ImageFormat::Png)
+            .map_err(|e| err(None, format!("not a readable PNG image: {e}")))?
+            .to_rgba8();
+        let (w, ht) = img.dimensions();
+        if w as usize * ht as usize > MAX_HEIGHTS {
+            return Err(err(None, format!("more than {MAX_HEIGHTS} pixels")));
+        }
+        for (x, y, p) in img.enumerate_pixels() {
+            let [r, g, b, _] = p.0;
+            let pixel = 0.2126 * r as f64 + 0.7152 * g as f64 + 0.0722 * b as f64;
+            let z = 100.0 / 255.0 * if invert { 1.0 - pixel } else { pixel };
+            h.z.insert(((ht - 1 - y) as usize, x as usize), z);
+        }
+        h.rows = ht as usize;
+        h.columns = w as usize;
+        return Ok((h, None));
+    }
+    let text = String::from_utf8_lossy(bytes);
+    let mut warning = None;
+    let mut row = 0;
+    'lines: for (no, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        for (col, w) in line
+            .split([' ', '\t'])
+            .filter(|w| !w.is_empty())
+            .enumerate()
+        {
+            match w.parse::<f64>() {
+                Ok(v) if v.is_finite() => {
+                    if h.z.len() >= MAX_HEIGHTS {
+                        return Err(err(
+                            Some(no + 1),
+                            format!("more than {MAX_HEIGHTS} heights"),
+                        ));
+                    }
+                    h.z.insert((row, col), v);
+                    h.columns = h.columns.max(col + 1);
+                }
+                _ => {
+                    warning = Some(err(
+                        Some(no + 1),
+                        format!("`{w}` is not a number: the heights end here"),
+                    ));
+                    break 'lines;
+                }
+            }
+        }
+        row += 1;
+    }
+    h.rows = if h.z.is_empty() {
+        0
+    } else {
+        h.z.keys().map(|k| k.0 + 1).max().unwrap_or(0)
+    };
+    Ok((h, warning))
+}
+
+/// OpenSCAD's solid over a height grid (`SurfaceNode::createGeometry`):
+/// each cell four triangles to its centre at the mean of its corners,
+/// walls down to min(0, lowest − 1) on the four sides, and the bottom —
+/// here a fan from its centre, which shares every wall's lower edge (the
+/// same plane OpenSCAD fills with one polygon).
+pub fn surface_mesh(h: &Heights, center: bool) -> MeshFile {
+    let (rows, cols) = (h.rows, h.columns);
+    let z = |i: usize, j: usize| h.z.get(&(i, j)).copied().unwrap_or(0.0);
+    let low = h.z.values().fold(0.0f64, |m, &v| m.min(v - 1.0));
+    let (ox, oy) = if center {
+        (-((cols as f64) - 1.0) / 2.0, -((rows as f64) - 1.0) / 2.0)
+    } else {
+        (0.0, 0.0)
+    };
+    let mut m = MeshFile::default();
+    let point = |m: &mut MeshFile, x: f64, y: f64, zz: f64| {
+        m.points.push(DVec3::new(ox + x, oy + y, zz));
+        m.points.len() as u32 - 1
+    };
+    if rows < 2 || cols < 2 {
+        return m;
+    }
+    for i in 1..rows {
+        for j in 1..cols {
+            let (v1, v2, v3, v4) = (z(i - 1, j - 1), z(i - 1, j), z(i, j - 1), z(i, j));
+            let vx = (v1 + v2 + v3 + v4) / 4.0;
+            let (x0, x1, y0, y1) = ((j - 1) as f64, j as f64, (i - 1) as f64, i as f64);
+            let a = point(&mut m, x0, y0, v1);
+            let b = point(&mut m, x1, y0, v2);
+            let c = point(&mut m, x0, y1, v3);
+            let d = point(&mut m, x1, y1, v4);
+            let e = point(&mut m, x0 + 0.5, y0 + 0.5, vx);
+            m.faces
+                .extend([vec![a, b, e], vec![b, d, e], vec![d, c, e], vec![c, a, e]]);
+        }
+    }
+    // The rim, counter-clockwise seen from above: (x, y) grid corners.
+    let mut rim: Vec<(usize, usize)> = Vec::new();
+    rim.extend((0..cols - 1).map(|j| (0, j)));
+    rim.extend((0..rows - 1).map(|i| (i, cols - 1)));
+    rim.extend((1..cols).rev().map(|j| (rows - 1, j)));
+    rim.extend((1..rows).rev().map(|i| (i, 0)));
+    let centre = point(
+        &mut m,
+        (cols as f64 - 1.0) / 2.0,
+        (rows as f64 - 1.0) / 2.0,
+        low,
+    );
+    for k in 0..rim.len() {
+        let (p, q) = (rim[k], rim[(k + 1) % rim.len()]);
+        let pl = point(&mut m, p.1 as f64, p.0 as f64, low);
+        let ph = point(&mut m, p.1 as f64, p.0 as f64, z(p.0, p.1));
+        let ql = point(&mut m, q.1 as f64, q.0 as f64, low);
+        let qh = point(&mut m, q.1 as f64, q.0 as f64, z(q.0, q.1));
+        m.faces.push(vec![pl, ql, qh, ph]);
+        m.faces.push(vec![centre, ql, pl]);
+    }
+    merge(&mut m);
+    m
+}

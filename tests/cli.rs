@@ -241,7 +241,7 @@ fn a_degenerate_camera_is_an_error() {
 fn an_unsupported_openscad_node_is_an_error_not_skipped() {
     assert_eq!(
         fails("group() {\n\tlinear_extrude(height = 10) hull() cube(1);\n}\n"),
-        "error: `hull` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) hull() cube(1);\n  | \t                            ^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, projection, offset, resize and polyhedron\n"
+        "error: `hull` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) hull() cube(1);\n  | \t                            ^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, resize and polyhedron\n"
     );
 }
 
@@ -415,8 +415,8 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         "error: cannot read drawing `nope.dxf`: No such file or directory (os error 2)\n --> bad.csg:1:33\n  |\n1 | linear_extrude(1) import(file = \"nope.dxf\");\n  |                                 ^^^^^^^^^^ expected a DXF file beside the scene\n"
     );
     assert_eq!(
-        fails("import(\"part.stl\");\n"),
-        "error: importing `.stl` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.stl\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings\n"
+        fails("import(\"part.svg\");\n"),
+        "error: importing `.svg` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.svg\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings and STL, OFF, OBJ and 3MF meshes\n"
     );
     // A text that is no string, at the value; vertical text, at its
     // direction; a twisted text, at the extrusion.

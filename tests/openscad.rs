@@ -149,7 +149,7 @@ fn message(node: &str, line: usize, col: usize, source: &str) -> String {
         lead + &caret[col - 1..]
     };
     format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, projection, offset, resize and polyhedron\n"
+        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, resize and polyhedron\n"
     )
 }
 

@@ -600,18 +600,20 @@ def face_class(leaf, x):
     if leaf.kind in reader.EXTRUSIONS:
         return extrusion_face(leaf, object_point(leaf, x))
     if leaf.kind == "polyhedron":
-        # The face whose plane (through its first point) is nearest.
-        q = object_point(leaf, x)
-        pts = leaf.params["points"]
-        best, at = math.inf, 0
-        for i, f in enumerate(leaf.params["faces"]):
-            a, b, c = pts[f[0]], pts[f[1]], pts[f[2]]
+        # The face whose plane (through its first point) is nearest;
+        # planes computed once a leaf.
+        if not hasattr(leaf, "_planes"):
+            pts = leaf.params["points"]
+            f3 = np.array([f[:3] for f in leaf.params["faces"]])
+            a, b, c = pts[f3[:, 0]], pts[f3[:, 1]], pts[f3[:, 2]]
             nrm = np.cross(b - a, c - a)
-            ln = np.linalg.norm(nrm)
-            d = abs(float((q - a) @ nrm)) / ln if ln > 0 else math.inf
-            if d < best:
-                best, at = d, i
-        return at
+            ln = np.linalg.norm(nrm, axis=1)
+            ok = ln > 0
+            nrm[ok] /= ln[ok, None]
+            leaf._planes = (nrm, np.einsum("ij,ij->i", nrm, a), ok)
+        nrm, off, ok = leaf._planes
+        d = np.where(ok, np.abs(nrm @ object_point(leaf, x) - off), np.inf)
+        return int(np.argmin(d))
     return 0
 
 

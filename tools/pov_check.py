@@ -259,6 +259,21 @@ class PovLeaf:
         if self.kind == "mesh2":
             # POV-Ray's inside test of a mesh: the parity of its crossings
             # along inside_vector.
+            if len(p["tris"]) > 64:
+                import manifold3d as mf
+
+                if "solid" not in p:
+                    # The exported triangles as manifold3d takes them (any
+                    # winding works for a parity count); numpy if it will not.
+                    t = p["tris"].astype(np.uint32)
+                    m = mf.Manifold(mf.Mesh64(vert_properties=p["verts"], tri_verts=t))
+                    if m.status() != mf.Error.NoError or m.is_empty():
+                        m = mf.Manifold(mf.Mesh64(vert_properties=p["verts"], tri_verts=t[:, [0, 2, 1]].copy()))
+                    p["solid"] = m if m.status() == mf.Error.NoError and not m.is_empty() else None
+                if p["solid"] is not None:
+                    far = 4.0 * float(np.linalg.norm(p["verts"].max(axis=0) - p["verts"].min(axis=0))) + 1.0
+                    d = p["inside"] / np.linalg.norm(p["inside"])
+                    return np.array([len(p["solid"].ray_cast(x.tolist(), (x + far * d).tolist())) % 2 == 1 for x in q])
             return ray_parity(p["verts"], p["tris"], q, p["inside"])
         if self.kind == "torus":
             # rotate x*90 first: object (x, y, z) came from torus coords
@@ -307,6 +322,26 @@ def ray_parity(verts, tris, q, d):
         hit = ok & (u >= 0) & (v >= 0) & (u + v <= 1) & (t > 0)
         count[k : k + 512] = hit.sum(axis=1)
     return count % 2 == 1
+
+
+def mesh_inside(leaf, q):
+    """Whether object points q are inside a polyhedron: the parity of the
+    crossings manifold3d finds along a fixed segment out of its box, on
+    the oracle's own triangulation of the file's faces (a mesh of many
+    faces), or the generalized winding number (a few)."""
+    p = leaf.params
+    if len(p["faces"]) <= 64:
+        return winding_inside(p["points"], p["faces"], q)
+    import manifold3d as mf
+    import oracle
+
+    if not hasattr(leaf, "_solid"):
+        tris = oracle.polyhedron_triangles(p)
+        leaf._solid = mf.Manifold(mf.Mesh64(vert_properties=np.asarray(p["points"], dtype=np.float64), tri_verts=tris))
+    lo, hi = p["points"].min(axis=0), p["points"].max(axis=0)
+    far = 4.0 * float(np.linalg.norm(hi - lo)) + 1.0
+    d = np.array([0.5734621, 0.6143793, 0.5420587])
+    return np.array([len(leaf._solid.ray_cast(x.tolist(), (x + far * d).tolist())) % 2 == 1 for x in q])
 
 
 def winding_inside(pts, faces, q):
@@ -640,7 +675,7 @@ def leaf_inside(leaf, pts):
     if leaf.kind == "torus":
         return (np.hypot(q[:, 0], q[:, 1]) - p["R"]) ** 2 + q[:, 2] ** 2 <= p["r"] ** 2
     if leaf.kind == "polyhedron":
-        return winding_inside(p["points"], p["faces"], q)
+        return mesh_inside(leaf, q)
     return q @ p["normal"] <= p["offset"]
 
 

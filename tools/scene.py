@@ -209,6 +209,7 @@ PARAMS = {
     "cylinder": ["h", "r1", "r2", "center", "r", "d", "d1", "d2"],
     "torus": ["R", "r"],
     "polyhedron": ["points", "faces", "convexity", "triangles"],
+    "surface": ["file", "center", "invert", "convexity", "timestamp"],
     "halfspace": ["normal", "offset"],
     "square": ["size", "center"],
     "circle": ["r", "d"],
@@ -238,7 +239,7 @@ PARAMS = {
     "directional_light": ["color", "direction"],
     "point_light": ["color", "position"],
 }
-SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace", "polyhedron")
+SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace", "polyhedron", "surface")
 SHAPES_2D = ("square", "circle", "polygon", "text", "import")
 EXTRUSIONS = ("linear_extrude", "rotate_extrude")
 TRANSFORMS = ("translate", "rotate", "scale", "mirror", "multmatrix")
@@ -463,6 +464,11 @@ class Reader:
 
     def solid(self, s, a, xf, mat):
         k = s.name
+        if k == "surface":
+            pts, faces = surface_mesh(self, s, a)
+            if pts is None:
+                return None
+            return self.leaf(s, "polyhedron", dict(points=pts, faces=faces), xf, mat)
         if k == "polyhedron":
             pts = a.get("points")
             if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) != 3 for p in pts):
@@ -1583,6 +1589,81 @@ def dxf_paths(pieces):
             path = as_path(chain)
             paths.append(path)
     return paths, n_open
+
+
+def surface_mesh(rd, s, a):
+    """(points, faces) of OpenSCAD 2021.01's surface() (surface.cc, read
+    here on its own): the heights of a PNG (row h - 1 - y, column x,
+    100/255 of 0.2126 r + 0.7152 g + 0.0722 b, or of 1 minus that when
+    inverted) or of a .dat grid; each cell four triangles to its centre,
+    walls down to min(0, lowest - 1), the bottom one polygon."""
+    path = os.path.join(os.path.dirname(os.path.abspath(rd.path)), a["file"])
+    with open(path, "rb") as f:
+        data = f.read()
+    z = {}
+    if data[:8] == bytes([0x89, 0x50, 0x4E, 0x47, 0x0D, 0x0A, 0x1A, 0x0A]):
+        from PIL import Image
+        import io
+
+        img = np.asarray(Image.open(io.BytesIO(data)).convert("RGBA"), dtype=float)
+        h, w = img.shape[:2]
+        for y in range(h):
+            for x in range(w):
+                p = 0.2126 * img[y, x, 0] + 0.7152 * img[y, x, 1] + 0.0722 * img[y, x, 2]
+                z[(h - 1 - y, x)] = 100.0 / 255 * ((1 - p) if a.get("invert", False) else p)
+    else:
+        row = 0
+        done = False
+        for line in data.decode("utf-8", "replace").splitlines():
+            line = line.strip()
+            if not line or line.startswith("#"):
+                continue
+            for col, word in enumerate(w for w in re.split(r"[ \t]", line) if w):
+                try:
+                    z[(row, col)] = float(word)
+                except ValueError:
+                    done = True
+                    break
+            if done:
+                break
+            row += 1
+    if not z:
+        return None, None
+    rows = max(k[0] for k in z) + 1
+    cols = max(k[1] for k in z) + 1
+    if rows < 2 or cols < 2:
+        return None, None
+    low = min(0.0, min(v - 1 for v in z.values()))
+    ox, oy = (-(cols - 1) / 2, -(rows - 1) / 2) if a.get("center", False) else (0.0, 0.0)
+    Z = lambda i, j: z.get((i, j), 0.0)
+    pts, faces = [], []
+
+    def face(*ps):
+        faces.append(list(range(len(pts), len(pts) + len(ps))))
+        pts.extend([ox + x, oy + y, zz] for x, y, zz in ps)
+
+    for i in range(1, rows):
+        for j in range(1, cols):
+            v1, v2, v3, v4 = Z(i - 1, j - 1), Z(i - 1, j), Z(i, j - 1), Z(i, j)
+            vx = (v1 + v2 + v3 + v4) / 4
+            c = (j - 0.5, i - 0.5, vx)
+            face((j - 1, i - 1, v1), (j, i - 1, v2), c)
+            face((j, i - 1, v2), (j, i, v4), c)
+            face((j, i, v4), (j - 1, i, v3), c)
+            face((j - 1, i, v3), (j - 1, i - 1, v1), c)
+    for i in range(1, rows):
+        face((0, i - 1, low), (0, i - 1, Z(i - 1, 0)), (0, i, Z(i, 0)), (0, i, low))
+        face((cols - 1, i, low), (cols - 1, i, Z(i, cols - 1)), (cols - 1, i - 1, Z(i - 1, cols - 1)), (cols - 1, i - 1, low))
+    for j in range(1, cols):
+        face((j, 0, low), (j, 0, Z(0, j)), (j - 1, 0, Z(0, j - 1)), (j - 1, 0, low))
+        face((j - 1, rows - 1, low), (j - 1, rows - 1, Z(rows - 1, j - 1)), (j, rows - 1, Z(rows - 1, j)), (j, rows - 1, low))
+    rim = [(j, 0) for j in range(cols - 1)] + [(cols - 1, i) for i in range(rows - 1)]
+    rim += [(j, rows - 1) for j in range(cols - 1, 0, -1)] + [(0, i) for i in range(rows - 1, 0, -1)]
+    face(*[(x, y, low) for x, y in reversed(rim)])
+    pts = np.array(pts, dtype=float)
+    uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)
+    inv = inv.reshape(-1)
+    return uniq, [[int(inv[i]) for i in f] for f in faces]
 
 
 def import_mesh(rd, s, a):

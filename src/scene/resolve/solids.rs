@@ -35,7 +35,7 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("polygon", Some(slab)),
     ("text", Some(slab)),
     ("import", Some(import)),
-    ("surface", None),
+    ("surface", Some(surface)),
     ("projection", Some(slab)),
     ("offset", Some(slab)),
     ("hull", None),
@@ -309,6 +309,60 @@ fn import(
             format!("expected a .{ext} mesh"),
         )
     })?;
+    res.mesh_leaf(s, span, m.points, &m.faces, xf, mat)
+}
+
+/// `surface(file, center, invert, convexity)`: OpenSCAD's solid over a
+/// height grid from a `.dat` file or a PNG image (see
+/// [`crate::meshfile::heights`]), a mesh leaf.
+fn surface(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    _depth: usize,
+) -> Result<Option<u32>> {
+    let a = Args::bind(
+        res.src,
+        s,
+        &["file", "center", "convexity", "invert", "timestamp"],
+    )?;
+    let file = a.string("file")?;
+    let file = a.require("file", file)?;
+    let span = a.span_of("file");
+    let center = a.boolean("center")?.unwrap_or(false);
+    let invert = a.boolean("invert")?.unwrap_or(false);
+    let path = std::path::Path::new(&res.src.name)
+        .parent()
+        .unwrap_or(std::path::Path::new("."))
+        .join(file);
+    let bytes = std::fs::read(&path).map_err(|e| {
+        res.src.error(
+            span,
+            format!("cannot read heights `{}`: {e}", path.display()),
+            "expected a .dat grid or a PNG image beside the scene",
+        )
+    })?;
+    let (h, warning) = crate::meshfile::heights(&bytes, invert).map_err(|e| {
+        let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
+        res.src.error(
+            span,
+            format!("`{}`{at}: {}", path.display(), e.message),
+            "expected a .dat grid or a PNG image",
+        )
+    })?;
+    if let Some(w) = warning {
+        let at = w.line.map_or(String::new(), |l| format!(", line {l}"));
+        res.warn(
+            span,
+            &format!("`{}`{at}: {}", path.display(), w.message),
+            "as OpenSCAD, the heights read before it are kept",
+        );
+    }
+    if h.rows < 2 || h.columns < 2 {
+        return res.empty(s, "its grid has fewer than 2 rows or columns");
+    }
+    let m = crate::meshfile::surface_mesh(&h, center);
     res.mesh_leaf(s, span, m.points, &m.faces, xf, mat)
 }
 
