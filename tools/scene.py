@@ -287,8 +287,6 @@ def bind(path, s):
             key = names[k]
             k += 1
         elif key.startswith("$"):
-            if key == "$fn" and isinstance(v, float) and 0 < v < 9 and s.name == "sphere":
-                raise ReadError(path, s.line, s.col, f"$fn = {v:g} makes {s.name} a polyhedron; not in the oracle yet")
             if key == "$fn" and isinstance(v, float):
                 out["$fn"] = v
             continue
@@ -495,6 +493,25 @@ class Reader:
             r = d / 2 if d is not None else num(self.path, s, a, "r", 1.0)
             if r <= 0:
                 return None
+            fn = a.get("$fn", 0.0)
+            if 0 < fn < 9:
+                # OpenSCAD's ring polyhedron (primitives.cc): (n + 1) // 2
+                # rings at phi = 180 (i + 1/2) / rings, n points each; caps
+                # and bands of triangles.
+                n = int(max(fn, 3.0))
+                rings = (n + 1) // 2
+                pts = []
+                for i in range(rings):
+                    sp, cp = sin_cos_deg(180.0 * (i + 0.5) / rings)
+                    for j in range(n):
+                        sa, ca = sin_cos_deg(360.0 * j / n)
+                        pts.append([r * sp * ca, r * sp * sa, r * cp])
+                faces = [list(range(n))] + [list(range((rings - 1) * n, rings * n))[::-1]]
+                for i in range(rings - 1):
+                    for j in range(n):
+                        a0, a1 = i * n + j, i * n + (j + 1) % n
+                        faces += [[a0 + n, a1 + n, a0], [a1 + n, a1, a0]]
+                return self.leaf(s, "polyhedron", dict(points=np.array(pts), faces=faces), xf, mat)
             return self.leaf(s, k, dict(r=r), xf, mat)
         if k == "cylinder":
             g = lambda key: num(self.path, s, a, key)

@@ -111,12 +111,45 @@ fn sphere(
     if r <= 0.0 {
         return res.empty(s, "its radius is zero or negative");
     }
+    if let Some(n) = a.few_facets() {
+        let (pts, faces) = ring_sphere(r, n);
+        return res.mesh_leaf(s, s.args_span, pts, &faces, xf, mat);
+    }
     res.leaf(
         s,
         Shape::Sphere(Sphere),
         xf * DAffine3::from_scale(DVec3::splat(r)),
         mat,
     )
+}
+
+/// OpenSCAD 2021.01's sphere of n fragments (`primitives.cc`): (n + 1) / 2
+/// rings, ring i at φ = 180°·(i + ½)/rings (radius r sin φ, height r cos φ),
+/// each the n points at 360°·j/n; the top and bottom rings are faces, and
+/// neighbouring rings are joined by two triangles a step (wound as
+/// OpenSCAD winds them).
+pub(crate) fn ring_sphere(r: f64, n: usize) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    use super::transforms::sin_cos_deg;
+    let rings = n.div_ceil(2);
+    let mut pts = Vec::with_capacity(rings * n);
+    for i in 0..rings {
+        let (sp, cp) = sin_cos_deg(180.0 * (i as f64 + 0.5) / rings as f64);
+        let (rr, z) = (r * sp, r * cp);
+        for j in 0..n {
+            let (sa, ca) = sin_cos_deg(360.0 * j as f64 / n as f64);
+            pts.push(DVec3::new(rr * ca, rr * sa, z));
+        }
+    }
+    let at = |i: usize, j: usize| (i * n + j % n) as u32;
+    let mut faces = vec![(0..n).map(|j| at(0, j)).collect::<Vec<_>>()];
+    for i in 0..rings - 1 {
+        for j in 0..n {
+            faces.push(vec![at(i + 1, j), at(i + 1, j + 1), at(i, j)]);
+            faces.push(vec![at(i + 1, j + 1), at(i, j + 1), at(i, j)]);
+        }
+    }
+    faces.push((0..n).rev().map(|j| at(rings - 1, j)).collect());
+    (pts, faces)
 }
 
 fn cylinder(
