@@ -62,6 +62,7 @@ fn primitives(c: &mut Criterion) {
                         tmin: f64::NEG_INFINITY,
                         tmax: f64::INFINITY,
                         st: &mut st,
+                        need: csgrt::geometry::Need::Spans,
                     };
                     shape.spans(&mut q, &mut |s| n += s.0 as usize & 1);
                 }

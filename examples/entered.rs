@@ -53,6 +53,7 @@ fn main() {
                         tmin: 0.0,
                         tmax: f64::INFINITY,
                         st: &mut Stats::default(),
+                        need: csgrt::geometry::Need::Spans,
                     };
                     p.shape.spans(&mut q, &mut |(_, _, t1, _)| any |= t1 > 0.0);
                     any

@@ -90,6 +90,7 @@ pub fn exercise_mesh(ext: &str, data: &[u8]) {
             tmin: f64::NEG_INFINITY,
             tmax: f64::INFINITY,
             st: &mut st,
+            need: crate::geometry::Need::Spans,
         };
         mesh.spans(&mut q, &mut |(t0, _, t1, _)| assert!(t0 < t1));
     }

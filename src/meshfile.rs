@@ -67,11 +67,53 @@ pub fn read(ext: &str, bytes: &[u8]) -> Result<MeshFile, FileError> {
     Ok(m)
 }
 
+/// A fast hasher for coordinate bits (multiply and rotate, as rustc's
+/// FxHash): the points of a mesh file are not chosen against it.
+#[derive(Default)]
+struct Mix(u64);
+
+impl std::hash::Hasher for Mix {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    fn write(&mut self, bytes: &[u8]) {
+        for b in bytes {
+            self.write_u64(*b as u64);
+        }
+    }
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// Points merged as they are read (STL lists each corner of each facet):
+/// the index of a point with these coordinates, added if new.
+struct Merger {
+    index: HashMap<[u64; 3], u32, std::hash::BuildHasherDefault<Mix>>,
+}
+
+impl Merger {
+    fn new(expected: usize) -> Merger {
+        Merger {
+            index: HashMap::with_capacity_and_hasher(expected, Default::default()),
+        }
+    }
+
+    fn add(&mut self, m: &mut MeshFile, p: DVec3) -> u32 {
+        let key = (p + DVec3::ZERO).to_array().map(f64::to_bits);
+        *self.index.entry(key).or_insert_with(|| {
+            m.points.push(p);
+            m.points.len() as u32 - 1
+        })
+    }
+}
+
 /// Merges points with the same coordinates (bit for bit, −0 as 0).
 fn merge(m: &mut MeshFile) {
     let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
-    let mut index: HashMap<[u64; 3], u32> = HashMap::with_capacity(m.points.len());
-    let mut kept = Vec::with_capacity(m.points.len());
+    let mut index: HashMap<[u64; 3], u32, std::hash::BuildHasherDefault<Mix>> =
+        HashMap::with_capacity_and_hasher(m.points.len() / 4, Default::default());
+    let mut kept = Vec::with_capacity(m.points.len() / 4);
     let remap: Vec<u32> = m
         .points
         .iter()
@@ -98,15 +140,18 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
                 return Err(err(None, format!("more than {MAX_POINTS} points")));
             }
             let mut m = MeshFile::default();
+            m.faces.reserve_exact(n);
+            // A closed mesh's corner is in six facets or so.
+            let mut merger = Merger::new(n / 2 + 16);
             for k in 0..n {
                 let r = &bytes[84 + 50 * k..84 + 50 * (k + 1)];
                 let f = |i: usize| f32::from_le_bytes([r[i], r[i + 1], r[i + 2], r[i + 3]]) as f64;
-                let base = m.points.len() as u32;
+                let mut face = Vec::with_capacity(3);
                 for v in 0..3 {
                     let at = 12 + 12 * v;
-                    m.points.push(DVec3::new(f(at), f(at + 4), f(at + 8)));
+                    face.push(merger.add(&mut m, DVec3::new(f(at), f(at + 4), f(at + 8))));
                 }
-                m.faces.push(vec![base, base + 1, base + 2]);
+                m.faces.push(face);
             }
             return finite(m);
         }
@@ -126,6 +171,8 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
         err(Some(line), "a byte that is not UTF-8 text")
     })?;
     let mut m = MeshFile::default();
+    let mut merger = Merger::new(1024);
+    let mut corners = [0u32; 3];
     let mut pending = 0;
     for (no, line) in text.lines().enumerate().skip(1) {
         let no = Some(no + 1);
@@ -146,14 +193,16 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
                         .parse::<f64>()
                         .map_err(|_| err(no, format!("`{w}` is not a number")))?;
                 }
-                if m.points.len() >= MAX_POINTS {
-                    return Err(err(no, format!("more than {MAX_POINTS} points")));
+                if m.faces.len() >= MAX_POINTS {
+                    return Err(err(no, format!("more than {MAX_POINTS} facets")));
                 }
-                m.points.push(DVec3::from_array(xyz));
+                if !xyz.iter().all(|c| c.is_finite()) {
+                    return Err(err(no, "a point is not finite"));
+                }
+                corners[pending] = merger.add(&mut m, DVec3::from_array(xyz));
                 pending += 1;
                 if pending == 3 {
-                    let b = m.points.len() as u32 - 3;
-                    m.faces.push(vec![b, b + 1, b + 2]);
+                    m.faces.push(corners.to_vec());
                 }
             }
             _ => {}

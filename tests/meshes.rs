@@ -46,6 +46,7 @@ fn spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<(f64, f64)> {
         tmin: f64::NEG_INFINITY,
         tmax: f64::INFINITY,
         st: &mut st,
+        need: csgrt::geometry::Need::Spans,
     };
     m.spans(&mut q, &mut |(t0, _, t1, _)| out.push((t0, t1)));
     out
@@ -188,6 +189,7 @@ fn a_mesh_wound_either_way_or_both_is_the_same_solid() {
                 tmin: f64::NEG_INFINITY,
                 tmax: f64::INFINITY,
                 st: &mut st,
+                need: csgrt::geometry::Need::Spans,
             };
             m.spans(&mut q, &mut |s| got.push(s));
             assert_eq!(got.len(), 1);

@@ -11,7 +11,7 @@ pub mod spans;
 
 use crate::geometry::bvh::Bvh;
 use crate::geometry::robust::coincidence;
-use crate::geometry::{Aabb, Probe, Ray, Shape, Transform};
+use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
 use crate::stats::Stats;
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -331,6 +331,7 @@ impl Csg {
                         tmax: q.tmax,
                         st: &mut *q.st,
                         sc: &mut *q.sc,
+                        need: Need::Spans,
                     },
                 ),
                 // Along the frame's z: all of the line or none of it.
@@ -388,6 +389,7 @@ impl Csg {
             tmin: q.tmin,
             tmax: q.tmax,
             st: &mut *q.st,
+            need: q.need,
         };
         let stack = &mut q.sc.stack;
         p.shape.spans(&mut probe, &mut |(t0, p0, t1, p1)| {
@@ -407,10 +409,27 @@ impl Csg {
         tmax: f64,
         st: &mut Stats,
     ) -> Option<Boundary> {
+        self.first_boundary_for(ray, tmin, tmax, st, Need::FirstBoundary)
+    }
+
+    /// [`Csg::first_boundary`], where a leaf that is the whole tree is
+    /// asked only for `need`: its first boundary is the tree's.
+    fn first_boundary_for(
+        &self,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        need: Need,
+    ) -> Option<Boundary> {
         let root = self.root?;
         query(ray, tmin, tmax, st, |q| {
             match &self.nodes[root as usize].kind {
                 NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q),
+                NodeKind::Leaf(_) => {
+                    q.need = need;
+                    self.push_spans(root, q)
+                }
                 _ => self.push_spans(root, q),
             };
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
@@ -457,6 +476,7 @@ impl Csg {
                     tmax,
                     st,
                     sc: &mut *sc,
+                    need: Need::Spans,
                 };
                 add(c, &mut child);
                 cut(&child.sc.stack[base..])
@@ -493,7 +513,8 @@ impl Csg {
 
     /// Whether anything lies on the ray in (tmin, tmax).
     pub fn occluded(&self, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> bool {
-        self.first_boundary(ray, tmin, tmax, st).is_some()
+        self.first_boundary_for(ray, tmin, tmax, st, Need::AnyBoundary)
+            .is_some()
     }
 
     /// Point and unit outward normal of a boundary found along `ray`.
@@ -572,6 +593,9 @@ struct Query<'a> {
     tmax: f64,
     st: &'a mut Stats,
     sc: &'a mut Scratch,
+    /// What is read of the answer: less than every span only for a leaf
+    /// that is the whole tree (see [`Need`]).
+    need: Need,
 }
 
 /// Runs `f` on a query over (tmin, tmax) built on this thread's scratch.
@@ -583,6 +607,7 @@ fn query<R>(ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats, f: impl FnOnce(&mut
             tmax,
             st,
             sc,
+            need: Need::Spans,
         })
     })
 }
@@ -597,6 +622,7 @@ impl Query<'_> {
             tmax: hi,
             st: &mut *self.st,
             sc: &mut *self.sc,
+            need: Need::Spans,
         }
     }
 }

@@ -24,7 +24,7 @@
 
 use super::bvh::Bvh;
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Part, Ray, NO_PART};
+use super::{Aabb, Need, Part, Ray, NO_PART};
 use glam::{DAffine3, DVec3};
 use smallvec::SmallVec;
 use std::sync::Arc;
@@ -84,7 +84,7 @@ impl MeshData {
             })
             .collect();
         let bounds = items.iter().fold(Aabb::EMPTY, |a, (_, b)| a.union(b));
-        let bvh = Bvh::build(&items, LEAF);
+        let bvh = Bvh::build_binned(items, LEAF);
         MeshData {
             verts,
             tris,
@@ -131,6 +131,38 @@ impl MeshData {
         st.triangle_tests += tested;
         out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         out
+    }
+}
+
+impl MeshData {
+    /// The nearest crossing `(t, triangle, its normal faces along d)` with
+    /// tmin < t < tmax, boxes opened nearest first and skipped once they
+    /// begin beyond the best so far.
+    pub fn nearest(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        tmin: f64,
+        tmax: f64,
+        st: &mut crate::stats::Stats,
+    ) -> Option<(f64, u32, bool)> {
+        let w = Watertight::new(o, d)?;
+        let ray = Ray::new(o, d);
+        let mut best: Option<(f64, u32, bool)> = None;
+        let mut tested = 0;
+        self.bvh.visit_near_first(&ray, tmin, tmax, st, |i, _| {
+            tested += 1;
+            if let Some((t, along)) = w.hit(self.corners(i)) {
+                // Ties go to the lower triangle, whatever the order of visits.
+                let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
+                if t > tmin && t < tmax && better {
+                    best = Some((t, i, along));
+                }
+            }
+            best.map_or(f64::INFINITY, |b| b.0)
+        });
+        st.triangle_tests += tested;
+        best
     }
 }
 
@@ -229,6 +261,30 @@ impl Solid for Mesh {
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         let m = &self.data;
         let ray = Ray::new(q.o, q.d);
+        if q.need != Need::Spans {
+            // Every crossing of a closed mesh is a boundary: the first after
+            // tmin is the nearest hit, found nearest first; its side is
+            // the parity of the crossings up to tmin (none when the box
+            // begins after tmin), asked only for a first hit's normal.
+            let Some(x) = m.nearest(q.o, q.d, q.tmin, q.tmax, q.st) else {
+                return;
+            };
+            let entering = q.need == Need::AnyBoundary
+                || match m.bounds.entry(&ray, f64::NEG_INFINITY, q.tmin) {
+                    None => true,
+                    Some(_) => {
+                        let before = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st);
+                        before.len() % 2 == 0
+                    }
+                };
+            let part = (x.1 << 1) | u32::from(x.2 == entering);
+            if entering {
+                emit((x.0, part, f64::INFINITY, NO_PART));
+            } else {
+                emit((f64::NEG_INFINITY, NO_PART, x.0, part));
+            }
+            return;
+        }
         // Outside before the mesh's box: every crossing up to tmax is
         // counted, from the line's start.
         if !m.bounds.hit(&ray, f64::NEG_INFINITY, q.tmax) {

@@ -30,7 +30,7 @@ pub use lathe::Lathe;
 pub use mesh::Mesh;
 pub use prism::Prism;
 pub use shape::Shape;
-pub use solid::{Param, Probe, Solid};
+pub use solid::{Need, Param, Probe, Solid};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;

@@ -23,6 +23,23 @@ pub struct Probe<'a> {
     pub tmin: f64,
     pub tmax: f64,
     pub st: &'a mut Stats,
+    /// What the caller will read of the spans.
+    pub need: Need,
+}
+
+/// What a span query's caller reads of the answer. The CSG asks for less
+/// than every span only where it can show that less decides the answer:
+/// a scene whose whole tree is one primitive.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Need {
+    /// Every span meeting (tmin, tmax), exactly.
+    Spans,
+    /// Only the first boundary after tmin, with its side (a first hit):
+    /// the spans may be cut there and left open beyond.
+    FirstBoundary,
+    /// Only whether a boundary lies in (tmin, tmax), and where the first
+    /// is (a shadow ray): its side does not matter.
+    AnyBoundary,
 }
 
 /// A value a primitive reports about itself (for `--dump-scene`).

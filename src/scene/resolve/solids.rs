@@ -113,7 +113,7 @@ fn sphere(
     }
     if let Some(n) = a.few_facets() {
         let (pts, faces) = ring_sphere(r, n);
-        return res.mesh_leaf(s, s.args_span, pts, &faces, xf, mat);
+        return res.mesh_leaf(s, s.args_span, pts, faces, xf, mat);
     }
     res.leaf(
         s,
@@ -310,7 +310,7 @@ fn polyhedron(
     let key = if a.has("faces") { "faces" } else { "triangles" };
     let faces = a.index_lists(key, pts.len(), 3)?;
     let faces = a.require("faces", faces)?;
-    res.mesh_leaf(s, a.span_of(key), pts, &faces, xf, mat)
+    res.mesh_leaf(s, a.span_of(key), pts, faces, xf, mat)
 }
 
 /// `import(file, ...)` where a solid stands: a mesh file, or a drawing
@@ -342,7 +342,8 @@ fn import(
             format!("expected a .{ext} mesh"),
         )
     })?;
-    res.mesh_leaf(s, span, m.points, &m.faces, xf, mat)
+    drop(bytes);
+    res.mesh_leaf(s, span, m.points, m.faces, xf, mat)
 }
 
 /// `surface(file, center, invert, convexity)`: OpenSCAD's solid over a
@@ -396,7 +397,7 @@ fn surface(
         return res.empty(s, "its grid has fewer than 2 rows or columns");
     }
     let m = crate::meshfile::surface_mesh(&h, center);
-    res.mesh_leaf(s, span, m.points, &m.faces, xf, mat)
+    res.mesh_leaf(s, span, m.points, m.faces, xf, mat)
 }
 
 impl Resolver<'_> {
@@ -407,13 +408,13 @@ impl Resolver<'_> {
         s: &Statement,
         place: crate::error::TextRange,
         pts: Vec<DVec3>,
-        faces: &[Vec<u32>],
+        faces: Vec<Vec<u32>>,
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
         use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
-        let mut tris = Vec::new();
-        for f in faces {
+        let mut tris = Vec::with_capacity(faces.len());
+        for f in &faces {
             tris.extend(triangulate(&pts, f));
             if tris.len() > MAX_TRIANGLES {
                 return Err(self.src.error(
@@ -423,6 +424,7 @@ impl Resolver<'_> {
                 ));
             }
         }
+        drop(faces);
         if tris.is_empty() {
             return self.empty(s, "its faces have no area");
         }

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""csgrt's mesh leaf against Embree and POV-Ray on one big mesh (issue 15).
+
+Generates (once, into bench/mesh/, not kept in git) a gyroid sheet cut by a
+ball — manifold3d's level_set of min(0.3 - |g|, R - |p|), g the gyroid —
+as a binary STL of about 1.3 million triangles, and a scene importing it
+with a fixed camera. Then, on one core (the process and its children bound
+to it, csgrt --threads 1, Embree's own threads too):
+
+* primary rays: the same camera rays (pixel centres, csgrt's camera as
+  tools/oracle.py builds it) traced by csgrt (`--trace-rays`, its own
+  trace-loop seconds) and by Embree (embreex: rtcIntersect1 per ray, the
+  build timed apart); the ratio, and the pixels whose hit or miss differ
+  (silhouettes), with how many of those lie on a silhouette edge;
+* load: csgrt's whole run on one ray (parse, STL, merge, triangulation,
+  BVH) — wall-clock seconds — and its peak resident memory beyond a run
+  on an empty scene, per triangle beyond the STL's own 50 bytes;
+* full render: csgrt's render_seconds against POV-Ray's Trace Time on the
+  same mesh as `mesh2` (csgrt --export-pov), one thread each, shadows on.
+
+Needs tools/requirements-bench.txt (embreex) besides tools/requirements.txt.
+
+Usage: bench_mesh.py [--csgrt BIN] [--size WxH] [--edge 0.41] [--out FILE]
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import oracle  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DIR = os.path.join(ROOT, "bench", "mesh")
+R = 20.0
+
+
+def generate(edge):
+    import manifold3d as mf
+
+    stl = os.path.join(DIR, "gyroid.stl")
+    if os.path.exists(stl):
+        return stl
+
+    def f(x, y, z):
+        g = math.sin(x) * math.cos(y) + math.sin(y) * math.cos(z) + math.sin(z) * math.cos(x)
+        return min(0.3 - abs(g), R - math.sqrt(x * x + y * y + z * z))
+
+    m = mf.Manifold.level_set(f, [-R - 1] * 3 + [R + 1] * 3, edge)
+    mesh = m.to_mesh()
+    v = np.asarray(mesh.vert_properties, dtype=np.float32)[:, :3]
+    t = np.asarray(mesh.tri_verts)
+    os.makedirs(DIR, exist_ok=True)
+    rec = np.zeros(len(t), dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
+    rec["v"] = v[t]
+    with open(stl, "wb") as fh:
+        fh.write(b"gyroid sheet in a ball, tools/bench_mesh.py".ljust(80, b" "))
+        fh.write(np.uint32(len(t)).tobytes())
+        fh.write(rec.tobytes())
+    with open(os.path.join(DIR, "gyroid.csg"), "w") as fh:
+        fh.write("camera(eye = [52, -64, 40], lookat = [0, 0, 0], fov = 38);\nimport(\"gyroid.stl\");\n")
+    with open(os.path.join(DIR, "empty.csg"), "w") as fh:
+        fh.write("camera(eye = [52, -64, 40], lookat = [0, 0, 0], fov = 38);\ncube(1);\n")
+    return stl
+
+
+def child_run(cmd):
+    """(wall seconds, peak RSS in bytes) of one child process (its own
+    rusage, from wait4)."""
+    t = time.perf_counter()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, ru = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t
+    p.returncode = os.waitstatus_to_exitcode(status)
+    if p.returncode != 0:
+        raise subprocess.CalledProcessError(p.returncode, cmd)
+    return wall, ru.ru_maxrss * 1024
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--csgrt", default=os.path.join(ROOT, "target/release/csgrt"))
+    ap.add_argument("--size", default="640x480")
+    ap.add_argument("--edge", type=float, default=0.41)
+    ap.add_argument("--out")
+    a = ap.parse_args()
+    # One core for everything, Embree's threads included (children inherit).
+    os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
+    w, h = map(int, a.size.split("x"))
+    stl = generate(a.edge)
+    ntri = (os.path.getsize(stl) - 84) // 50
+    scene = os.path.join(DIR, "gyroid.csg")
+    one = []
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        dump = os.path.join(work, "d.json")
+        subprocess.run([a.csgrt, scene, "--size", a.size, "--dump-scene", dump, "-o", os.path.join(work, "x.png"), "-q"], check=True)
+        cam = json.load(open(dump))["camera"]
+        rays = oracle.camera_rays((cam["eye"], cam["lookat"], cam["up"], cam["fov"]), w, h)
+        rfile = os.path.join(work, "rays.txt")
+        with open(rfile, "w") as fh:
+            for o, d in rays:
+                fh.write("%r %r %r %r %r %r\n" % tuple(float(x) for x in (*o, *d)))
+        one_ray = os.path.join(work, "one.txt")
+        with open(one_ray, "w") as fh:
+            fh.write("%r %r %r %r %r %r\n" % tuple(float(x) for x in (*rays[0][0], *rays[0][1])))
+        # Load and build, and memory: one ray, against the empty scene.
+        empty_wall, empty_rss = child_run(one + [a.csgrt, os.path.join(DIR, "empty.csg"), "--trace-rays", one_ray, "--threads", "1"])
+        load_wall, load_rss = child_run(one + [a.csgrt, scene, "--trace-rays", one_ray, "--threads", "1"])
+        beyond = (load_rss - empty_rss - 50 * ntri) / ntri
+        # Primary rays.
+        st = os.path.join(work, "st.json")
+        hits = os.path.join(work, "hits.txt")
+        with open(hits, "w") as out:
+            subprocess.run(one + [a.csgrt, scene, "--trace-rays", rfile, "--threads", "1", "--stats-json", st], check=True, stdout=out)
+        csgrt_trace = json.load(open(st))["render_seconds"]
+        mine = [line.split()[0] != "miss" for line in open(hits)]
+        # Embree on the same triangles and rays.
+        from embreex import rtcore_scene as rtcs
+        from embreex.mesh_construction import TriangleMesh
+
+        rec = np.fromfile(stl, dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]), offset=84)
+        t0 = time.perf_counter()
+        es = rtcs.EmbreeScene()
+        TriangleMesh(es, rec["v"].astype(np.float32))
+        origins = np.array([o for o, _ in rays], dtype=np.float32)
+        dirs = np.array([d for _, d in rays], dtype=np.float32)
+        es.run(origins[:1], dirs[:1])  # the build happens at the first query
+        embree_build = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        ids = es.run(origins, dirs)
+        embree_trace = time.perf_counter() - t0
+        theirs = list(np.asarray(ids) >= 0)
+        grid = np.array(mine).reshape(h, w)
+        diff = np.array(mine) != np.array(theirs)
+        edge = oracle.mixed(np.where(grid, 1, -1)).reshape(-1) if hasattr(oracle, "mixed") else np.zeros(len(mine), bool)
+        # Full render against POV-Ray's mesh2.
+        pov = os.path.join(work, "g.pov")
+        subprocess.run(one + [a.csgrt, scene, "--size", a.size, "--threads", "1", "--stats-json", st, "--export-pov", pov, "-o", os.path.join(work, "g.png"), "-q"], check=True)
+        render = json.load(open(st))["render_seconds"]
+        r = subprocess.run(one + ["povray", f"+I{pov}", f"+O{os.path.join(work, 'p.png')}", f"+W{w}", f"+H{h}", "+FN", "-D", "+WT1"], capture_output=True, text=True)
+        pov_trace = next(float(x.split("(")[1].split()[0]) for x in r.stderr.splitlines() if "Trace Time:" in x)
+        parse = next((float(x.split("(")[1].split()[0]) for x in r.stderr.splitlines() if "Parse Time:" in x), float("nan"))
+    rows = [
+        f"triangles: {ntri} ({os.path.getsize(stl) / 1e6:.1f} MB binary STL), {w}x{h} camera rays, one core",
+        f"primary rays: csgrt {csgrt_trace:.3f} s, Embree {embree_trace:.3f} s (rtcIntersect1 per ray through embreex), ratio {csgrt_trace / embree_trace:.2f}",
+        f"silhouettes: {int(diff.sum())} of {len(mine)} pixels differ in hit or miss, {int((diff & edge).sum())} of them on csgrt's silhouette edge",
+        f"load (parse, STL, merge, BVH) + one ray: csgrt {load_wall:.3f} s wall (an empty scene: {empty_wall:.3f} s); Embree's build alone {embree_build:.3f} s",
+        f"memory: peak RSS {load_rss / 1e6:.0f} MB, {beyond:.0f} bytes a triangle beyond the empty run and the STL's 50",
+        f"full render (shadows): csgrt {render:.3f} s, POV-Ray mesh2 trace {pov_trace:.3f} s (parse {parse:.3f} s), ratio {render / pov_trace:.2f}",
+    ]
+    text = "\n".join(rows)
+    print(text)
+    if a.out:
+        with open(a.out, "w") as fh:
+            fh.write(text + "\n")
+
+
+if __name__ == "__main__":
+    main()
