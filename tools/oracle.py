@@ -319,6 +319,12 @@ def flat_extent(f):
     return max(flat_extent(k) for k in f[2])
 
 
+# manifold3d's CrossSection stores points on a grid of 1e-8 (Clipper2's
+# eight decimals: 0.1234567891234 comes back as 0.12345679104): every vertex
+# of the oracle's own 2-D shapes moves by up to this much in the plane.
+CROSS_SECTION_GRID = 1e-8
+
+
 def extrusion_facets(leaf, n):
     """(distance, angle) of an extrusion's mesh at n segments: circles are
     inscribed n-gons (an ellipse's distance and angle grow with its
@@ -330,17 +336,18 @@ def extrusion_facets(leaf, n):
     b = 1 - math.cos(math.pi / n)
     sv = ellipse_singular_values(leaf)
     if leaf.kind == "linear_extrude" and reader.twisted(p):
-        return twisted_facets(leaf, n)[:2]
+        d, a = twisted_facets(leaf, n)[:2]
+        return d + CROSS_SECTION_GRID * max([1.0] + list(p["scale2"])), a
     if leaf.kind == "linear_extrude":
         k = max(1.0, p["scale"])
         qd, qa = quad_facets(leaf, n)
-        dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k)
+        dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k) + CROSS_SECTION_GRID * k
         ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa)
         return dist, ang
     R = flat_extent(p["flat"])
     emax = max((s[0] for s in sv), default=0.0)
     qd, qa = quad_facets(leaf, n)
-    dist = (R + emax) * b + max(emax * b, qd)
+    dist = (R + emax) * b + max(emax * b, qd) + CROSS_SECTION_GRID
     ang = (2 if sv or qa else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0) + qa
     return dist, ang
 

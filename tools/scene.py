@@ -1406,6 +1406,55 @@ def conic_ellipse(Q, w, r):
     return ("ellipse", A, c)
 
 
+def mesh_slice(node):
+    """The slice z = 0 of a placed mesh as ("poly", loops), filled even-odd:
+    each face edge with ends on both sides meets the plane at one point
+    (computed once an edge, so the two faces of an edge share it); a face
+    crossing the plane gives the segment between its two such points, and
+    the segments chain into loops. A point exactly in the plane is not in
+    the oracle (which side it counts for is a convention)."""
+    pts = node.params["points"] @ node.matrix[:3, :3].T + node.matrix[:3, 3]
+    z = pts[:, 2]
+    if np.any(z == 0):
+        raise ValueError("a mesh point exactly in the slicing plane is not in the oracle")
+    cut = {}
+
+    def at(i, j):
+        key = (min(i, j), max(i, j))
+        if key not in cut:
+            a, b = pts[key[0]], pts[key[1]]
+            f = a[2] / (a[2] - b[2])
+            cut[key] = len(cut), (a + f * (b - a))[:2]
+        return cut[key][0]
+
+    nxt = {}
+    for f in node.params["faces"]:
+        crossings = [at(f[k], f[(k + 1) % len(f)]) for k in range(len(f)) if (z[f[k]] > 0) != (z[f[(k + 1) % len(f)]] > 0)]
+        for k in range(0, len(crossings) - 1, 2):
+            a, b = crossings[k], crossings[k + 1]
+            nxt.setdefault(a, []).append(b)
+            nxt.setdefault(b, []).append(a)
+    point = {i: p for i, p in cut.values()}
+    loops, seen = [], set()
+    for start in nxt:
+        if start in seen:
+            continue
+        loop, prev, cur = [start], None, start
+        seen.add(start)
+        while True:
+            step = [x for x in nxt[cur] if x != prev]
+            if not step or step[0] == start:
+                break
+            prev, cur = cur, step[0]
+            if cur in seen:
+                break
+            seen.add(cur)
+            loop.append(cur)
+        if len(loop) >= 3:
+            loops.append(np.array([point[i] for i in loop]))
+    return ("poly", loops) if loops else None
+
+
 def section_tree(node, big):
     """The slice z = 0 of a 3-D tree of spheres, boxes, cylinders and
     halfspaces, exactly, as a 2-D tree: a point p of the plane is in a
@@ -1459,6 +1508,8 @@ def section_tree(node, big):
     if node.kind == "halfspace":
         n = p["normal"]
         return poly([(n @ P, p["offset"] - n @ w)])
+    if node.kind == "polyhedron":
+        return mesh_slice(node)
     raise ValueError(f"the slice of a {node.kind} is not in the oracle")
 
 
