@@ -6,7 +6,7 @@
 use crate::error::{Error, Result, Source};
 use crate::render::{self, probe, Settings};
 use crate::stats::Stats;
-use crate::{dump, load_csg, Scene};
+use crate::{dump, Scene};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{IsTerminal, Read, Write};
@@ -62,9 +62,29 @@ pub struct Cli {
     /// Write the resolved scene as POV-Ray 3.7 SDL, keeping the CSG tree.
     #[arg(long, value_name = "FILE")]
     pub export_pov: Option<PathBuf>,
+    /// How `$fn`, `$fa`, `$fs` are read: `shapes` (an explicit `$fn` of 3 to
+    /// 8 makes circles, cylinders and spheres OpenSCAD's polygons and
+    /// polyhedra; otherwise exact), `exact` (every curved solid exact),
+    /// `openscad` (OpenSCAD's fragment rule on every circle, cylinder and
+    /// sphere: the mesh OpenSCAD would export)
+    #[arg(long, value_name = "MODE", default_value = "shapes", value_parser = parse_facets)]
+    pub facets: crate::scene::Facets,
+
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+fn parse_facets(s: &str) -> std::result::Result<crate::scene::Facets, String> {
+    use crate::scene::Facets;
+    match s {
+        "shapes" => Ok(Facets::Shapes),
+        "exact" => Ok(Facets::Exact),
+        "openscad" => Ok(Facets::OpenScad),
+        _ => Err(format!(
+            "`{s}` is not a facets mode: expected shapes, exact or openscad"
+        )),
+    }
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
@@ -124,12 +144,17 @@ pub fn read_source(path: &Path) -> Result<Source> {
 
 /// Loads a model by its extension.
 pub fn load(path: &Path) -> Result<Scene> {
+    load_with(path, crate::scene::Facets::default())
+}
+
+/// [`load`] with `$fn`, `$fa`, `$fs` read as `facets` says (`.csg` only).
+pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(|e| e.to_ascii_lowercase());
     match ext.as_deref() {
-        Some("csg") => load_csg(&read_source(path)?),
+        Some("csg") => crate::load_csg_with(&read_source(path)?, facets),
         Some("ray") => crate::syntax::ray::load_ray(&read_source(path)?),
         _ => Err(Error::Usage(format!(
             "{}: unknown model format; expected a `.csg` scene or a `.ray` display list",
@@ -139,7 +164,7 @@ pub fn load(path: &Path) -> Result<Scene> {
 }
 
 pub fn run(cli: &Cli) -> Result<()> {
-    let scene = load(&cli.model)?;
+    let scene = load_with(&cli.model, cli.facets)?;
     for w in &scene.warnings {
         eprintln!("{w}");
     }

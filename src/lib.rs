@@ -35,6 +35,11 @@ pub use scene::Scene;
 
 /// Parses and resolves `.csg` text into a scene.
 pub fn load_csg(src: &Source) -> Result<Scene> {
+    load_csg_with(src, scene::Facets::default())
+}
+
+/// [`load_csg`] with `$fn`, `$fa`, `$fs` read as `facets` says.
+pub fn load_csg_with(src: &Source, facets: scene::Facets) -> Result<Scene> {
     let ast = syntax::parse_csg(src)?;
-    scene::resolve(src, &ast)
+    scene::resolve_with(src, &ast, facets)
 }

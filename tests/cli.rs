@@ -438,3 +438,28 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         "error: all points for rotate_extrude() must have the same X coordinate sign (range is -1.00 -> 2.00)\n --> bad.csg:1:1\n  |\n1 | rotate_extrude() translate([-1, 0]) square(3);\n  | ^^^^^^^^^^^^^^ expected a 2-D shape on one side of the axis x = 0\n"
     );
 }
+
+#[test]
+fn an_unknown_facets_mode_is_a_usage_error() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(dir.path(), &["s.csg", "--facets", "smooth"]);
+    assert_eq!(r.status, 2);
+    assert!(
+        r.stderr
+            .contains("`smooth` is not a facets mode: expected shapes, exact or openscad"),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(files(dir.path()), ["s.csg"]);
+    // And what it cannot facet yet is refused at its place.
+    let (dir, _) = scene("t.csg", "rotate_extrude() translate([2, 0]) circle(1);\n");
+    let r = csgrt(dir.path(), &["t.csg", "--facets", "openscad", "-q"]);
+    assert_eq!(r.status, 2);
+    assert!(
+        r.stderr.starts_with(
+            "error: rotate_extrude under `--facets openscad` is not supported yet\n --> t.csg:1:1"
+        ),
+        "{}",
+        r.stderr
+    );
+}

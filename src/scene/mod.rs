@@ -6,7 +6,22 @@ pub mod builder;
 pub mod defaults;
 mod resolve;
 
-pub use resolve::{resolve, unsupported};
+pub use resolve::{resolve, resolve_with, unsupported};
+
+/// How `$fn`, `$fa` and `$fs` are read (`--facets`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Facets {
+    /// An explicit `$fn` of 3 to 8 on `circle`, `cylinder` and `sphere` is
+    /// a shape (OpenSCAD's polygon, prism or ring polyhedron); anything
+    /// else is the exact smooth surface.
+    #[default]
+    Shapes,
+    /// Every `$fn` ignored: the exact smooth surfaces.
+    Exact,
+    /// OpenSCAD's own fragment rule (`Calc::get_fragments_from_r`) on
+    /// every circle, cylinder and sphere: the solid OpenSCAD would export.
+    OpenScad,
+}
 
 use crate::csg::Csg;
 use crate::error::Diagnostic;

@@ -481,7 +481,7 @@ impl Resolver<'_> {
                     self.empty(s, "its radius is zero or negative")?;
                     return Ok(None);
                 }
-                Ok(Some(match a.few_facets() {
+                Ok(Some(match self.fragments(&a, r) {
                     Some(n) => Flat::Polygon(moved(regular_polygon(n, r))),
                     None => Flat::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
                 }))
@@ -515,6 +515,7 @@ impl Resolver<'_> {
 
     /// `text` under `m`: the union of its glyphs.
     fn text(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+        self.openscad_facets_unsupported(s, "text")?;
         const PARAMS: &[&str] = &[
             "text",
             "size",
@@ -589,6 +590,9 @@ impl Resolver<'_> {
             (None, Some(d)) => (Join::Miter, d),
             (None, None) => (Join::Round, 1.0),
         };
+        if join == Join::Round {
+            self.openscad_facets_unsupported(s, "offset(r)")?;
+        }
         let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
@@ -652,6 +656,7 @@ impl Resolver<'_> {
             };
             return Err(self.src.error(span, message, label));
         }
+        self.openscad_facets_unsupported(s, "a drawing's arcs")?;
         let layer = match (a.string("layer")?, a.string("layername")?) {
             (Some(l), _) | (None, Some(l)) => l,
             _ => "",
@@ -897,6 +902,9 @@ impl Resolver<'_> {
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
         let twist = a.number("twist")?.unwrap_or(0.0).to_radians();
+        if twist != 0.0 {
+            self.openscad_facets_unsupported(s, "a twisted linear_extrude")?;
+        }
         a.number("slices")?;
         let scale = if a.is_number("scale") {
             let k = a.number("scale")?.unwrap_or(1.0);
@@ -934,6 +942,7 @@ impl Resolver<'_> {
             &["angle", "convexity", "file", "layer", "origin"],
         )?;
         no_file(&a, s)?;
+        self.openscad_facets_unsupported(s, "rotate_extrude")?;
         let mut angle = a.number("angle")?.unwrap_or(360.0);
         if angle <= -360.0 || angle > 360.0 {
             angle = 360.0;

@@ -26,6 +26,9 @@ use crate::mutant;
 use crate::syntax::ast::Statement;
 use glam::DAffine3;
 
+/// The most fragments `--facets openscad` builds for one circle.
+pub const MAX_FRAGMENTS: usize = 100_000;
+
 const TRANSFORMS: &[&str] = &["multmatrix", "translate", "rotate", "scale", "mirror"];
 const OPERATIONS: &[&str] = &["union", "intersection", "difference", "group", "render"];
 const APPEARANCE: &[&str] = &["color", "material"];
@@ -38,11 +41,17 @@ const SCENE: &[&str] = &[
 ];
 
 pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
+    resolve_with(src, stmts, super::Facets::default())
+}
+
+/// [`resolve`] with `$fn`, `$fa` and `$fs` read as `facets` says.
+pub fn resolve_with(src: &Source, stmts: &[Statement], facets: super::Facets) -> Result<Scene> {
     let mut r = Resolver {
         src,
         b: SceneBuilder::new(),
         camera_at: None,
         subtracted: false,
+        facets,
     };
     // Scene statements are read first, wherever they stand at the top level.
     for s in stmts {
@@ -117,9 +126,54 @@ pub(crate) struct Resolver<'a> {
     /// Whether the statement being read is subtracted by a difference (an
     /// odd number of times), for the preview slab of a 2-D shape.
     subtracted: bool,
+    /// How `$fn`, `$fa`, `$fs` are read.
+    facets: super::Facets,
 }
 
+/// OpenSCAD's smallest radius that is still a circle (`grid.h`).
+const GRID_FINE: f64 = 0.000_000_953_674_316_406_25;
+
 impl Resolver<'_> {
+    /// The regular polygon a circle, cylinder or sphere of radius `r` is
+    /// made of, if any, by the `--facets` mode: OpenSCAD's
+    /// `Calc::get_fragments_from_r` under `openscad` (3 below GRID_FINE;
+    /// max($fn, 3) for a positive $fn; else ⌈max(min(360/$fa, 2πr/$fs), 5)⌉).
+    fn fragments(&self, a: &Args, r: f64) -> Option<usize> {
+        match self.facets {
+            super::Facets::Exact => None,
+            super::Facets::Shapes => a.few_facets(),
+            super::Facets::OpenScad => {
+                let fnv = a.special("$fn").unwrap_or(0.0);
+                let fa = a.special("$fa").unwrap_or(12.0);
+                let fs = a.special("$fs").unwrap_or(2.0);
+                let n = if r < GRID_FINE || !fnv.is_finite() {
+                    3.0
+                } else if fnv > 0.0 {
+                    fnv.max(3.0).floor()
+                } else {
+                    (360.0 / fa)
+                        .min(r * 2.0 * std::f64::consts::PI / fs)
+                        .max(5.0)
+                        .ceil()
+                };
+                Some(n.min(MAX_FRAGMENTS as f64) as usize)
+            }
+        }
+    }
+
+    /// Under `--facets openscad`, an error for a statement whose facets
+    /// csgrt does not build yet.
+    fn openscad_facets_unsupported(&self, s: &Statement, what: &str) -> Result<()> {
+        if self.facets != super::Facets::OpenScad {
+            return Ok(());
+        }
+        Err(self.src.error(
+            s.name_span,
+            format!("{what} under `--facets openscad` is not supported yet"),
+            "csgrt builds OpenSCAD's facets of circles, cylinders and spheres; use --facets exact or the default",
+        ))
+    }
+
     fn warn(&mut self, place: TextRange, message: &str, label: &str) {
         self.b.warn(self.src, place, message, label);
     }

@@ -111,7 +111,7 @@ fn sphere(
     if r <= 0.0 {
         return res.empty(s, "its radius is zero or negative");
     }
-    if let Some(n) = a.few_facets() {
+    if let Some(n) = res.fragments(&a, r) {
         let (pts, faces) = ring_sphere(r, n);
         return res.mesh_leaf(s, s.args_span, pts, faces, xf, mat);
     }
@@ -181,7 +181,7 @@ fn cylinder(
     if rmax <= 0.0 {
         return res.empty(s, "both its radii are zero");
     }
-    if let Some(n) = a.few_facets() {
+    if let Some(n) = res.fragments(&a, rmax) {
         // OpenSCAD's prism (or pyramid, or frustum) over the regular
         // n-gon: the wider end's polygon tapered to the other's, turned
         // end for end when the top is the wider.
