@@ -9,9 +9,36 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
+/// A convex mesh: the octahedron of the unit axis points.
+fn octahedron() -> Shape {
+    use csgrt::geometry::mesh::{Mesh, MeshData};
+    let v = [
+        DVec3::X,
+        DVec3::NEG_X,
+        DVec3::Y,
+        DVec3::NEG_Y,
+        DVec3::Z,
+        DVec3::NEG_Z,
+    ];
+    let t = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    Shape::Mesh(Mesh {
+        data: std::sync::Arc::new(MeshData::new(v.to_vec(), t.to_vec())),
+    })
+}
+
 fn convex_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![
         Just(Shape::Sphere(Sphere)),
+        Just(octahedron()),
         any::<bool>().prop_map(|centered| Shape::Cuboid(Cuboid { centered })),
         any::<bool>().prop_map(|centered| Shape::Cone(Cone {
             r0: 1.0,
