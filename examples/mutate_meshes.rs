@@ -25,6 +25,7 @@ fn main() {
         ("off", "off"),
         ("obj", "obj"),
         ("threemf", "3mf"),
+        ("amf", "amf"),
     ] {
         let corpus: Vec<Vec<u8>> = std::fs::read_dir(format!("fuzz/corpus/mesh_{dir}"))
             .expect("run from the repository root")

@@ -12,7 +12,10 @@
 //! header, the counts, the points, then each face as its size and
 //! indices, `#` comments. OBJ comes from `tobj` (in f64), 3MF from
 //! `threemf` (every mesh object of the model, as OpenSCAD 2021.01's
-//! lib3mf import takes them, units not applied).
+//! lib3mf import takes them, units not applied), AMF from its XML
+//! (`roxmltree`; a zipped AMF through `zip`): every object's mesh, each
+//! volume's triangles over the object's vertices, units not applied
+//! (OpenSCAD 2021.01's `import_amf.cc`).
 //!
 //! Identical points are merged (exact equality), so that shared edges are
 //! shared by index.
@@ -47,15 +50,17 @@ fn err(line: Option<usize>, message: impl Into<String>) -> FileError {
 }
 
 /// The formats by extension (lower case), for messages.
-pub const FORMATS: &[&str] = &["stl", "off", "obj", "3mf"];
+pub const FORMATS: &[&str] = &["stl", "off", "obj", "3mf", "amf"];
 
 /// Reads a mesh file of the format its extension `ext` names.
 pub fn read(ext: &str, bytes: &[u8]) -> Result<MeshFile, FileError> {
     let mut m = match ext {
-        "stl" => stl(bytes)?,
+        // Merged as read.
+        "stl" => return stl(bytes),
         "off" => off(bytes)?,
         "obj" => obj(bytes)?,
         "3mf" => three_mf(bytes)?,
+        "amf" => amf(bytes)?,
         _ => {
             return Err(err(
                 None,
@@ -543,4 +548,98 @@ pub fn surface_mesh(h: &Heights, center: bool) -> MeshFile {
     }
     merge(&mut m);
     m
+}
+
+/// The most bytes an AMF's XML may unzip to.
+pub const MAX_AMF_BYTES: u64 = 1 << 30;
+
+fn amf(bytes: &[u8]) -> Result<MeshFile, FileError> {
+    let unzipped;
+    let xml: &[u8] = if bytes.starts_with(b"PK") {
+        let mut z = zip::ZipArchive::new(std::io::Cursor::new(bytes))
+            .map_err(|e| err(None, format!("not a readable zipped AMF: {e}")))?;
+        let mut f = z
+            .by_index(0)
+            .map_err(|e| err(None, format!("not a readable zipped AMF: {e}")))?;
+        let mut v = Vec::new();
+        use std::io::Read;
+        (&mut f)
+            .take(MAX_AMF_BYTES)
+            .read_to_end(&mut v)
+            .map_err(|e| err(None, format!("not a readable zipped AMF: {e}")))?;
+        unzipped = v;
+        &unzipped
+    } else {
+        bytes
+    };
+    let text = std::str::from_utf8(xml).map_err(|e| {
+        let line = xml[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        err(Some(line), "a byte that is not UTF-8 text")
+    })?;
+    let doc = roxmltree::Document::parse(text)
+        .map_err(|e| err(Some(e.pos().row as usize), format!("not AMF's XML: {e}")))?;
+    let line = |n: roxmltree::Node| Some(doc.text_pos_at(n.range().start).row as usize);
+    fn child<'a, 'i>(n: roxmltree::Node<'a, 'i>, name: &str) -> Option<roxmltree::Node<'a, 'i>> {
+        n.children().find(|c| c.has_tag_name(name))
+    }
+    let number = |n: roxmltree::Node, name: &str| -> Result<f64, FileError> {
+        let c = child(n, name).ok_or_else(|| err(line(n), format!("expected <{name}>")))?;
+        let t = c.text().unwrap_or("").trim();
+        t.parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| err(line(c), format!("<{name}> holds `{t}`, not a number")))
+    };
+    let mut m = MeshFile::default();
+    let root = doc.root_element();
+    if !root.has_tag_name("amf") {
+        return Err(err(line(root), "expected an <amf> document"));
+    }
+    for mesh in root
+        .children()
+        .filter(|o| o.has_tag_name("object"))
+        .filter_map(|o| child(o, "mesh"))
+    {
+        let base = m.points.len() as u32;
+        let mut count = 0u32;
+        if let Some(vs) = child(mesh, "vertices") {
+            for v in vs.children().filter(|v| v.has_tag_name("vertex")) {
+                let c = child(v, "coordinates")
+                    .ok_or_else(|| err(line(v), "expected <coordinates>"))?;
+                m.points.push(DVec3::new(
+                    number(c, "x")?,
+                    number(c, "y")?,
+                    number(c, "z")?,
+                ));
+                count += 1;
+                if m.points.len() > MAX_POINTS {
+                    return Err(err(line(v), format!("more than {MAX_POINTS} points")));
+                }
+            }
+        }
+        for vol in mesh.children().filter(|v| v.has_tag_name("volume")) {
+            for t in vol.children().filter(|t| t.has_tag_name("triangle")) {
+                let mut f = Vec::with_capacity(3);
+                for k in ["v1", "v2", "v3"] {
+                    let i = number(t, k)?;
+                    if i.fract() != 0.0 || i < 0.0 || i >= count as f64 {
+                        return Err(err(
+                            line(t),
+                            format!(
+                                "<{k}> {i} is out of range: expected 0 to {}",
+                                count.saturating_sub(1)
+                            ),
+                        ));
+                    }
+                    f.push(base + i as u32);
+                }
+                m.faces.push(f);
+            }
+        }
+    }
+    Ok(m)
 }

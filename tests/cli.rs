@@ -416,7 +416,7 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     );
     assert_eq!(
         fails("import(\"part.svg\");\n"),
-        "error: importing `.svg` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.svg\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings and STL, OFF, OBJ and 3MF meshes\n"
+        "error: importing `.svg` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.svg\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings and STL, OFF, OBJ, 3MF and AMF meshes\n"
     );
     // A text that is no string, at the value; vertical text, at its
     // direction; a twisted text, at the extrusion.

@@ -58,6 +58,7 @@ fn the_mesh_corpora_pass_the_mesh_harness() {
         ("off", "off"),
         ("obj", "obj"),
         ("threemf", "3mf"),
+        ("amf", "amf"),
     ] {
         let files = inputs(&format!("fuzz/corpus/mesh_{dir}"));
         assert!(!files.is_empty(), "{dir}");

@@ -1761,6 +1761,24 @@ def import_mesh(rd, s, a):
         nv, nf = int(head[0]), int(head[1])
         pts = np.array([w[:3] for w in words[:nv]], dtype=float)
         faces = [[int(x) for x in w[1 : 1 + int(w[0])]] for w in words[nv : nv + nf]]
+    elif ext == "amf":
+        import io
+        import xml.etree.ElementTree as ET
+        import zipfile
+
+        if data[:2] == b"PK":
+            with zipfile.ZipFile(io.BytesIO(data)) as z:
+                data = z.read(z.namelist()[0])
+        root = ET.fromstring(data)
+        pts, faces = [], []
+        for mesh in root.iter("mesh"):
+            base = len(pts)
+            for v in mesh.find("vertices").iter("vertex"):
+                c = v.find("coordinates")
+                pts.append([float(c.find(k).text) for k in ("x", "y", "z")])
+            for t in mesh.iter("triangle"):
+                faces.append([base + int(t.find(k).text) for k in ("v1", "v2", "v3")])
+        pts = np.array(pts, dtype=float)
     else:
         raise rd.err(s, f"import of .{ext} is not in the oracle")
     uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)

@@ -651,7 +651,7 @@ impl Resolver<'_> {
             } else {
                 (
                     format!("importing `.{ext}` files is not supported yet"),
-                    "csgrt imports DXF drawings and STL, OFF, OBJ and 3MF meshes",
+                    "csgrt imports DXF drawings and STL, OFF, OBJ, 3MF and AMF meshes",
                 )
             };
             return Err(self.src.error(span, message, label));
