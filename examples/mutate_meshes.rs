@@ -20,13 +20,7 @@ fn main() {
         seed ^= seed << 17;
         seed
     };
-    for (dir, ext) in [
-        ("stl", "stl"),
-        ("off", "off"),
-        ("obj", "obj"),
-        ("threemf", "3mf"),
-        ("amf", "amf"),
-    ] {
+    for &(dir, ext) in csgrt::harness::MESH_TARGETS {
         let corpus: Vec<Vec<u8>> = std::fs::read_dir(format!("fuzz/corpus/mesh_{dir}"))
             .expect("run from the repository root")
             .map(|e| std::fs::read(e.unwrap().path()).unwrap())

@@ -61,6 +61,16 @@ pub fn exercise_readers(data: &[u8]) {
     let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
 }
 
+/// The mesh readers' fuzz targets: (the target's and corpus's suffix, the
+/// format's extension): `fuzz/fuzz_targets/mesh_DIR.rs`, `fuzz/corpus/mesh_DIR`.
+pub const MESH_TARGETS: &[(&str, &str)] = &[
+    ("stl", "stl"),
+    ("off", "off"),
+    ("obj", "obj"),
+    ("threemf", "3mf"),
+    ("amf", "amf"),
+];
+
 /// Any bytes as a mesh file of format `ext` (`fuzz/fuzz_targets/mesh_*.rs`):
 /// the reader must answer a mesh or an error, never panic, and a mesh it
 /// answers must be one csgrt can place and cast rays through.

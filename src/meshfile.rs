@@ -167,14 +167,7 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
             "neither a binary STL (84 + 50·n bytes) nor an ASCII one (beginning with `solid`)",
         ));
     }
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        err(Some(line), "a byte that is not UTF-8 text")
-    })?;
+    let text = utf8(bytes)?;
     let mut m = MeshFile::default();
     let mut merger = Merger::new(1024);
     let mut corners = [0u32; 3];
@@ -216,6 +209,18 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
     finite(m)
 }
 
+/// The file as text, or the line of its first byte that is not UTF-8.
+fn utf8(bytes: &[u8]) -> Result<&str, FileError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1;
+        err(Some(line), "a byte that is not UTF-8 text")
+    })
+}
+
 fn finite(m: MeshFile) -> Result<MeshFile, FileError> {
     if m.points.iter().any(|p| !p.is_finite()) {
         return Err(err(None, "a point is not finite"));
@@ -224,14 +229,7 @@ fn finite(m: MeshFile) -> Result<MeshFile, FileError> {
 }
 
 fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        err(Some(line), "a byte that is not UTF-8 text")
-    })?;
+    let text = utf8(bytes)?;
     // The lines that say something, comments dropped, with their numbers.
     let mut lines = text
         .lines()
@@ -572,14 +570,7 @@ fn amf(bytes: &[u8]) -> Result<MeshFile, FileError> {
     } else {
         bytes
     };
-    let text = std::str::from_utf8(xml).map_err(|e| {
-        let line = xml[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1;
-        err(Some(line), "a byte that is not UTF-8 text")
-    })?;
+    let text = utf8(xml)?;
     let doc = roxmltree::Document::parse(text)
         .map_err(|e| err(Some(e.pos().row as usize), format!("not AMF's XML: {e}")))?;
     let line = |n: roxmltree::Node| Some(doc.text_pos_at(n.range().start).row as usize);

@@ -53,13 +53,7 @@ fn inputs_that_once_crashed_pass_the_harness() {
 fn the_mesh_corpora_pass_the_mesh_harness() {
     // Each mesh reader's corpus (`fuzz/fuzz_targets/mesh_*.rs`): files
     // whole, cut short and malformed.
-    for (dir, ext) in [
-        ("stl", "stl"),
-        ("off", "off"),
-        ("obj", "obj"),
-        ("threemf", "3mf"),
-        ("amf", "amf"),
-    ] {
+    for &(dir, ext) in csgrt::harness::MESH_TARGETS {
         let files = inputs(&format!("fuzz/corpus/mesh_{dir}"));
         assert!(!files.is_empty(), "{dir}");
         for f in files {
