@@ -115,26 +115,15 @@ impl Merger {
 
 /// Merges points with the same coordinates (bit for bit, −0 as 0).
 fn merge(m: &mut MeshFile) {
-    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
-    let mut index: HashMap<[u64; 3], u32, std::hash::BuildHasherDefault<Mix>> =
-        HashMap::with_capacity_and_hasher(m.points.len() / 4, Default::default());
-    let mut kept = Vec::with_capacity(m.points.len() / 4);
-    let remap: Vec<u32> = m
-        .points
-        .iter()
-        .map(|&p| {
-            *index.entry(key(p)).or_insert_with(|| {
-                kept.push(p);
-                kept.len() as u32 - 1
-            })
-        })
-        .collect();
+    let mut merger = Merger::new(m.points.len() / 4);
+    let mut kept = MeshFile::default();
+    let remap: Vec<u32> = m.points.iter().map(|&p| merger.add(&mut kept, p)).collect();
     for f in &mut m.faces {
         for i in f.iter_mut() {
             *i = remap[*i as usize];
         }
     }
-    m.points = kept;
+    m.points = kept.points;
 }
 
 fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {

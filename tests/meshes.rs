@@ -37,7 +37,8 @@ fn cube() -> Mesh {
     mesh(&v, &tris)
 }
 
-fn spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<(f64, f64)> {
+/// Every span of the whole line, with the parts of its ends.
+fn raw_spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<csgrt::geometry::solid::RawSpan> {
     let mut st = Stats::default();
     let mut out = Vec::new();
     let mut q = Probe {
@@ -48,8 +49,12 @@ fn spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<(f64, f64)> {
         st: &mut st,
         need: csgrt::geometry::Need::Spans,
     };
-    m.spans(&mut q, &mut |(t0, _, t1, _)| out.push((t0, t1)));
+    m.spans(&mut q, &mut |s| out.push(s));
     out
+}
+
+fn spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<(f64, f64)> {
+    raw_spans(m, o, d).iter().map(|s| (s.0, s.2)).collect()
 }
 
 /// The closed form: the slab test of [0, 1]³.
@@ -181,17 +186,7 @@ fn a_mesh_wound_either_way_or_both_is_the_same_solid() {
         );
         let d = (at - o).normalize();
         for m in [&reversed, &mixed] {
-            let mut st = Stats::default();
-            let mut got = Vec::new();
-            let mut q = Probe {
-                o,
-                d,
-                tmin: f64::NEG_INFINITY,
-                tmax: f64::INFINITY,
-                st: &mut st,
-                need: csgrt::geometry::Need::Spans,
-            };
-            m.spans(&mut q, &mut |s| got.push(s));
+            let got = raw_spans(m, o, d);
             assert_eq!(got.len(), 1);
             let (t0, p0, t1, p1) = got[0];
             let want = slab(o, d).unwrap();

@@ -263,16 +263,23 @@ def polyhedron_triangles(p):
     return tris
 
 
+def polyhedron_solid(leaf):
+    """manifold3d's solid of a polyhedron leaf in its object space (the
+    oracle's own triangulation, kept on the leaf)."""
+    if not hasattr(leaf, "_solid"):
+        tris = polyhedron_triangles(leaf.params)
+        m = mf.Manifold(mf.Mesh64(vert_properties=np.asarray(leaf.params["points"], dtype=np.float64), tri_verts=tris))
+        if m.status() != mf.Error.NoError or m.is_empty():
+            raise ValueError(f"the oracle's manifold3d cannot take this polyhedron: {m.status()}")
+        leaf._solid = m
+    return leaf._solid
+
+
 def leaf_mesh(leaf, n, big):
     p = leaf.params
     k = leaf.kind
     if k == "polyhedron":
-        if not hasattr(leaf, "_tris"):
-            leaf._tris = polyhedron_triangles(p)
-        m = mf.Manifold(mf.Mesh64(vert_properties=np.asarray(p["points"], dtype=np.float64), tri_verts=leaf._tris))
-        if m.status() != mf.Error.NoError or m.is_empty():
-            raise ValueError(f"the oracle's manifold3d cannot take this polyhedron: {m.status()}")
-        return m.transform(leaf.matrix[:3, :].tolist()).as_original()
+        return polyhedron_solid(leaf).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k in reader.EXTRUSIONS:
         return extrusion_mesh(leaf, n).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k == "sphere":

@@ -271,9 +271,7 @@ class PovLeaf:
                         m = mf.Manifold(mf.Mesh64(vert_properties=p["verts"], tri_verts=t[:, [0, 2, 1]].copy()))
                     p["solid"] = m if m.status() == mf.Error.NoError and not m.is_empty() else None
                 if p["solid"] is not None:
-                    far = 4.0 * float(np.linalg.norm(p["verts"].max(axis=0) - p["verts"].min(axis=0))) + 1.0
-                    d = p["inside"] / np.linalg.norm(p["inside"])
-                    return np.array([len(p["solid"].ray_cast(x.tolist(), (x + far * d).tolist())) % 2 == 1 for x in q])
+                    return segment_parity(p["solid"], p["verts"], q, p["inside"])
             return ray_parity(p["verts"], p["tris"], q, p["inside"])
         if self.kind == "torus":
             # rotate x*90 first: object (x, y, z) came from torus coords
@@ -332,16 +330,18 @@ def mesh_inside(leaf, q):
     p = leaf.params
     if len(p["faces"]) <= 64:
         return winding_inside(p["points"], p["faces"], q)
-    import manifold3d as mf
     import oracle
 
-    if not hasattr(leaf, "_solid"):
-        tris = oracle.polyhedron_triangles(p)
-        leaf._solid = mf.Manifold(mf.Mesh64(vert_properties=np.asarray(p["points"], dtype=np.float64), tri_verts=tris))
-    lo, hi = p["points"].min(axis=0), p["points"].max(axis=0)
-    far = 4.0 * float(np.linalg.norm(hi - lo)) + 1.0
-    d = np.array([0.5734621, 0.6143793, 0.5420587])
-    return np.array([len(leaf._solid.ray_cast(x.tolist(), (x + far * d).tolist())) % 2 == 1 for x in q])
+    return segment_parity(oracle.polyhedron_solid(leaf), p["points"], q, np.array([0.5734621, 0.6143793, 0.5420587]))
+
+
+def segment_parity(solid, verts, q, d):
+    """Whether points q are inside a manifold3d solid over `verts`: the
+    parity of its crossings along the segment from each point along d out
+    past the points' box."""
+    far = 4.0 * float(np.linalg.norm(verts.max(axis=0) - verts.min(axis=0))) + 1.0
+    d = d / np.linalg.norm(d)
+    return np.array([len(solid.ray_cast(x.tolist(), (x + far * d).tolist())) % 2 == 1 for x in q])
 
 
 def winding_inside(pts, faces, q):

@@ -1659,6 +1659,13 @@ def dxf_paths(pieces):
     return paths, n_open
 
 
+def merged(pts, faces):
+    """(points, faces) with identical points made one (−0 as 0)."""
+    uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)
+    inv = inv.reshape(-1)
+    return uniq, [[int(inv[i]) for i in f] for f in faces]
+
+
 def surface_mesh(rd, s, a):
     """(points, faces) of OpenSCAD 2021.01's surface() (surface.cc, read
     here on its own): the heights of a PNG (row h - 1 - y, column x,
@@ -1729,9 +1736,7 @@ def surface_mesh(rd, s, a):
     rim += [(j, rows - 1) for j in range(cols - 1, 0, -1)] + [(0, i) for i in range(rows - 1, 0, -1)]
     face(*[(x, y, low) for x, y in reversed(rim)])
     pts = np.array(pts, dtype=float)
-    uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)
-    inv = inv.reshape(-1)
-    return uniq, [[int(inv[i]) for i in f] for f in faces]
+    return merged(pts, faces)
 
 
 def import_mesh(rd, s, a):
@@ -1781,9 +1786,7 @@ def import_mesh(rd, s, a):
         pts = np.array(pts, dtype=float)
     else:
         raise rd.err(s, f"import of .{ext} is not in the oracle")
-    uniq, inv = np.unique(pts + 0.0, axis=0, return_inverse=True)
-    inv = inv.reshape(-1)
-    return uniq, [[int(inv[i]) for i in f] for f in faces]
+    return merged(pts, faces)
 
 
 def import_2d(rd, s, a):

@@ -82,10 +82,10 @@ impl Section {
     /// The section's normal where the child's unit world normal is `n`:
     /// in the frame, the child's normal less its z part.
     pub fn normal(&self, n: DVec3) -> DVec3 {
-        let mut local = self.xf.to_world.matrix3.transpose() * n;
         if crate::mutant::active("section_unflattened") {
             return n;
         }
+        let mut local = self.xf.to_world.matrix3.transpose() * n;
         local.z = 0.0;
         let w = self.xf.normal * local;
         if w == DVec3::ZERO {
@@ -180,15 +180,7 @@ impl Csg {
             let u = self.add_op(Op::Union, rest);
             children.push(u);
         }
-        let b = |i: &u32| self.nodes[*i as usize].bounds;
-        let bounds = match op {
-            Op::Union => children.iter().map(b).fold(Aabb::EMPTY, |a, x| a.union(&x)),
-            Op::Intersection => children
-                .iter()
-                .map(b)
-                .fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
-            Op::Difference => b(&children[0]),
-        };
+        let bounds = op_bounds(op, children.iter().map(|&c| self.nodes[c as usize].bounds));
         let index = if op == Op::Union {
             self.union_index(&children)
         } else {
@@ -239,14 +231,7 @@ impl Csg {
                 p.shape.world_bounds(&(*m * p.xf.to_world))
             }
             NodeKind::Section(..) => Aabb::EVERYTHING,
-            NodeKind::Op(op, ch) => {
-                let mut bs = ch.iter().map(|&c| self.bounds_in(c, m));
-                match op {
-                    Op::Union => bs.fold(Aabb::EMPTY, |a, x| a.union(&x)),
-                    Op::Intersection => bs.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
-                    Op::Difference => bs.next().unwrap_or(Aabb::EMPTY),
-                }
-            }
+            NodeKind::Op(op, ch) => op_bounds(*op, ch.iter().map(|&c| self.bounds_in(c, m))),
         }
     }
 
@@ -567,6 +552,16 @@ impl Csg {
                 self.contains(ch[0], p) && !ch[1..].iter().any(|&c| self.contains(c, p))
             }
         }
+    }
+}
+
+/// The box of an operation from its children's (in order): a union's
+/// join, an intersection's overlap, a difference's first child's.
+fn op_bounds(op: Op, mut boxes: impl Iterator<Item = Aabb>) -> Aabb {
+    match op {
+        Op::Union => boxes.fold(Aabb::EMPTY, |a, x| a.union(&x)),
+        Op::Intersection => boxes.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
+        Op::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
     }
 }
 

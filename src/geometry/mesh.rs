@@ -132,9 +132,7 @@ impl MeshData {
         out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         out
     }
-}
 
-impl MeshData {
     /// The nearest crossing `(t, triangle, its normal faces along d)` with
     /// tmin < t < tmax, boxes opened nearest first and skipped once they
     /// begin beyond the best so far.
@@ -249,6 +247,16 @@ impl Watertight {
     }
 }
 
+/// A crossing's part: its triangle, and whether its normal is to be turned
+/// (an entry faces against d, an exit along it).
+fn part_of((_, i, along): (f64, u32, bool), entering: bool) -> Part {
+    (i << 1) | u32::from(along == entering)
+}
+
+/// The line along which a point's inside is counted, and POV-Ray's
+/// `inside_vector` for the same parity: no special direction.
+const INSIDE: DVec3 = DVec3::new(0.573_462_1, 0.614_379_3, 0.542_058_7);
+
 /// A mesh placed in the world.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Mesh {
@@ -277,7 +285,7 @@ impl Solid for Mesh {
                         before.len() % 2 == 0
                     }
                 };
-            let part = (x.1 << 1) | u32::from(x.2 == entering);
+            let part = part_of(x, entering);
             if entering {
                 emit((x.0, part, f64::INFINITY, NO_PART));
             } else {
@@ -291,21 +299,16 @@ impl Solid for Mesh {
             return;
         }
         let xs = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmax, q.st);
-        // A crossing's part: its triangle, and whether its normal is to be
-        // turned (an entry faces against d, an exit along it).
-        let part = |(_, i, along): (f64, u32, bool), entering: bool| -> Part {
-            (i << 1) | u32::from(along == entering)
-        };
         let mut k = 0;
         while k < xs.len() {
             let a = xs[k];
             match xs.get(k + 1) {
                 Some(&b) => {
                     if b.0 > a.0 {
-                        emit((a.0, part(a, true), b.0, part(b, false)));
+                        emit((a.0, part_of(a, true), b.0, part_of(b, false)));
                     }
                 }
-                None => emit((a.0, part(a, true), f64::INFINITY, NO_PART)),
+                None => emit((a.0, part_of(a, true), f64::INFINITY, NO_PART)),
             }
             k += 2;
         }
@@ -322,8 +325,7 @@ impl Solid for Mesh {
     }
 
     fn contains(&self, p: DVec3) -> bool {
-        // Parity along a fixed line with no special direction.
-        let d = DVec3::new(0.573_462_1, 0.614_379_3, 0.542_058_7);
+        let d = INSIDE;
         let mut st = crate::stats::Stats::default();
         let b = &self.data.bounds;
         if p.cmplt(b.min).any() || p.cmpgt(b.max).any() {
@@ -381,11 +383,14 @@ impl Solid for Mesh {
             .map(|t| format!("<{}, {}, {}>", t[0], t[1], t[2]))
             .collect();
         format!(
-            "mesh2 {{ vertex_vectors {{ {}, {} }} face_indices {{ {}, {} }} inside_vector <0.5734621, 0.6143793, 0.5420587>",
+            "mesh2 {{ vertex_vectors {{ {}, {} }} face_indices {{ {}, {} }} inside_vector <{:?}, {:?}, {:?}>",
             v.len(),
             v.join(", "),
             f.len(),
-            f.join(", ")
+            f.join(", "),
+            INSIDE.x,
+            INSIDE.y,
+            INSIDE.z
         )
     }
 }

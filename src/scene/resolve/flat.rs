@@ -606,7 +606,6 @@ impl Resolver<'_> {
         }
     }
 
-    /// `import()` of a drawing (DXF), under `m`.
     /// The file `import` names: (its name, the argument's place, its
     /// extension in lower case, its path beside the scene).
     pub(super) fn import_file<'b>(
@@ -632,13 +631,10 @@ impl Resolver<'_> {
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
-        let path = std::path::Path::new(&self.src.name)
-            .parent()
-            .unwrap_or(std::path::Path::new("."))
-            .join(file);
-        Ok((file, span, ext, path))
+        Ok((file, span, ext, self.named_file(file)))
     }
 
+    /// `import()` of a drawing (DXF), under `m`.
     pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
         let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
         let (_, span, ext, path) = self.import_file(&a)?;
@@ -665,13 +661,12 @@ impl Resolver<'_> {
             .numbers("origin", &[2])?
             .map_or(DVec2::ZERO, |v| DVec2::new(v[0], v[1]));
         let scale = a.number("scale")?.unwrap_or(1.0);
-        let bytes = std::fs::read(&path).map_err(|e| {
-            self.src.error(
-                span,
-                format!("cannot read drawing `{}`: {e}", path.display()),
-                "expected a DXF file beside the scene",
-            )
-        })?;
+        let bytes = self.read_named(
+            span,
+            &path,
+            "drawing",
+            "expected a DXF file beside the scene",
+        )?;
         let d = crate::drawing::read(&bytes, layer, origin, scale).map_err(|e| {
             self.src.error(
                 span,

@@ -174,6 +174,33 @@ impl Resolver<'_> {
         ))
     }
 
+    /// Where a file the model names (`import`, `surface`) is read from:
+    /// joined to the model's folder (an absolute name stays as it is).
+    fn named_file(&self, file: &str) -> std::path::PathBuf {
+        std::path::Path::new(&self.src.name)
+            .parent()
+            .unwrap_or(std::path::Path::new("."))
+            .join(file)
+    }
+
+    /// The bytes of a file the model names, or an error at `place` with
+    /// the system's reason: "cannot read `what` `path`: …".
+    fn read_named(
+        &self,
+        place: TextRange,
+        path: &std::path::Path,
+        what: &str,
+        label: &str,
+    ) -> Result<Vec<u8>> {
+        std::fs::read(path).map_err(|e| {
+            self.src.error(
+                place,
+                format!("cannot read {what} `{}`: {e}", path.display()),
+                label,
+            )
+        })
+    }
+
     fn warn(&mut self, place: TextRange, message: &str, label: &str) {
         self.b.warn(self.src, place, message, label);
     }

@@ -327,18 +327,11 @@ fn import(
     if !crate::meshfile::FORMATS.contains(&ext.as_str()) {
         return res.slab(s, xf, mat);
     }
-    let bytes = std::fs::read(&path).map_err(|e| {
-        res.src.error(
-            span,
-            format!("cannot read mesh `{}`: {e}", path.display()),
-            "expected a mesh file beside the scene",
-        )
-    })?;
+    let bytes = res.read_named(span, &path, "mesh", "expected a mesh file beside the scene")?;
     let m = crate::meshfile::read(&ext, &bytes).map_err(|e| {
-        let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
         res.src.error(
             span,
-            format!("`{}`{at}: {}", path.display(), e.message),
+            file_message(&path, &e),
             format!("expected a .{ext} mesh"),
         )
     })?;
@@ -366,30 +359,20 @@ fn surface(
     let span = a.span_of("file");
     let center = a.boolean("center")?.unwrap_or(false);
     let invert = a.boolean("invert")?.unwrap_or(false);
-    let path = std::path::Path::new(&res.src.name)
-        .parent()
-        .unwrap_or(std::path::Path::new("."))
-        .join(file);
-    let bytes = std::fs::read(&path).map_err(|e| {
-        res.src.error(
-            span,
-            format!("cannot read heights `{}`: {e}", path.display()),
-            "expected a .dat grid or a PNG image beside the scene",
-        )
-    })?;
+    let path = res.named_file(file);
+    let label = "expected a .dat grid or a PNG image beside the scene";
+    let bytes = res.read_named(span, &path, "heights", label)?;
     let (h, warning) = crate::meshfile::heights(&bytes, invert).map_err(|e| {
-        let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
         res.src.error(
             span,
-            format!("`{}`{at}: {}", path.display(), e.message),
+            file_message(&path, &e),
             "expected a .dat grid or a PNG image",
         )
     })?;
     if let Some(w) = warning {
-        let at = w.line.map_or(String::new(), |l| format!(", line {l}"));
         res.warn(
             span,
-            &format!("`{}`{at}: {}", path.display(), w.message),
+            &file_message(&path, &w),
             "as OpenSCAD, the heights read before it are kept",
         );
     }
@@ -398,6 +381,12 @@ fn surface(
     }
     let m = crate::meshfile::surface_mesh(&h, center);
     res.mesh_leaf(s, span, m.points, m.faces, xf, mat)
+}
+
+/// "`path`, line N: what" for what is wrong in a file the model names.
+fn file_message(path: &std::path::Path, e: &crate::meshfile::FileError) -> String {
+    let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
+    format!("`{}`{at}: {}", path.display(), e.message)
 }
 
 impl Resolver<'_> {
