@@ -76,6 +76,7 @@ pub const MESH_TARGETS: &[(&str, &str)] = &[
 /// answers must be one csgrt can place and cast rays through.
 pub fn exercise_mesh(ext: &str, data: &[u8]) {
     use crate::geometry::mesh::{triangulate, Mesh, MeshData};
+    use crate::geometry::mesh_bvh::MAX_COORD;
     use crate::geometry::{Probe, Solid};
     let Ok(m) = crate::meshfile::read(ext, data) else {
         return;
@@ -86,7 +87,9 @@ pub fn exercise_mesh(ext: &str, data: &[u8]) {
         assert!(f.len() >= 3 && f.iter().all(|&i| (i as usize) < m.points.len()));
         tris.extend(triangulate(&m.points, f));
     }
-    if tris.is_empty() || tris.len() > 100_000 {
+    // As the resolver: no mesh of more, or with points farther out.
+    let far = m.points.iter().any(|p| p.abs().max_element() > MAX_COORD);
+    if tris.is_empty() || tris.len() > 100_000 || far {
         return;
     }
     let mesh = Mesh {

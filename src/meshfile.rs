@@ -79,15 +79,27 @@ struct Mix(u64);
 
 impl std::hash::Hasher for Mix {
     fn finish(&self) -> u64 {
-        self.0
+        // High bits folded down: a coordinate read from f32 has its low
+        // 29 bits zero, and the table indexes by the low bits.
+        let x = self.0 ^ (self.0 >> 29);
+        x.wrapping_mul(0x94_d0_49_bb_13_31_11_eb) ^ (x >> 32)
     }
     fn write(&mut self, bytes: &[u8]) {
-        for b in bytes {
+        // Eight bytes a word (a point's three coordinates are 24).
+        let mut words = bytes.chunks_exact(8);
+        for w in &mut words {
+            self.write_u64(u64::from_le_bytes(w.try_into().expect("8 bytes")));
+        }
+        for b in words.remainder() {
             self.write_u64(*b as u64);
         }
     }
     fn write_u64(&mut self, x: u64) {
         self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+    // An array's length, written before its items: one word, not 8 bytes.
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
     }
 }
 

@@ -364,3 +364,15 @@ fn sizes_and_positions_beyond_1e15_are_out_of_range() {
     let r = csgrt(dir.path(), &["ok.csg", "--size", "8x6", "-q"]);
     assert_eq!(r.status, 0, "{}", r.stderr);
 }
+
+#[test]
+fn a_mesh_point_beyond_the_coordinate_limit_is_refused_at_its_statement() {
+    // 2^60 is the limit of the mesh hierarchy's f32 arithmetic.
+    let err = common::fails(
+        "polyhedron(points = [[0, 0, 0], [2e18, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]]);\n",
+    );
+    assert_eq!(
+        err,
+        "error: a point of the mesh, [2000000000000000000, 0, 0], lies too far out\n --> bad.csg:1:1\n  |\n1 | polyhedron(points = [[0, 0, 0], [2e18, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], [0, 3, 1], …\n  | ^^^^^^^^^^ expected coordinates within ±1.152921504606847e18\n"
+    );
+}

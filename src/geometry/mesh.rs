@@ -19,12 +19,12 @@
 //! edge or a vertex (an edge function exactly zero) is given to one
 //! triangle only, by the top-left rule of rasterisers applied with each
 //! triangle turned counter-clockwise as seen along the line: no crack, no
-//! double crossing. Candidate triangles come from a [`Bvh`] over their
-//! boxes in object space.
+//! double crossing. Candidate triangles come from a hierarchy over their
+//! boxes in object space ([`MeshBvh`]).
 
-use super::bvh::Bvh;
+use super::mesh_bvh::{piece_in, MeshBvh};
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Need, Part, Ray, NO_PART};
+use super::{Aabb, Need, Part, NO_PART};
 use glam::{DAffine3, DVec3};
 use smallvec::SmallVec;
 use std::sync::Arc;
@@ -33,16 +33,13 @@ use std::sync::Arc;
 /// and one bit for its normal's side, in 31 bits.
 pub const MAX_TRIANGLES: usize = 1 << 28;
 
-/// Triangles a leaf of the hierarchy holds.
-const LEAF: usize = 4;
-
 /// The vertices, triangles and hierarchy of a mesh, shared by every leaf
 /// placing it.
 #[derive(Debug)]
 pub struct MeshData {
     pub verts: Vec<DVec3>,
     pub tris: Vec<[u32; 3]>,
-    bvh: Bvh,
+    bvh: MeshBvh,
     bounds: Aabb,
 }
 
@@ -57,8 +54,13 @@ impl MeshData {
     /// [`MAX_TRIANGLES`]; degenerate triangles are kept and never hit).
     /// Vertices no triangle uses are dropped: they are not in the solid
     /// (its box, its hull).
-    pub fn new(verts: Vec<DVec3>, mut tris: Vec<[u32; 3]>) -> MeshData {
+    pub fn new(verts: Vec<DVec3>, tris: Vec<[u32; 3]>) -> MeshData {
         assert!(tris.len() <= MAX_TRIANGLES);
+        let (bvh, order) = MeshBvh::build(&verts, &tris);
+        // Triangles in leaf order, then vertices in order of first use, so
+        // that a leaf's corners lie close in memory.
+        let mut tris: Vec<[u32; 3]> = order.iter().map(|&k| tris[k as usize]).collect();
+        drop(order);
         let mut new_index = vec![u32::MAX; verts.len()];
         let mut kept = Vec::new();
         for t in &mut tris {
@@ -71,20 +73,11 @@ impl MeshData {
                 *i = *k;
             }
         }
+        drop(new_index);
+        drop(verts);
+        kept.shrink_to_fit();
         let verts = kept;
-        let items: Vec<(u32, Aabb)> = tris
-            .iter()
-            .enumerate()
-            .map(|(i, t)| {
-                let b = Aabb::EMPTY
-                    .include(verts[t[0] as usize])
-                    .include(verts[t[1] as usize])
-                    .include(verts[t[2] as usize]);
-                (i as u32, b)
-            })
-            .collect();
-        let bounds = items.iter().fold(Aabb::EMPTY, |a, (_, b)| a.union(b));
-        let bvh = Bvh::build_binned(items, LEAF);
+        let bounds = verts.iter().fold(Aabb::EMPTY, |b, &v| b.include(v));
         MeshData {
             verts,
             tris,
@@ -94,11 +87,16 @@ impl MeshData {
     }
 
     fn corners(&self, i: u32) -> [DVec3; 3] {
+        self.corner_refs(i).map(|v| *v)
+    }
+
+    #[inline]
+    fn corner_refs(&self, i: u32) -> [&DVec3; 3] {
         let t = self.tris[i as usize];
         [
-            self.verts[t[0] as usize],
-            self.verts[t[1] as usize],
-            self.verts[t[2] as usize],
+            &self.verts[t[0] as usize],
+            &self.verts[t[1] as usize],
+            &self.verts[t[2] as usize],
         ]
     }
 
@@ -118,13 +116,14 @@ impl MeshData {
         let Some(w) = Watertight::new(o, d) else {
             return out;
         };
-        let ray = Ray::new(o, d);
         let mut tested = 0;
-        self.bvh.visit(&ray, t0, t1, st, |i| {
-            tested += 1;
-            if let Some((t, along)) = w.hit(self.corners(i)) {
-                if t <= t1 {
-                    out.push((t, i, along));
+        self.bvh.visit(&self.bounds, o, d, t0, t1, st, |first, n| {
+            for i in first..first + n {
+                tested += 1;
+                if let Some((t, along)) = w.hit(self.corner_refs(i)) {
+                    if t <= t1 {
+                        out.push((t, i, along));
+                    }
                 }
             }
         });
@@ -145,20 +144,23 @@ impl MeshData {
         st: &mut crate::stats::Stats,
     ) -> Option<(f64, u32, bool)> {
         let w = Watertight::new(o, d)?;
-        let ray = Ray::new(o, d);
         let mut best: Option<(f64, u32, bool)> = None;
         let mut tested = 0;
-        self.bvh.visit_near_first(&ray, tmin, tmax, st, |i, _| {
-            tested += 1;
-            if let Some((t, along)) = w.hit(self.corners(i)) {
-                // Ties go to the lower triangle, whatever the order of visits.
-                let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
-                if t > tmin && t < tmax && better {
-                    best = Some((t, i, along));
+        self.bvh
+            .visit_near_first(&self.bounds, o, d, tmin, tmax, st, |first, n| {
+                for i in first..first + n {
+                    tested += 1;
+                    if let Some((t, along)) = w.hit(self.corner_refs(i)) {
+                        // Ties go to the lower triangle, whatever the order
+                        // of visits.
+                        let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
+                        if t > tmin && t < tmax && better {
+                            best = Some((t, i, along));
+                        }
+                    }
                 }
-            }
-            best.map_or(f64::INFINITY, |b| b.0)
-        });
+                best.map_or(f64::INFINITY, |b| b.0)
+            });
         st.triangle_tests += tested;
         best
     }
@@ -200,18 +202,33 @@ impl Watertight {
     /// `(t, whether the triangle's normal (b − a) × (c − a) faces along
     /// d)` where the line crosses it, if it does (by the rules above).
     #[inline]
-    fn hit(&self, p: [DVec3; 3]) -> Option<(f64, bool)> {
+    fn hit(&self, p: [&DVec3; 3]) -> Option<(f64, bool)> {
         let [kx, ky, kz] = self.k;
         let s = self.s;
+        let o: &[f64; 3] = self.o.as_ref();
         let q = p.map(|v| {
-            let r = v - self.o;
-            (r[kx] - s.x * r[kz], r[ky] - s.y * r[kz], s.z * r[kz])
+            // Coordinates read by index from memory, not from registers.
+            let v: &[f64; 3] = v.as_ref();
+            let rz = v[kz] - o[kz];
+            (
+                (v[kx] - o[kx]) - s.x * rz,
+                (v[ky] - o[ky]) - s.y * rz,
+                s.z * rz,
+            )
         });
         let (a, b, c) = (q[0], q[1], q[2]);
         // Edge functions: u of edge b→c, v of c→a, w of a→b.
         let mut u = c.0 * b.1 - c.1 * b.0;
         let mut v = a.0 * c.1 - a.1 * c.0;
+        // Of two signs, outside whichever way the triangle turns (the
+        // common case, decided before the rules for zeros below).
+        if (u < 0.0 && v > 0.0) || (u > 0.0 && v < 0.0) {
+            return None;
+        }
         let mut w = b.0 * a.1 - b.1 * a.0;
+        if (w < 0.0 && (u > 0.0 || v > 0.0)) || (w > 0.0 && (u < 0.0 || v < 0.0)) {
+            return None;
+        }
         let mut det = u + v + w;
         if det == 0.0 || det.is_nan() {
             return None;
@@ -268,7 +285,6 @@ impl Solid for Mesh {
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         let m = &self.data;
-        let ray = Ray::new(q.o, q.d);
         if q.need != Need::Spans {
             // Every crossing of a closed mesh is a boundary: the first after
             // tmin is the nearest hit, found nearest first; its side is
@@ -278,7 +294,7 @@ impl Solid for Mesh {
                 return;
             };
             let entering = q.need == Need::AnyBoundary
-                || match m.bounds.entry(&ray, f64::NEG_INFINITY, q.tmin) {
+                || match piece_in(&m.bounds, q.o, q.d, f64::NEG_INFINITY, q.tmin) {
                     None => true,
                     Some(_) => {
                         let before = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st);
@@ -295,9 +311,6 @@ impl Solid for Mesh {
         }
         // Outside before the mesh's box: every crossing up to tmax is
         // counted, from the line's start.
-        if !m.bounds.hit(&ray, f64::NEG_INFINITY, q.tmax) {
-            return;
-        }
         let xs = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmax, q.st);
         let mut k = 0;
         while k < xs.len() {
@@ -478,11 +491,12 @@ pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
 /// How a mesh's edges are shared: (edges of one face only, edges of three
 /// or more faces), for the warnings about open and non-manifold meshes.
 pub fn edge_use(tris: &[[u32; 3]]) -> (usize, usize) {
-    let mut edges: Vec<(u32, u32)> = tris
+    // Each edge as one word, its lesser end above.
+    let mut edges: Vec<u64> = tris
         .iter()
         .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
         .filter(|(a, b)| a != b)
-        .map(|(a, b)| (a.min(b), a.max(b)))
+        .map(|(a, b)| (u64::from(a.min(b)) << 32) | u64::from(a.max(b)))
         .collect();
     edges.sort_unstable();
     let (mut open, mut many) = (0, 0);
@@ -500,4 +514,109 @@ pub fn edge_use(tris: &[[u32; 3]]) -> (usize, usize) {
         k += n;
     }
     (open, many)
+}
+
+#[cfg(test)]
+mod tests {
+    //! The hierarchy's `f32` boxes against no hierarchy at all: every
+    //! crossing of every triangle, by the same exact test.
+    use super::*;
+
+    struct Lcg(u64);
+    impl Lcg {
+        fn next(&mut self) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (self.0 >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+            xs[(self.next() * xs.len() as f64) as usize % xs.len()]
+        }
+    }
+
+    fn brute(m: &MeshData, o: DVec3, d: DVec3, t1: f64) -> Vec<(f64, u32, bool)> {
+        let Some(w) = Watertight::new(o, d) else {
+            return Vec::new();
+        };
+        let mut out: Vec<_> = (0..m.tris.len() as u32)
+            .filter_map(|i| w.hit(m.corner_refs(i)).map(|(t, a)| (t, i, a)))
+            .filter(|x| x.0 <= t1)
+            .collect();
+        out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        out
+    }
+
+    /// A grid of triangles over decimal coordinates (none an `f32`),
+    /// bent, at `offset` and `scale`.
+    fn grid(n: usize, offset: DVec3, scale: f64) -> MeshData {
+        let mut verts = Vec::new();
+        for j in 0..=n {
+            for i in 0..=n {
+                let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
+                let z = if (i + j) % 3 == 0 { 0.1 } else { 0.0 };
+                verts.push(offset + scale * DVec3::new(x, y, z));
+            }
+        }
+        let at = |i: usize, j: usize| (j * (n + 1) + i) as u32;
+        let mut tris = Vec::new();
+        for j in 0..n {
+            for i in 0..n {
+                tris.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                tris.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        MeshData::new(verts, tris)
+    }
+
+    #[test]
+    fn the_hierarchy_drops_no_crossing_the_exact_test_finds() {
+        let mut rng = Lcg(7);
+        let mut crossings = 0;
+        let mut st = crate::stats::Stats::default();
+        for (offset, scale) in [
+            (DVec3::ZERO, 1.0),
+            (DVec3::new(1e6, -3e5, 7e5), 1.0),
+            (DVec3::new(0.3, 0.7, -0.1), 1e-7),
+            (DVec3::new(-2e12, 5e11, 1e12), 3e4),
+        ] {
+            let m = grid(12, offset, scale);
+            let pts: Vec<DVec3> = m.verts.clone();
+            for k in 0..4000 {
+                // Aimed at a vertex, an edge's midpoint or anywhere, from
+                // near or far, along an axis (zero components), nearly
+                // along one (tiny ones) or in any direction.
+                let a = rng.pick(&pts);
+                let b = rng.pick(&pts);
+                let target = match k % 3 {
+                    0 => a,
+                    1 => 0.5 * (a + b),
+                    _ => a + scale * DVec3::new(rng.next(), rng.next(), rng.next()) * 0.3,
+                };
+                let mut d = match k % 4 {
+                    0 => DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5),
+                    1 => [DVec3::X, DVec3::Y, DVec3::Z, -DVec3::Z][k / 4 % 4],
+                    2 => DVec3::new(1e-25 * (rng.next() - 0.5), rng.next() - 0.5, 1.0),
+                    _ => b - a + DVec3::new(0.0, 0.0, scale * 0.05),
+                };
+                if d == DVec3::ZERO {
+                    d = DVec3::Z;
+                }
+                let far = rng.pick(&[1e-3, 1.0, 1e3, 1e9]) * scale;
+                let o = target - d.normalize() * far;
+                let want = brute(&m, o, d, f64::INFINITY);
+                let got = m.crossings(o, d, f64::NEG_INFINITY, f64::INFINITY, &mut st);
+                assert_eq!(got.as_slice(), want.as_slice(), "{o} {d}");
+                let first = want.iter().find(|x| x.0 > 0.0).copied();
+                assert_eq!(
+                    m.nearest(o, d, 0.0, f64::INFINITY, &mut st),
+                    first,
+                    "{o} {d}"
+                );
+                crossings += want.len();
+            }
+        }
+        assert!(crossings > 20_000, "{crossings}");
+    }
 }

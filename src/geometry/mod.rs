@@ -12,6 +12,7 @@ pub mod cuboid;
 pub mod halfspace;
 pub mod lathe;
 pub mod mesh;
+pub mod mesh_bvh;
 pub mod poly;
 pub mod prism;
 pub mod robust;

@@ -6,6 +6,7 @@
 //! outward normal there, each printed as the shortest decimal that reads
 //! back to the same f64 — or `miss`.
 
+use crate::csg::SurfaceHit;
 use crate::error::{Result, Source, TextRange};
 use crate::geometry::Ray;
 use crate::scene::Scene;
@@ -65,9 +66,15 @@ pub fn parse_rays(src: &Source) -> Result<Vec<Ray>> {
     Ok(rays)
 }
 
-/// The output line for one ray.
-pub fn trace_line(scene: &Scene, ray: &Ray, st: &mut Stats) -> String {
-    match scene.csg.first_hit(ray, 0.0, f64::INFINITY, st) {
+/// The first hit of one ray.
+pub fn trace(scene: &Scene, ray: &Ray, st: &mut Stats) -> Option<SurfaceHit> {
+    scene.csg.first_hit(ray, 0.0, f64::INFINITY, st)
+}
+
+/// The output line for one ray's first hit: `miss`, or its distance and
+/// normal.
+pub fn line(hit: Option<&SurfaceHit>) -> String {
+    match hit {
         None => "miss".to_string(),
         Some(h) => {
             let mut s = String::new();

@@ -402,6 +402,14 @@ impl Resolver<'_> {
         mat: Material,
     ) -> Result<Option<u32>> {
         use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
+        use crate::geometry::mesh_bvh::MAX_COORD;
+        if let Some(p) = pts.iter().find(|p| p.abs().max_element() > MAX_COORD) {
+            return Err(self.src.error(
+                s.name_span,
+                format!("a point of the mesh, {p}, lies too far out"),
+                format!("expected coordinates within ±{MAX_COORD:e}"),
+            ));
+        }
         let mut tris = Vec::with_capacity(faces.len());
         for f in &faces {
             tris.extend(triangulate(&pts, f));
