@@ -1,6 +1,6 @@
 //! A bounding volume hierarchy over boxed items named by ids — the children
 //! of a wide CSG node (the 400 holes of a plate, the 1000 spheres of a
-//! pile), a mesh's triangles, a polygon's edges — so that a ray looks only
+//! pile), a polygon's edges (a mesh has its own, `mesh_bvh`) — so that a ray looks only
 //! at the items whose boxes it meets: O(log n + hits) box tests instead of
 //! n.
 //!
@@ -36,25 +36,16 @@ pub struct Bvh {
     pairs: Vec<AabbPair>,
     /// The most items a leaf holds.
     leaf: usize,
-    /// Whether large nodes are split by binned SAH (a mesh's triangles).
-    binned: bool,
 }
 
 impl Bvh {
     /// A hierarchy over `(id, bounds)` pairs, all bounded, with at most
     /// `leaf` (≥ 1) items a leaf.
     pub fn build(children: &[(u32, Aabb)], leaf: usize) -> Bvh {
-        Bvh::build_with(children.to_vec(), leaf, false)
+        Bvh::build_with(children.to_vec(), leaf)
     }
 
-    /// [`Bvh::build`] for millions of items (a mesh's triangles): nodes
-    /// of more than [`BINNED_FROM`] items split by binned SAH, in O(n log n)
-    /// in all.
-    pub fn build_binned(children: Vec<(u32, Aabb)>, leaf: usize) -> Bvh {
-        Bvh::build_with(children, leaf, true)
-    }
-
-    fn build_with(mut items: Vec<(u32, Aabb)>, leaf: usize, binned: bool) -> Bvh {
+    fn build_with(mut items: Vec<(u32, Aabb)>, leaf: usize) -> Bvh {
         assert!(leaf >= 1, "a leaf holds at least one item");
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * items.len() / leaf + 1),
@@ -62,7 +53,6 @@ impl Bvh {
             item_bounds: Vec::with_capacity(items.len()),
             pairs: Vec::new(),
             leaf,
-            binned,
         };
         bvh.nodes.push(BvhNode {
             bounds: Aabb::EMPTY,
@@ -96,11 +86,7 @@ impl Bvh {
             self.item_bounds.extend(items.iter().map(|(_, b)| *b));
             return;
         }
-        let mid = if self.binned && items.len() > BINNED_FROM {
-            binned_split(items, &bounds)
-        } else {
-            sah_split(items)
-        };
+        let mid = sah_split(items);
         let left = self.nodes.len();
         for _ in 0..2 {
             self.nodes.push(BvhNode {
@@ -266,90 +252,6 @@ impl Bvh {
             }
         }
     }
-}
-
-/// In a binned build ([`Bvh::build_binned`]), from how many items a node
-/// is split by binned SAH ([`binned_split`], O(n) a node) rather than by
-/// the exact sweep over sorted centres (O(n log n) a node).
-pub const BINNED_FROM: usize = 32;
-
-/// Bins along each axis for [`binned_split`].
-const BINS: usize = 32;
-
-/// Splits `items` by the surface-area heuristic over `BINS` equal bins of
-/// their centres along the axis they spread most along (Wald 2007): the best plane between bins,
-/// items partitioned in place (ties and order as deterministic as the
-/// input). Falls back to halving the order along the widest axis when all
-/// centres share one bin.
-fn binned_split(items: &mut [(u32, Aabb)], _bounds: &Aabb) -> usize {
-    let n = items.len();
-    let cb = items
-        .iter()
-        .fold(Aabb::EMPTY, |a, (_, b)| a.include(b.center()));
-    let ext = cb.max - cb.min;
-    let mut best = (f64::INFINITY, 0usize, 0usize);
-    // Along the widest spread of centres only (three times less work, and
-    // nearly always the best axis).
-    let widest = (0..3).fold(0, |w, a| if ext[a] > ext[w] { a } else { w });
-    for axis in [widest] {
-        if ext[axis] <= 0.0 {
-            continue;
-        }
-        let k = BINS as f64 / ext[axis];
-        let bin = |b: &Aabb| (((b.center()[axis] - cb.min[axis]) * k) as usize).min(BINS - 1);
-        let mut count = [0usize; BINS];
-        let mut boxes = [Aabb::EMPTY; BINS];
-        for (_, b) in items.iter() {
-            let i = bin(b);
-            count[i] += 1;
-            boxes[i] = boxes[i].union(b);
-        }
-        let mut right = [0.0; BINS];
-        let (mut acc, mut c) = (Aabb::EMPTY, 0);
-        for i in (1..BINS).rev() {
-            acc = acc.union(&boxes[i]);
-            c += count[i];
-            right[i] = area(&acc) * c as f64;
-        }
-        let (mut acc, mut c) = (Aabb::EMPTY, 0);
-        for i in 1..BINS {
-            acc = acc.union(&boxes[i - 1]);
-            c += count[i - 1];
-            if c == 0 || c == n {
-                continue;
-            }
-            let cost = area(&acc) * c as f64 + right[i];
-            if cost < best.0 {
-                best = (cost, axis, i);
-            }
-        }
-    }
-    if best.0.is_infinite() {
-        // One bin holds every centre: split the order along the widest axis.
-        let axis = (0..3)
-            .max_by(|&a, &b| ext[a].total_cmp(&ext[b]))
-            .unwrap_or(0);
-        let mid = n / 2;
-        items.select_nth_unstable_by(mid, |a, b| {
-            a.1.center()[axis]
-                .total_cmp(&b.1.center()[axis])
-                .then(a.0.cmp(&b.0))
-        });
-        return mid;
-    }
-    let (_, axis, split) = best;
-    let k = BINS as f64 / ext[axis];
-    let left =
-        |b: &Aabb| ((((b.center()[axis] - cb.min[axis]) * k) as usize).min(BINS - 1)) < split;
-    // Stable-enough in-place partition: left items first.
-    let mut i = 0;
-    for j in 0..n {
-        if left(&items[j].1) {
-            items.swap(i, j);
-            i += 1;
-        }
-    }
-    i
 }
 
 /// Surface area of a box: the chance a random ray that meets its parent
