@@ -452,12 +452,15 @@ fn an_unknown_facets_mode_is_a_usage_error() {
     );
     assert_eq!(files(dir.path()), ["s.csg"]);
     // And what it cannot facet yet is refused at its place.
-    let (dir, _) = scene("t.csg", "rotate_extrude() translate([2, 0]) circle(1);\n");
+    let (dir, _) = scene(
+        "t.csg",
+        "linear_extrude(height = 2, twist = 30) square(1);\n",
+    );
     let r = csgrt(dir.path(), &["t.csg", "--facets", "openscad", "-q"]);
     assert_eq!(r.status, 2);
     assert!(
         r.stderr.starts_with(
-            "error: rotate_extrude under `--facets openscad` is not supported yet\n --> t.csg:1:1"
+            "error: a twisted linear_extrude under `--facets openscad` is not supported yet\n --> t.csg:1:1"
         ),
         "{}",
         r.stderr

@@ -377,7 +377,9 @@ impl MeshBvh {
                 mask &= mask - 1;
                 let f = (tn[lane], n.child[lane]);
                 let mut j = k;
-                while j > 0 && (found[j - 1].0 > f.0 || (found[j - 1].0 == f.0 && found[j - 1].1 > f.1)) {
+                while j > 0
+                    && (found[j - 1].0 > f.0 || (found[j - 1].0 == f.0 && found[j - 1].1 > f.1))
+                {
                     found[j] = found[j - 1];
                     j -= 1;
                 }

@@ -129,7 +129,7 @@ fn sphere(
 /// neighbouring rings are joined by two triangles a step (wound as
 /// OpenSCAD winds them).
 pub(crate) fn ring_sphere(r: f64, n: usize) -> (Vec<DVec3>, Vec<Vec<u32>>) {
-    use super::transforms::sin_cos_deg;
+    use super::transforms::facet_sin_cos as sin_cos_deg;
     let rings = n.div_ceil(2);
     let mut pts = Vec::with_capacity(rings * n);
     for i in 0..rings {
@@ -392,7 +392,7 @@ fn file_message(path: &std::path::Path, e: &crate::meshfile::FileError) -> Strin
 impl Resolver<'_> {
     /// A mesh leaf of `faces` over `pts`, triangulated; warnings for an
     /// open or non-manifold mesh at the statement.
-    fn mesh_leaf(
+    pub(super) fn mesh_leaf(
         &mut self,
         s: &Statement,
         place: crate::error::TextRange,

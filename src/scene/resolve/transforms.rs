@@ -98,6 +98,79 @@ pub(super) fn sin_cos_deg(deg: f64) -> (f64, f64) {
     }
 }
 
+/// OpenSCAD 2021.01's `sin_degrees` and `cos_degrees` (`degree_trig.cc`),
+/// which its primitives place their facets' points with: the angle folded
+/// into [0°, 90°], exact at multiples of 30° and 45°, and the sine of the
+/// complement above 45°. (csgrt's own rotations keep [`sin_cos_deg`].)
+pub(super) fn facet_sin_cos(deg: f64) -> (f64, f64) {
+    const HUGE: f64 = (1u64 << 26) as f64 * 360.0 * (1u64 << 26) as f64;
+    let mut x = deg;
+    if !(0.0..360.0).contains(&x) {
+        if x < HUGE && x > -HUGE {
+            x -= 360.0 * (x / 360.0).floor();
+        } else {
+            return (f64::NAN, f64::NAN);
+        }
+    }
+    #[allow(clippy::excessive_precision)]
+    let sqrt3_4 = 0.866_025_403_784_438_596_59; // M_SQRT3_4, √3/2
+    let sqrt1_2 = std::f64::consts::FRAC_1_SQRT_2;
+    // sin_degrees
+    let mut a = x;
+    let oppose = a >= 180.0;
+    if oppose {
+        a -= 180.0;
+    }
+    if a > 90.0 {
+        a = 180.0 - a;
+    }
+    let sin = if a < 45.0 {
+        if a == 30.0 {
+            0.5
+        } else {
+            deg2rad(a).sin()
+        }
+    } else if a == 45.0 {
+        sqrt1_2
+    } else if a == 60.0 {
+        sqrt3_4
+    } else {
+        deg2rad(90.0 - a).cos()
+    };
+    let sin = if oppose { -sin } else { sin };
+    // cos_degrees
+    let mut a = x;
+    let mut oppose = a >= 180.0;
+    if oppose {
+        a -= 180.0;
+    }
+    if a > 90.0 {
+        a = 180.0 - a;
+        oppose = !oppose;
+    }
+    let cos = if a > 45.0 {
+        if a == 60.0 {
+            0.5
+        } else {
+            deg2rad(90.0 - a).sin()
+        }
+    } else if a == 45.0 {
+        sqrt1_2
+    } else if a == 30.0 {
+        sqrt3_4
+    } else {
+        deg2rad(a).cos()
+    };
+    (sin, if oppose { -cos } else { cos })
+}
+
+/// Degrees to radians as OpenSCAD's `deg2rad`: `x * M_DEG2RAD`.
+fn deg2rad(x: f64) -> f64 {
+    #[allow(clippy::excessive_precision)]
+    const M_DEG2RAD: f64 = 0.017_453_292_519_943_295_769;
+    x * M_DEG2RAD
+}
+
 /// A right-handed rotation by `deg` degrees about the unit `axis`.
 fn axis_angle(axis: DVec3, deg: f64) -> DMat3 {
     let (s, c) = sin_cos_deg(deg);
