@@ -454,13 +454,13 @@ fn an_unknown_facets_mode_is_a_usage_error() {
     // And what it cannot facet yet is refused at its place.
     let (dir, _) = scene(
         "t.csg",
-        "linear_extrude(height = 2, twist = 30) square(1);\n",
+        "linear_extrude(height = 2, twist = 30) union() { square(1); translate([2, 0]) square(1); }\n",
     );
     let r = csgrt(dir.path(), &["t.csg", "--facets", "openscad", "-q"]);
     assert_eq!(r.status, 2);
     assert!(
         r.stderr.starts_with(
-            "error: a twisted linear_extrude under `--facets openscad` is not supported yet\n --> t.csg:1:1"
+            "error: twisting or unevenly scaling a 2-D combination under `--facets openscad` is not supported yet\n --> t.csg:1:1"
         ),
         "{}",
         r.stderr

@@ -41,6 +41,10 @@ fn boxes(name: &str) -> (Ranges, Ranges) {
             [(-20.0, 45.0), (-20.0, 35.0), (10.0, 30.0)],
             [(-6.0, 27.0), (-6.0, 17.0), (-5.0, 6.0)],
         ),
+        "twisted" => (
+            [(-25.0, 60.0), (-25.0, 45.0), (15.0, 40.0)],
+            [(-4.0, 32.0), (-4.0, 18.0), (-4.0, 9.0)],
+        ),
         _ => (
             [(-25.0, 60.0), (-25.0, 45.0), (12.0, 35.0)],
             [(-9.0, 40.0), (-9.0, 25.0), (-3.0, 5.0)],
@@ -48,7 +52,8 @@ fn boxes(name: &str) -> (Ranges, Ranges) {
     }
 }
 
-/// Depths along the same rays: (both hit and agree to `tol`, one hits and
+/// Depths along the same rays: (both hit and agree to `tol` over the
+/// cosine of the angle to the normal, one hits and
 /// the other misses, both hit and disagree).
 fn compare(name: &str, a: &Scene, b: &Scene, tol: f64) -> (usize, usize, usize) {
     let (from, to) = boxes(name);
@@ -69,7 +74,10 @@ fn compare(name: &str, a: &Scene, b: &Scene, tol: f64) -> (usize, usize, usize) 
         let ha = a.csg.first_hit(&ray, 0.0, f64::INFINITY, &mut st);
         let hb = b.csg.first_hit(&ray, 0.0, f64::INFINITY, &mut st);
         match (ha, hb) {
-            (Some(x), Some(y)) if (x.t - y.t).abs() <= tol => same += 1,
+            // A point moved by δ along the normal moves the depth by δ/|cos|.
+            (Some(x), Some(y)) if (x.t - y.t).abs() * x.normal.dot(ray.dir).abs() <= tol => {
+                same += 1
+            }
             (Some(_), Some(_)) => off += 1,
             (None, None) => {}
             _ => miss += 1,
@@ -80,20 +88,20 @@ fn compare(name: &str, a: &Scene, b: &Scene, tol: f64) -> (usize, usize, usize) 
 
 #[test]
 fn openscad_facets_are_openscads_own_mesh() {
-    // Circles, cylinders and spheres; then rotate_extrude of circles,
-    // polygons and 2-D combinations, full and part turns both ways, at
-    // x < 0 too (tests/facets/turned.scad).
-    for name in ["solids", "turned"] {
-        // 6 printed digits move OpenSCAD's points by up to 5e-5 here; the
-        // few rays off by more meet the surface at under 10° (off by
-        // 2e-4 to 9e-4, |cos| 0.04 to 0.17 in both files).
+    // Circles, cylinders and spheres; rotate_extrude of circles, polygons
+    // and 2-D combinations, full and part turns both ways, at x < 0 too
+    // (tests/facets/turned.scad); twisted and unevenly scaled
+    // linear_extrude, with and without slices, holes, centred
+    // (tests/facets/twisted.scad).
+    for name in ["solids", "turned", "twisted"] {
+        // 6 printed digits move OpenSCAD's points by up to 5e-5 (its
+        // mesh is 10⁻⁴ of the depth over the cosine off ours at most).
         let got = scene(name, Facets::OpenScad);
         let (same, miss, off) = compare(name, &got, &openscad_mesh(name), 2e-4);
         assert!(same > 1000, "{name}: {same} rays met both");
         eprintln!("{name}, openscad facets: {same} agree, {miss} hit one only, {off} disagree");
-        // Only rays grazing a silhouette may see one and not the other.
         assert!(
-            miss + off <= 4,
+            miss + off == 0,
             "{name}: {miss} hit one only, {off} disagree in depth ({same} agree)"
         );
     }
@@ -102,6 +110,8 @@ fn openscad_facets_are_openscads_own_mesh() {
 #[test]
 fn the_exact_surfaces_are_not_openscads_mesh() {
     // The check above can fail: the smooth solids differ from the mesh.
+    // (Not the twisted ones: csgrt does not twist a circle off the axis
+    // exactly yet.)
     for name in ["solids", "turned"] {
         let got = scene(name, Facets::Exact);
         let (same, miss, off) = compare(name, &got, &openscad_mesh(name), 2e-4);

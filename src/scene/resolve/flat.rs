@@ -16,6 +16,7 @@
 //! on its plane (1.1 when it is subtracted, so that a 2-D hole cuts
 //! through), under its full 3-D transform.
 
+use super::facet_mesh::Cut;
 use super::offset::Join;
 use super::transforms::{basis_from_z, facet_sin_cos, sin_cos_deg};
 use super::{combine, Resolver};
@@ -896,11 +897,9 @@ impl Resolver<'_> {
         no_file(&a, s)?;
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
-        let twist = a.number("twist")?.unwrap_or(0.0).to_radians();
-        if twist != 0.0 {
-            self.openscad_facets_unsupported(s, "a twisted linear_extrude")?;
-        }
-        a.number("slices")?;
+        let twist_deg = a.number("twist")?.unwrap_or(0.0);
+        let twist = twist_deg.to_radians();
+        let slices = a.number("slices")?;
         let scale = if a.is_number("scale") {
             let k = a.number("scale")?.unwrap_or(1.0);
             DVec2::splat(k)
@@ -914,6 +913,16 @@ impl Resolver<'_> {
         };
         if h <= 0.0 {
             return self.empty(s, "its height is zero or negative");
+        }
+        if self.facets == super::super::Facets::OpenScad && (twist != 0.0 || scale.x != scale.y) {
+            let cut = Cut {
+                h,
+                center,
+                twist: twist_deg,
+                scale,
+                slices,
+            };
+            return self.extruded_facets(s, &a, &f, &cut, xf, mat);
         }
         let sweep = Sweep {
             top: scale,
@@ -1005,79 +1014,6 @@ impl Resolver<'_> {
         };
         let wedge = self.op(wedge_op, sides);
         Ok(self.op(Op::Intersection, vec![Some(body), wedge]))
-    }
-
-    /// OpenSCAD 2021.01's mesh of `rotate_extrude` (`rotatePolygon` in
-    /// `GeometryEvaluator.cc`), under `--facets openscad`: each outline's
-    /// points turned to `steps + 1` rings (a full turn: `steps` rings at
-    /// 180° − 360°·j/steps, OpenSCAD's start on −x; a part turn: at
-    /// angle·j/steps from +x), neighbouring rings joined by the two
-    /// triangles of each planar trapezoid, and a part turn capped at both
-    /// ends by each outline's own triangles (their overlaps cancel by
-    /// parity, as the outlines' fill does). A 2-D combination turns as the
-    /// same combination of its turned leaves: turning every leaf by the
-    /// same rings commutes with union, intersection and difference.
-    fn turned_facets(
-        &mut self,
-        s: &Statement,
-        f: &Flat,
-        angle: f64,
-        steps: usize,
-        xf: DAffine3,
-        mat: Material,
-    ) -> Result<Option<u32>> {
-        match f {
-            Flat::Polygon(o) if !o.curved() => {
-                let full = angle == 360.0;
-                let rings = if full { steps } else { steps + 1 };
-                let ring_angle = |j: usize| {
-                    // OpenSCAD's fill_ring angle a puts (x, y) at
-                    // (x sin a, x cos a, y).
-                    if full {
-                        -90.0 + j as f64 * 360.0 / steps as f64
-                    } else {
-                        90.0 - j as f64 * angle / steps as f64
-                    }
-                };
-                let mut pts = Vec::new();
-                let mut faces: Vec<Vec<u32>> = Vec::new();
-                for l in o.loops.iter().filter(|l| l.len() >= 3) {
-                    let base = pts.len();
-                    for j in 0..rings {
-                        let (sa, ca) = facet_sin_cos(ring_angle(j));
-                        pts.extend(l.iter().map(|p| DVec3::new(p.x * sa, p.x * ca, p.y)));
-                    }
-                    let m = l.len();
-                    let at = |j: usize, i: usize| (base + (j % rings) * m + i % m) as u32;
-                    for j in 0..steps {
-                        for i in 0..m {
-                            faces.push(vec![at(j, i), at(j + 1, i + 1), at(j, i + 1)]);
-                            faces.push(vec![at(j, i), at(j + 1, i), at(j + 1, i + 1)]);
-                        }
-                    }
-                    if !full {
-                        faces.push((0..m).map(|i| at(0, i)).collect());
-                        faces.push((0..m).map(|i| at(steps, i)).collect());
-                    }
-                }
-                if faces.is_empty() {
-                    return Ok(None);
-                }
-                self.mesh_leaf(s, s.name_span, pts, faces, xf, mat)
-            }
-            Flat::Op(op, kids) => {
-                let mut parts = Vec::new();
-                for k in kids {
-                    parts.push(self.turned_facets(s, k, angle, steps, xf, mat)?);
-                }
-                Ok(self.op(*op, parts))
-            }
-            _ => Err(self.src.error(
-                s.name_span,
-                "rotate_extrude of curves under `--facets openscad` is not supported yet",
-                "csgrt builds OpenSCAD's facets of turned polygons and circles",
-            )),
-        }
     }
 
     /// The full turn of `f` (all of it at x ≥ 0 but for leaves a

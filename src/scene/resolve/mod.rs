@@ -6,6 +6,7 @@
 //! `transforms`, `appearance` and `statements` (camera, lights).
 
 mod appearance;
+mod facet_mesh;
 mod flat;
 mod offset;
 mod resize;
@@ -131,7 +132,7 @@ pub(crate) struct Resolver<'a> {
 }
 
 /// OpenSCAD's smallest radius that is still a circle (`grid.h`).
-const GRID_FINE: f64 = 0.000_000_953_674_316_406_25;
+pub(super) const GRID_FINE: f64 = 0.000_000_953_674_316_406_25;
 
 impl Resolver<'_> {
     /// The regular polygon a circle, cylinder or sphere of radius `r` is

@@ -165,7 +165,7 @@ pub(super) fn facet_sin_cos(deg: f64) -> (f64, f64) {
 }
 
 /// Degrees to radians as OpenSCAD's `deg2rad`: `x * M_DEG2RAD`.
-fn deg2rad(x: f64) -> f64 {
+pub(super) fn deg2rad(x: f64) -> f64 {
     #[allow(clippy::excessive_precision)]
     const M_DEG2RAD: f64 = 0.017_453_292_519_943_295_769;
     x * M_DEG2RAD

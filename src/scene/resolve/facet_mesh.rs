@@ -1,0 +1,566 @@
+//! OpenSCAD's own meshes of extrusions, for `--facets openscad`: a turn
+//! (`rotate_extrude`) and a twisted or unevenly scaled `linear_extrude`,
+//! as OpenSCAD 2021.01's `GeometryEvaluator.cc` builds them; and the
+//! triangles of a 2-D region given by loops (even-odd, as OpenSCAD's
+//! outlines), each point of it covered once, for their ends. Each hole is
+//! joined to the loop around it by a bridge to a vertex it sees (Eberly's
+//! "Triangulation by ear clipping", the method of mapbox's earcut), and
+//! each outer loop with its holes is then ear-clipped as one polygon.
+
+use super::flat::Flat;
+use super::transforms::{deg2rad, facet_sin_cos};
+use super::{Resolver, GRID_FINE, MAX_FRAGMENTS};
+use crate::error::Result;
+use crate::geometry::mesh::triangulate;
+use crate::scene::args::Args;
+use crate::scene::Material;
+use crate::syntax::ast::Statement;
+use glam::{DAffine3, DVec2, DVec3};
+
+impl Resolver<'_> {
+    /// OpenSCAD 2021.01's mesh of a twisted or unevenly scaled
+    /// `linear_extrude` (`extrudePolygon` and `add_slice` in
+    /// `GeometryEvaluator.cc`), under `--facets openscad`: its slices (the
+    /// `slices` given, else `Calc::get_helix_slices`, its conical variant
+    /// for an even scale, or `get_diagonal_slices`), each outline's points
+    /// at every slice's turn and scale (`Scaling · rotate_degrees(−turn)`),
+    /// each quad between two slices split along its shorter diagonal
+    /// (`sgn_vdiff`, with OpenSCAD's choice for equal ones: by the
+    /// outline's sign and the twist's), the bottom and top capped by each
+    /// outline's own triangles. Only one polygon (with its holes): the
+    /// mesh of a 2-D combination depends on the combined outline.
+    pub(super) fn extruded_facets(
+        &mut self,
+        s: &Statement,
+        a: &Args,
+        f: &Flat,
+        cut: &Cut,
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let o = match f {
+            Flat::Polygon(o) if !o.curved() => o,
+            _ => {
+                return Err(self.src.error(
+                    s.name_span,
+                    "twisting or unevenly scaling a 2-D combination under `--facets openscad` is not supported yet",
+                    "csgrt builds OpenSCAD's slices of one polygon (with its holes)",
+                ))
+            }
+        };
+        // OpenSCAD's outlines: an outer one counter-clockwise, a hole (in
+        // an odd number of others) clockwise.
+        let raw: Vec<Vec<DVec2>> = o.loops.iter().filter(|l| l.len() >= 3).cloned().collect();
+        let loops: Vec<(Vec<DVec2>, bool)> = raw
+            .iter()
+            .zip(depths(&raw))
+            .map(|(l, depth)| {
+                let positive = depth % 2 == 0;
+                let mut l = l.clone();
+                if (signed_area(&l) > 0.0) != positive {
+                    l.reverse();
+                }
+                (l, positive)
+            })
+            .collect();
+        let (sx, sy) = (cut.scale.x, cut.scale.y);
+        let (h1, h2) = if cut.center {
+            (-cut.h / 2.0, cut.h / 2.0)
+        } else {
+            (0.0, cut.h)
+        };
+        let fnv = a.special("$fn").unwrap_or(0.0);
+        let fa = a.special("$fa").unwrap_or(12.0);
+        let fs = a.special("$fs").unwrap_or(2.0);
+        let given = cut.slices.filter(|v| v.is_finite()).unwrap_or(0.0) as i64;
+        let all = loops.iter().flat_map(|(l, _)| l.iter());
+        let slices = if given > 0 {
+            given as usize
+        } else if cut.twist != 0.0 {
+            let r2 = all.fold(0.0f64, |m, v| m.max(v.length_squared()));
+            if (sx == 1.0 && sy == 1.0) || sx != sy {
+                helix_slices(r2, cut.h, cut.twist, fnv, fs, fa)
+            } else {
+                conical_helix_slices(r2, cut.h, cut.twist, sx, fnv, fs, fa)
+            }
+        } else {
+            let d2 = all.fold(0.0f64, |m, v| m.max((*v - *v * cut.scale).length_squared()));
+            diagonal_slices(d2, cut.h, fnv, fs)
+        }
+        .min(MAX_FRAGMENTS);
+        // Level j: the turn, the scale and the height of OpenSCAD's slice
+        // boundary j, each point as Eigen computes (S·R)·v.
+        let level = |j: usize| {
+            let rot = cut.twist * j as f64 / slices as f64;
+            let k = DVec2::new(
+                1.0 - (1.0 - sx) * j as f64 / slices as f64,
+                1.0 - (1.0 - sy) * j as f64 / slices as f64,
+            );
+            let (sn, cs) = facet_sin_cos(-rot);
+            let m = [[k.x * cs, -k.x * sn], [k.y * sn, k.y * cs]];
+            (m, h1 + (h2 - h1) * j as f64 / slices as f64, rot, k)
+        };
+        let mut pts = Vec::new();
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        let mut bases = Vec::new();
+        for (l, positive) in &loops {
+            let n = l.len();
+            let base = pts.len();
+            bases.push(base);
+            let mut levels = Vec::with_capacity(slices + 1);
+            for j in 0..=slices {
+                let (m, z, rot, k) = level(j);
+                levels.push((rot, k));
+                pts.extend(l.iter().map(|v| {
+                    DVec3::new(
+                        m[0][0] * v.x + m[0][1] * v.y,
+                        m[1][0] * v.x + m[1][1] * v.y,
+                        z,
+                    )
+                }));
+            }
+            let at = |j: usize, i: usize| (base + j * n + i % n) as u32;
+            let p2 = |k: u32| pts[k as usize].truncate();
+            for j in 0..slices {
+                let (rot1, _) = levels[j];
+                let (rot2, k2) = levels[j + 1];
+                let any_zero = k2.x == 0.0 || k2.y == 0.0;
+                let any_non_zero = k2.x != 0.0 || k2.y != 0.0;
+                let back_twist = rot2 <= rot1;
+                let flip = !positive ^ back_twist;
+                for i in 1..=n {
+                    let (pv1, pv2, cu1, cu2) =
+                        (at(j, i - 1), at(j + 1, i - 1), at(j, i), at(j + 1, i));
+                    let diff = sgn_vdiff(p2(pv1) - p2(cu2), p2(cu1) - p2(pv2));
+                    let split_first = diff == -1 || (diff == 0 && !flip);
+                    let second = !any_zero || (any_non_zero && p2(pv2) != p2(cu2));
+                    if split_first ^ any_zero {
+                        faces.push(vec![pv1, cu2, cu1]);
+                        if second {
+                            faces.push(vec![cu2, pv1, pv2]);
+                        }
+                    } else {
+                        faces.push(vec![pv1, pv2, cu1]);
+                        if second {
+                            faces.push(vec![pv2, cu2, cu1]);
+                        }
+                    }
+                }
+            }
+        }
+        // The bottom, and the top unless it has no area: the region once
+        // over, holes and all, on the first and last levels' points.
+        let ends: &[usize] = if sx > 0.0 && sy > 0.0 {
+            &[0, slices]
+        } else {
+            &[0]
+        };
+        let shapes: Vec<Vec<DVec2>> = loops.iter().map(|(l, _)| l.clone()).collect();
+        end_faces(&shapes, &bases, ends, &mut faces);
+        if faces.is_empty() {
+            return Ok(None);
+        }
+        self.mesh_leaf(s, s.name_span, pts, faces, xf, mat)
+    }
+
+    /// OpenSCAD 2021.01's mesh of `rotate_extrude` (`rotatePolygon` in
+    /// `GeometryEvaluator.cc`), under `--facets openscad`: each outline's
+    /// points turned to `steps + 1` rings (a full turn: `steps` rings at
+    /// 180° − 360°·j/steps, OpenSCAD's start on −x; a part turn: at
+    /// angle·j/steps from +x), neighbouring rings joined by the two
+    /// triangles of each planar trapezoid, and a part turn capped at both
+    /// ends by the triangles of the region ([`cap`]). A 2-D combination turns as the
+    /// same combination of its turned leaves: turning every leaf by the
+    /// same rings commutes with union, intersection and difference.
+    pub(super) fn turned_facets(
+        &mut self,
+        s: &Statement,
+        f: &Flat,
+        angle: f64,
+        steps: usize,
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        match f {
+            Flat::Polygon(o) if !o.curved() => {
+                let full = angle == 360.0;
+                let rings = if full { steps } else { steps + 1 };
+                let ring_angle = |j: usize| {
+                    // OpenSCAD's fill_ring angle a puts (x, y) at
+                    // (x sin a, x cos a, y).
+                    if full {
+                        -90.0 + j as f64 * 360.0 / steps as f64
+                    } else {
+                        90.0 - j as f64 * angle / steps as f64
+                    }
+                };
+                let mut pts = Vec::new();
+                let mut faces: Vec<Vec<u32>> = Vec::new();
+                let loops: Vec<Vec<DVec2>> =
+                    o.loops.iter().filter(|l| l.len() >= 3).cloned().collect();
+                let mut bases = Vec::new();
+                for l in &loops {
+                    let base = pts.len();
+                    bases.push(base);
+                    for j in 0..rings {
+                        let (sa, ca) = facet_sin_cos(ring_angle(j));
+                        pts.extend(l.iter().map(|p| DVec3::new(p.x * sa, p.x * ca, p.y)));
+                    }
+                    let m = l.len();
+                    let at = |j: usize, i: usize| (base + (j % rings) * m + i % m) as u32;
+                    for j in 0..steps {
+                        for i in 0..m {
+                            faces.push(vec![at(j, i), at(j + 1, i + 1), at(j, i + 1)]);
+                            faces.push(vec![at(j, i), at(j + 1, i), at(j + 1, i + 1)]);
+                        }
+                    }
+                }
+                if !full {
+                    end_faces(&loops, &bases, &[0, steps], &mut faces);
+                }
+                if faces.is_empty() {
+                    return Ok(None);
+                }
+                self.mesh_leaf(s, s.name_span, pts, faces, xf, mat)
+            }
+            Flat::Op(op, kids) => {
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.push(self.turned_facets(s, k, angle, steps, xf, mat)?);
+                }
+                Ok(self.op(*op, parts))
+            }
+            _ => Err(self.src.error(
+                s.name_span,
+                "rotate_extrude of curves under `--facets openscad` is not supported yet",
+                "csgrt builds OpenSCAD's facets of turned polygons and circles",
+            )),
+        }
+    }
+}
+
+/// The triangles of the region of `loops` ([`cap`]) on each of the
+/// `levels` of a mesh whose loop k has its level j at `bases[k] + j·len`.
+fn end_faces(loops: &[Vec<DVec2>], bases: &[usize], levels: &[usize], faces: &mut Vec<Vec<u32>>) {
+    for t in cap(loops) {
+        for &j in levels {
+            faces.push(
+                t.iter()
+                    .map(|&(k, i)| (bases[k] + j * loops[k].len() + i) as u32)
+                    .collect(),
+            );
+        }
+    }
+}
+
+/// Twice the signed area of a loop (positive counter-clockwise).
+pub(super) fn signed_area(l: &[DVec2]) -> f64 {
+    (0..l.len())
+        .map(|i| l[i].perp_dot(l[(i + 1) % l.len()]))
+        .sum()
+}
+
+/// Whether `p` is inside the loop `l` by the even-odd rule.
+pub(super) fn inside_loop(l: &[DVec2], p: DVec2) -> bool {
+    let mut inside = false;
+    for i in 0..l.len() {
+        let (a, b) = (l[i], l[(i + 1) % l.len()]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// How many of the other loops each loop lies in (by its first point): an
+/// even count is an outer loop, an odd one a hole.
+pub(super) fn depths(loops: &[Vec<DVec2>]) -> Vec<usize> {
+    (0..loops.len())
+        .map(|k| {
+            (0..loops.len())
+                .filter(|&m| m != k && inside_loop(&loops[m], loops[k][0]))
+                .count()
+        })
+        .collect()
+}
+
+/// The triangles `[(loop, vertex); 3]` covering the region of `loops`
+/// (each of at least 3 points) once, wound counter-clockwise.
+pub(super) fn cap(loops: &[Vec<DVec2>]) -> Vec<[(usize, usize); 3]> {
+    let depth = depths(loops);
+    // Each loop as (loop, vertex) places, outer ones counter-clockwise,
+    // holes clockwise.
+    let ring_of = |k: usize, ccw: bool| -> Vec<(usize, usize)> {
+        let mut r: Vec<(usize, usize)> = (0..loops[k].len()).map(|i| (k, i)).collect();
+        if (signed_area(&loops[k]) > 0.0) != ccw {
+            r.reverse();
+        }
+        r
+    };
+    let at = |p: (usize, usize)| loops[p.0][p.1];
+    let mut out = Vec::new();
+    for outer in (0..loops.len()).filter(|&k| depth[k] % 2 == 0) {
+        let mut ring = ring_of(outer, true);
+        // Its holes: one level deeper and inside it, rightmost first.
+        let mut holes: Vec<usize> = (0..loops.len())
+            .filter(|&h| depth[h] == depth[outer] + 1 && inside_loop(&loops[outer], loops[h][0]))
+            .collect();
+        let right = |h: usize| {
+            loops[h]
+                .iter()
+                .map(|p| p.x)
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        holes.sort_by(|&a, &b| right(b).total_cmp(&right(a)).then(a.cmp(&b)));
+        for h in holes {
+            let hr = ring_of(h, false);
+            let start = (0..hr.len())
+                .max_by(|&a, &b| at(hr[a]).x.total_cmp(&at(hr[b]).x).then(b.cmp(&a)))
+                .unwrap_or(0);
+            let Some(m) = bridge(&ring, at, at(hr[start])) else {
+                continue;
+            };
+            // ring[..=m], the hole from its rightmost point round to it
+            // again, then ring[m..].
+            let mut joined = ring[..=m].to_vec();
+            joined.extend((0..=hr.len()).map(|j| hr[(start + j) % hr.len()]));
+            joined.extend_from_slice(&ring[m..]);
+            ring = joined;
+        }
+        // Ear clipping over the places, by a numbering of its own.
+        let pts: Vec<DVec3> = ring.iter().map(|&p| at(p).extend(0.0)).collect();
+        let mut id: Vec<u32> = Vec::with_capacity(ring.len());
+        for (j, p) in ring.iter().enumerate() {
+            // A place met twice (a bridge's ends) keeps one number.
+            let first = ring[..j].iter().position(|q| q == p).unwrap_or(j);
+            id.push(first as u32);
+        }
+        for t in triangulate(&pts, &id) {
+            out.push(t.map(|i| ring[i as usize]));
+        }
+    }
+    out
+}
+
+/// The place in `ring` that the point `p` (inside it, the rightmost of a
+/// hole) is joined to: the nearer end of the first edge met going +x from
+/// `p`, or the ring's reflex vertex inside the triangle that would cut
+/// that bridge at the least angle from +x.
+fn bridge(
+    ring: &[(usize, usize)],
+    at: impl Fn((usize, usize)) -> DVec2,
+    p: DVec2,
+) -> Option<usize> {
+    let n = ring.len();
+    let mut best: Option<(f64, usize)> = None;
+    for i in 0..n {
+        let (a, b) = (at(ring[i]), at(ring[(i + 1) % n]));
+        // Edges that reach the line y = p.y, not along it.
+        if (a.y - p.y) * (b.y - p.y) > 0.0 || a.y == b.y {
+            continue;
+        }
+        let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+        if x < p.x {
+            continue;
+        }
+        // The end with the larger x (on the ray, the one hit exactly).
+        let m = if a.y == p.y && a.x >= p.x {
+            i
+        } else if b.y == p.y && b.x >= p.x {
+            (i + 1) % n
+        } else if a.x > b.x {
+            i
+        } else {
+            (i + 1) % n
+        };
+        if best.map_or(true, |(bx, _)| x < bx) {
+            best = Some((x, m));
+        }
+    }
+    let (x, m) = best?;
+    let hit = DVec2::new(x, p.y);
+    let mp = at(ring[m]);
+    if mp == hit {
+        return Some(m);
+    }
+    // A reflex vertex inside the triangle (p, hit, mp) hides mp: take the
+    // one at the least angle from +x (then the nearest).
+    let inside = |q: DVec2| {
+        let c = |a: DVec2, b: DVec2| (b - a).perp_dot(q - a);
+        let (d1, d2, d3) = (c(p, hit), c(hit, mp), c(mp, p));
+        (d1 >= 0.0 && d2 >= 0.0 && d3 >= 0.0) || (d1 <= 0.0 && d2 <= 0.0 && d3 <= 0.0)
+    };
+    let mut pick = (m, f64::INFINITY, (mp - p).length());
+    for j in 0..n {
+        let q = at(ring[j]);
+        if j == m || q == p || !inside(q) {
+            continue;
+        }
+        let (prev, next) = (at(ring[(j + n - 1) % n]), at(ring[(j + 1) % n]));
+        let reflex = (q - prev).perp_dot(next - q) < 0.0;
+        if !reflex {
+            continue;
+        }
+        let v = q - p;
+        let tan = v.y.abs() / v.x.max(f64::MIN_POSITIVE);
+        let d = v.length();
+        if tan < pick.1 || (tan == pick.1 && d < pick.2) {
+            pick = (j, tan, d);
+        }
+    }
+    Some(pick.0)
+}
+
+/// A twisted or unevenly scaled `linear_extrude` as OpenSCAD slices it.
+pub(super) struct Cut {
+    pub(super) h: f64,
+    pub(super) center: bool,
+    /// Degrees.
+    pub(super) twist: f64,
+    pub(super) scale: DVec2,
+    pub(super) slices: Option<f64>,
+}
+
+/// OpenSCAD's `sgn_vdiff`: which of two vectors is shorter, −1 or 1, or 0
+/// within 10 ppm of their mean length.
+fn sgn_vdiff(v1: DVec2, v2: DVec2) -> i32 {
+    let (l1, l2) = (v1.length(), v2.length());
+    let scale = l1 + l2;
+    let diff = 2.0 * (l1 - l2).abs() * 1e5;
+    if diff > scale {
+        if l1 < l2 {
+            -1
+        } else {
+            1
+        }
+    } else {
+        0
+    }
+}
+
+/// `Calc::get_helix_slices`.
+fn helix_slices(r2: f64, h: f64, twist: f64, fnv: f64, fs: f64, fa: f64) -> usize {
+    let twist = twist.abs();
+    let min = ((twist / 120.0).ceil() as i64).max(1);
+    if r2.sqrt() < GRID_FINE || !fnv.is_finite() {
+        return min as usize;
+    }
+    if fnv > 0.0 {
+        return ((twist / 360.0 * fnv).ceil() as i64).max(min) as usize;
+    }
+    let t = deg2rad(twist);
+    let c = h / t;
+    let length = t * (r2 + c * c).sqrt();
+    let fa_slices = (twist / fa).ceil() as i64;
+    let fs_slices = (length / fs).ceil() as i64;
+    fa_slices.min(fs_slices).max(min) as usize
+}
+
+/// `Calc::get_conical_helix_slices` (an even scale ≠ 1 with a twist).
+fn conical_helix_slices(
+    r2: f64,
+    h: f64,
+    twist: f64,
+    scale: f64,
+    fnv: f64,
+    fs: f64,
+    fa: f64,
+) -> usize {
+    let twist = twist.abs();
+    let r = r2.sqrt();
+    let min = ((twist / 120.0).ceil() as i64).max(1);
+    if r < GRID_FINE || !fnv.is_finite() {
+        return min as usize;
+    }
+    if fnv > 0.0 {
+        return ((twist * fnv / 360.0).ceil() as i64).max(min) as usize;
+    }
+    let rads = deg2rad(twist);
+    let end = if scale > 1.0 {
+        rads * scale / (scale - 1.0)
+    } else {
+        rads / (1.0 - scale)
+    };
+    let start = end - rads;
+    let a = r / end;
+    let arch = |t: f64| 0.5 * a * (t * (1.0 + t * t).sqrt() + t.asinh());
+    let spiral = arch(end) - arch(start);
+    let total = (spiral * spiral + h * h).sqrt();
+    let fs_slices = (total / fs).ceil() as i64;
+    let fa_slices = (twist / fa).ceil() as i64;
+    fa_slices.min(fs_slices).max(min) as usize
+}
+
+/// `Calc::get_diagonal_slices` (an uneven scale, no twist).
+fn diagonal_slices(d2: f64, h: f64, fnv: f64, fs: f64) -> usize {
+    if d2.sqrt() < GRID_FINE || !fnv.is_finite() {
+        return 1;
+    }
+    if fnv > 0.0 {
+        return (fnv as i64).max(1) as usize;
+    }
+    (((d2 + h * h).sqrt() / fs).ceil() as i64).max(1) as usize
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn area(loops: &[Vec<DVec2>], tris: &[[(usize, usize); 3]]) -> f64 {
+        tris.iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|p| loops[p.0][p.1]);
+                (b - a).perp_dot(c - a) / 2.0
+            })
+            .sum()
+    }
+
+    #[test]
+    fn a_square_with_two_holes_is_covered_once() {
+        let sq = |x: f64, y: f64, s: f64| {
+            vec![
+                DVec2::new(x, y),
+                DVec2::new(x + s, y),
+                DVec2::new(x + s, y + s),
+                DVec2::new(x, y + s),
+            ]
+        };
+        // Holes wound either way, an island in a hole.
+        let mut hole = sq(1.0, 1.0, 3.0);
+        hole.reverse();
+        let loops = vec![
+            sq(0.0, 0.0, 10.0),
+            hole,
+            sq(6.0, 2.0, 2.0),
+            sq(2.0, 2.0, 1.0),
+        ];
+        let tris = cap(&loops);
+        // 100 − 9 − 4 + 1, every triangle counter-clockwise.
+        assert!(
+            (area(&loops, &tris) - 88.0).abs() < 1e-9,
+            "{}",
+            area(&loops, &tris)
+        );
+        for t in &tris {
+            let [a, b, c] = t.map(|p| loops[p.0][p.1]);
+            assert!((b - a).perp_dot(c - a) >= 0.0);
+        }
+        // And no point of a hole is covered: a grid of points, by parity
+        // of the triangles against the region's own even-odd rule.
+        for i in 0..40 {
+            for j in 0..40 {
+                let q = DVec2::new(0.13 + i as f64 * 0.25, 0.11 + j as f64 * 0.25);
+                let covered = tris
+                    .iter()
+                    .filter(|t| {
+                        let [a, b, c] = t.map(|p| loops[p.0][p.1]);
+                        let s = |u: DVec2, v: DVec2| (v - u).perp_dot(q - u) > 0.0;
+                        s(a, b) && s(b, c) && s(c, a)
+                    })
+                    .count();
+                let want = loops.iter().filter(|l| inside_loop(l, q)).count() % 2;
+                assert_eq!(covered, want, "{q}");
+            }
+        }
+    }
+}
