@@ -20,7 +20,7 @@ to it, csgrt --threads 1, Embree's own threads too):
 
 Needs tools/requirements-bench.txt (embreex) besides tools/requirements.txt.
 
-Usage: bench_mesh.py [--csgrt BIN] [--size WxH] [--edge 0.41] [--out FILE]
+Usage: bench_mesh.py [--csgrt BIN] [--size WxH] [--edge 0.41] [--out FILE] [--keep-rays FILE]
 """
 
 import argparse
@@ -90,6 +90,7 @@ def main():
     ap.add_argument("--size", default="640x480")
     ap.add_argument("--edge", type=float, default=0.41)
     ap.add_argument("--out")
+    ap.add_argument("--keep-rays", help="also write the camera rays here (for examples/mesh_rays.rs)")
     a = ap.parse_args()
     # One core for everything, Embree's threads included (children inherit).
     os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})
@@ -108,6 +109,10 @@ def main():
         with open(rfile, "w") as fh:
             for o, d in rays:
                 fh.write("%r %r %r %r %r %r\n" % tuple(float(x) for x in (*o, *d)))
+        if a.keep_rays:
+            import shutil
+
+            shutil.copyfile(rfile, a.keep_rays)
         one_ray = os.path.join(work, "one.txt")
         with open(one_ray, "w") as fh:
             fh.write("%r %r %r %r %r %r\n" % tuple(float(x) for x in (*rays[0][0], *rays[0][1])))
