@@ -126,10 +126,42 @@ impl MeshData {
                     }
                 }
             }
+            false
         });
         st.triangle_tests += tested;
         out.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         out
+    }
+
+    /// Some crossing `(t, triangle, its normal faces along d)` with tmin <
+    /// t < tmax, the first met in the hierarchy's fixed order (a shadow
+    /// ray's question: is there one).
+    pub fn any(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        tmin: f64,
+        tmax: f64,
+        st: &mut crate::stats::Stats,
+    ) -> Option<(f64, u32, bool)> {
+        let w = Watertight::new(o, d)?;
+        let mut found = None;
+        let mut tested = 0;
+        self.bvh
+            .visit(&self.bounds, o, d, tmin, tmax, st, |first, n| {
+                for i in first..first + n {
+                    tested += 1;
+                    if let Some((t, along)) = w.hit(self.corner_refs(i)) {
+                        if t > tmin && t < tmax {
+                            found = Some((t, i, along));
+                            return true;
+                        }
+                    }
+                }
+                false
+            });
+        st.triangle_tests += tested;
+        found
     }
 
     /// The nearest crossing `(t, triangle, its normal faces along d)` with
@@ -289,8 +321,14 @@ impl Solid for Mesh {
             // Every crossing of a closed mesh is a boundary: the first after
             // tmin is the nearest hit, found nearest first; its side is
             // the parity of the crossings up to tmin (none when the box
-            // begins after tmin), asked only for a first hit's normal.
-            let Some(x) = m.nearest(q.o, q.d, q.tmin, q.tmax, q.st) else {
+            // begins after tmin), asked only for a first hit's normal. A
+            // shadow ray takes the first crossing it meets.
+            let x = if q.need == Need::AnyBoundary {
+                m.any(q.o, q.d, q.tmin, q.tmax, q.st)
+            } else {
+                m.nearest(q.o, q.d, q.tmin, q.tmax, q.st)
+            };
+            let Some(x) = x else {
                 return;
             };
             let entering = q.need == Need::AnyBoundary
@@ -614,6 +652,10 @@ mod tests {
                     first,
                     "{o} {d}"
                 );
+                // A shadow ray's answer: some crossing of the list, if any.
+                let any = m.any(o, d, 0.0, f64::INFINITY, &mut st);
+                assert_eq!(any.is_some(), first.is_some(), "{o} {d}");
+                assert!(any.map_or(true, |x| want.contains(&x) && x.0 > 0.0));
                 crossings += want.len();
             }
         }

@@ -258,7 +258,7 @@ impl MeshBvh {
 
     /// Calls `leaf(first, count)` for every leaf whose box the line `o +
     /// t·d` may meet for some t in [tmin, tmax] within `root` (the mesh's
-    /// box), in a fixed order.
+    /// box), in a fixed order, until it returns `true`.
     #[allow(clippy::too_many_arguments)]
     pub fn visit(
         &self,
@@ -268,7 +268,7 @@ impl MeshBvh {
         tmin: f64,
         tmax: f64,
         st: &mut Stats,
-        mut leaf: impl FnMut(u32, u32),
+        mut leaf: impl FnMut(u32, u32) -> bool,
     ) {
         let Some(l) = Line32::new(root, o, d, tmin, tmax) else {
             return;
@@ -290,7 +290,9 @@ impl MeshBvh {
                 if !met {
                     st.bound_culled += 1;
                 } else if c & LEAF_BIT != 0 {
-                    leaf(c & 0x0fff_ffff, ((c >> 28) & 7) + 1);
+                    if leaf(c & 0x0fff_ffff, ((c >> 28) & 7) + 1) {
+                        return;
+                    }
                 } else {
                     stack[top] = c;
                     top += 1;

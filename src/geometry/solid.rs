@@ -37,8 +37,9 @@ pub enum Need {
     /// Only the first boundary after tmin, with its side (a first hit):
     /// the spans may be cut there and left open beyond.
     FirstBoundary,
-    /// Only whether a boundary lies in (tmin, tmax), and where the first
-    /// is (a shadow ray): its side does not matter.
+    /// Only whether a boundary lies in (tmin, tmax) (a shadow ray): a leaf
+    /// may answer with any of them (a mesh, the first its hierarchy meets),
+    /// and its side does not matter.
     AnyBoundary,
 }
 
