@@ -12,6 +12,8 @@ to it, csgrt --threads 1, Embree's own threads too):
   trace-loop seconds) and by Embree (embreex: rtcIntersect1 per ray, the
   build timed apart); the ratio, and the pixels whose hit or miss differ
   (silhouettes), with how many of those lie on a silhouette edge;
+Each time is the median of 5 runs.
+
 * load: csgrt's whole run on one ray (parse, STL, merge, triangulation,
   BVH) — wall-clock seconds — and its peak resident memory beyond a run
   on an empty scene, per triangle beyond the STL's own 50 bytes;
@@ -27,6 +29,7 @@ import argparse
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -40,6 +43,7 @@ import oracle  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DIR = os.path.join(ROOT, "bench", "mesh")
 R = 20.0
+ROUNDS = 5
 
 
 def generate(edge):
@@ -118,14 +122,20 @@ def main():
             fh.write("%r %r %r %r %r %r\n" % tuple(float(x) for x in (*rays[0][0], *rays[0][1])))
         # Load and build, and memory: one ray, against the empty scene.
         empty_wall, empty_rss = child_run(one + [a.csgrt, os.path.join(DIR, "empty.csg"), "--trace-rays", one_ray, "--threads", "1"])
-        load_wall, load_rss = child_run(one + [a.csgrt, scene, "--trace-rays", one_ray, "--threads", "1"])
+        # Timings are the median of ROUNDS runs (this is a noisy machine).
+        loads = [child_run(one + [a.csgrt, scene, "--trace-rays", one_ray, "--threads", "1"]) for _ in range(ROUNDS)]
+        load_wall = statistics.median(x[0] for x in loads)
+        load_rss = max(x[1] for x in loads)
         beyond = (load_rss - empty_rss - 50 * ntri) / ntri
         # Primary rays.
         st = os.path.join(work, "st.json")
         hits = os.path.join(work, "hits.txt")
-        with open(hits, "w") as out:
-            subprocess.run(one + [a.csgrt, scene, "--trace-rays", rfile, "--threads", "1", "--stats-json", st], check=True, stdout=out)
-        csgrt_trace = json.load(open(st))["render_seconds"]
+        traces = []
+        for _ in range(ROUNDS):
+            with open(hits, "w") as out:
+                subprocess.run(one + [a.csgrt, scene, "--trace-rays", rfile, "--threads", "1", "--stats-json", st], check=True, stdout=out)
+            traces.append(json.load(open(st))["render_seconds"])
+        csgrt_trace = statistics.median(traces)
         mine = [line.split()[0] != "miss" for line in open(hits)]
         # Embree on the same triangles and rays.
         from embreex import rtcore_scene as rtcs
@@ -139,9 +149,12 @@ def main():
         dirs = np.array([d for _, d in rays], dtype=np.float32)
         es.run(origins[:1], dirs[:1])  # the build happens at the first query
         embree_build = time.perf_counter() - t0
-        t0 = time.perf_counter()
-        ids = es.run(origins, dirs)
-        embree_trace = time.perf_counter() - t0
+        embree_traces = []
+        for _ in range(ROUNDS):
+            t0 = time.perf_counter()
+            ids = es.run(origins, dirs)
+            embree_traces.append(time.perf_counter() - t0)
+        embree_trace = statistics.median(embree_traces)
         theirs = list(np.asarray(ids) >= 0)
         grid = np.array(mine).reshape(h, w)
         diff = np.array(mine) != np.array(theirs)
