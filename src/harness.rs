@@ -76,7 +76,7 @@ pub const MESH_TARGETS: &[(&str, &str)] = &[
 /// answers must be one csgrt can place and cast rays through.
 pub fn exercise_mesh(ext: &str, data: &[u8]) {
     use crate::geometry::mesh::{triangulate, Mesh, MeshData};
-    use crate::geometry::mesh_bvh::MAX_COORD;
+    use crate::geometry::mesh_bvh::too_far;
     use crate::geometry::{Probe, Solid};
     let Ok(m) = crate::meshfile::read(ext, data) else {
         return;
@@ -88,7 +88,7 @@ pub fn exercise_mesh(ext: &str, data: &[u8]) {
         tris.extend(triangulate(&m.points, f));
     }
     // As the resolver: no mesh of more, or with points farther out.
-    let far = m.points.iter().any(|p| p.abs().max_element() > MAX_COORD);
+    let far = too_far(&m.points).is_some();
     if tris.is_empty() || tris.len() > 100_000 || far {
         return;
     }

@@ -22,7 +22,7 @@
 //! double crossing. Candidate triangles come from a hierarchy over their
 //! boxes in object space ([`MeshBvh`]).
 
-use super::mesh_bvh::{piece_in, MeshBvh};
+use super::mesh_bvh::MeshBvh;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Need, Part, NO_PART};
 use glam::{DAffine3, DVec3};
@@ -100,6 +100,22 @@ impl MeshData {
         ]
     }
 
+    /// The crossings `(t, triangle, its normal faces along d)` of the
+    /// sheared line `w` with the leaf's triangles `first..first + count`,
+    /// each triangle tested counted in `tested` as it is taken.
+    fn leaf_crossings<'a>(
+        &'a self,
+        w: &'a Watertight,
+        first: u32,
+        count: u32,
+        tested: &'a mut u64,
+    ) -> impl Iterator<Item = (f64, u32, bool)> + 'a {
+        (first..first + count).filter_map(move |i| {
+            *tested += 1;
+            w.hit(self.corner_refs(i)).map(|(t, along)| (t, i, along))
+        })
+    }
+
     /// The crossings `(t, triangle, the triangle's normal faces along d)`
     /// of the line `o + t·d` in triangles whose boxes it meets in [t0,
     /// t1], at most t1 (none is dropped for lying a rounding before t0),
@@ -118,14 +134,10 @@ impl MeshData {
         };
         let mut tested = 0;
         self.bvh.visit(&self.bounds, o, d, t0, t1, st, |first, n| {
-            for i in first..first + n {
-                tested += 1;
-                if let Some((t, along)) = w.hit(self.corner_refs(i)) {
-                    if t <= t1 {
-                        out.push((t, i, along));
-                    }
-                }
-            }
+            out.extend(
+                self.leaf_crossings(&w, first, n, &mut tested)
+                    .filter(|x| x.0 <= t1),
+            );
             false
         });
         st.triangle_tests += tested;
@@ -149,16 +161,10 @@ impl MeshData {
         let mut tested = 0;
         self.bvh
             .visit(&self.bounds, o, d, tmin, tmax, st, |first, n| {
-                for i in first..first + n {
-                    tested += 1;
-                    if let Some((t, along)) = w.hit(self.corner_refs(i)) {
-                        if t > tmin && t < tmax {
-                            found = Some((t, i, along));
-                            return true;
-                        }
-                    }
-                }
-                false
+                found = self
+                    .leaf_crossings(&w, first, n, &mut tested)
+                    .find(|x| x.0 > tmin && x.0 < tmax);
+                found.is_some()
             });
         st.triangle_tests += tested;
         found
@@ -180,15 +186,12 @@ impl MeshData {
         let mut tested = 0;
         self.bvh
             .visit_near_first(&self.bounds, o, d, tmin, tmax, st, |first, n| {
-                for i in first..first + n {
-                    tested += 1;
-                    if let Some((t, along)) = w.hit(self.corner_refs(i)) {
-                        // Ties go to the lower triangle, whatever the order
-                        // of visits.
-                        let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
-                        if t > tmin && t < tmax && better {
-                            best = Some((t, i, along));
-                        }
+                for (t, i, along) in self.leaf_crossings(&w, first, n, &mut tested) {
+                    // Ties go to the lower triangle, whatever the order of
+                    // visits.
+                    let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
+                    if t > tmin && t < tmax && better {
+                        best = Some((t, i, along));
                     }
                 }
                 best.map_or(f64::INFINITY, |b| b.0)
@@ -332,13 +335,7 @@ impl Solid for Mesh {
                 return;
             };
             let entering = q.need == Need::AnyBoundary
-                || match piece_in(&m.bounds, q.o, q.d, f64::NEG_INFINITY, q.tmin) {
-                    None => true,
-                    Some(_) => {
-                        let before = m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st);
-                        before.len() % 2 == 0
-                    }
-                };
+                || m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st).len() % 2 == 0;
             let part = part_of(x, entering);
             if entering {
                 emit((x.0, part, f64::INFINITY, NO_PART));

@@ -46,6 +46,11 @@ pub const LEAF_MAX: usize = 2;
 /// direction component of at least 2⁻⁶⁰, stays below `f32::MAX`.
 pub const MAX_COORD: f64 = 1.152_921_504_606_847e18;
 
+/// The first of `points` beyond ±[`MAX_COORD`] in some coordinate, if any.
+pub fn too_far(points: &[DVec3]) -> Option<&DVec3> {
+    points.iter().find(|p| p.abs().max_element() > MAX_COORD)
+}
+
 /// Children a node has.
 const WIDTH: usize = 4;
 const BINS: usize = 16;
@@ -56,6 +61,18 @@ const MEDIAN_FROM: usize = 40;
 const STACK: usize = (WIDTH - 1) * (MEDIAN_FROM + 30) + 1;
 
 const LEAF_BIT: u32 = 1 << 31;
+
+/// A leaf child's code (`LEAF_BIT`, the count less one in bits 28–30, the
+/// first triangle below).
+fn leaf_code(first: usize, count: usize) -> u32 {
+    LEAF_BIT | (((count - 1) as u32) << 28) | first as u32
+}
+
+/// A leaf child's (first triangle, count).
+#[inline]
+fn leaf_range(c: u32) -> (u32, u32) {
+    (c & 0x0fff_ffff, ((c >> 28) & 7) + 1)
+}
 const EMPTY_LANE: u32 = u32::MAX;
 /// Below this fraction of the largest component, a direction component
 /// makes a parallel slab.
@@ -290,13 +307,22 @@ impl MeshBvh {
                 n.b[a + 3][lane] = b.hi[a];
             }
             n.child[lane] = if e - s <= LEAF_MAX {
-                LEAF_BIT | (((e - s - 1) as u32) << 28) | (base + s) as u32
+                leaf_code(base + s, e - s)
             } else {
                 self.node(&mut items[s..e], base + s, [b, cb], d)
             };
         }
         self.nodes[me] = n;
         me as u32
+    }
+
+    /// The line set up for the walk, if there is anything to walk: a
+    /// hierarchy with nodes, and a piece of the line in `root`.
+    fn line(&self, root: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> Option<Line32> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        Line32::new(root, o, d, tmin, tmax)
     }
 
     /// Calls `leaf(first, count)` for every leaf whose box the line `o +
@@ -313,12 +339,9 @@ impl MeshBvh {
         st: &mut Stats,
         mut leaf: impl FnMut(u32, u32) -> bool,
     ) {
-        let Some(l) = Line32::new(root, o, d, tmin, tmax) else {
+        let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return;
         };
-        if self.nodes.is_empty() {
-            return;
-        }
         let mut stack = [0u32; STACK];
         let mut top = 1;
         while top > 0 {
@@ -333,7 +356,8 @@ impl MeshBvh {
                 if !met {
                     st.bound_culled += 1;
                 } else if c & LEAF_BIT != 0 {
-                    if leaf(c & 0x0fff_ffff, ((c >> 28) & 7) + 1) {
+                    let (first, count) = leaf_range(c);
+                    if leaf(first, count) {
                         return;
                     }
                 } else {
@@ -359,12 +383,9 @@ impl MeshBvh {
         st: &mut Stats,
         mut leaf: impl FnMut(u32, u32) -> f64,
     ) {
-        let Some(l) = Line32::new(root, o, d, tmin, tmax) else {
+        let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return;
         };
-        if self.nodes.is_empty() {
-            return;
-        }
         let mut cut = l.tmax;
         let mut stack = [(0u32, 0f32); STACK];
         let mut top = 0;
@@ -387,7 +408,8 @@ impl MeshBvh {
                 continue;
             }
             if c & LEAF_BIT != 0 {
-                let best = leaf(c & 0x0fff_ffff, ((c >> 28) & 7) + 1);
+                let (first, count) = leaf_range(c);
+                let best = leaf(first, count);
                 if best < f64::INFINITY {
                     cut = cut.min(l.local_up(best));
                 }
@@ -540,7 +562,7 @@ struct Split {
 /// may lie in the bounded box `b`, widened for rounding; `None` if there
 /// is none. A line in a plane of a slab along which it does not move (a
 /// `0·∞` NaN) is within that slab.
-pub fn piece_in(b: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> Option<(f64, f64)> {
+fn piece_in(b: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> Option<(f64, f64)> {
     let inv = DVec3::ONE / d;
     let t0 = (b.min - o) * inv;
     let t1 = (b.max - o) * inv;

@@ -402,8 +402,8 @@ impl Resolver<'_> {
         mat: Material,
     ) -> Result<Option<u32>> {
         use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
-        use crate::geometry::mesh_bvh::MAX_COORD;
-        if let Some(p) = pts.iter().find(|p| p.abs().max_element() > MAX_COORD) {
+        use crate::geometry::mesh_bvh::{too_far, MAX_COORD};
+        if let Some(p) = too_far(&pts) {
             return Err(self.src.error(
                 s.name_span,
                 format!("a point of the mesh, {p}, lies too far out"),
