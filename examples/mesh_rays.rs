@@ -17,22 +17,17 @@ fn main() {
         tris.extend(csgrt::geometry::mesh::triangulate(&m.points, f));
     }
     let d = csgrt::geometry::mesh::MeshData::new(m.points, tris);
-    let rays: Vec<(glam::DVec3, glam::DVec3)> = std::fs::read_to_string(&rays)
-        .unwrap()
-        .lines()
-        .map(|l| {
-            let v: Vec<f64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
-            let dir = glam::DVec3::new(v[3], v[4], v[5]).normalize();
-            (glam::DVec3::new(v[0], v[1], v[2]), dir)
-        })
-        .collect();
+    let text = std::fs::read_to_string(&rays).unwrap();
+    let rays = csgrt::render::probe::parse_rays(&csgrt::Source::new(rays, text)).unwrap();
     let mut least = f64::INFINITY;
     for round in 0..7 {
         let mut st = csgrt::stats::Stats::default();
         let t = Instant::now();
         let mut hits = 0;
-        for &(o, dir) in &rays {
-            if d.nearest(o, dir, 0.0, f64::INFINITY, &mut st).is_some() {
+        for r in &rays {
+            if d.nearest(r.origin, r.dir, 0.0, f64::INFINITY, &mut st)
+                .is_some()
+            {
                 hits += 1;
             }
         }

@@ -88,18 +88,21 @@ impl Resolver<'_> {
             diagonal_slices(d2, cut.h, fnv, fs)
         }
         .min(MAX_FRAGMENTS);
-        // Level j: the turn, the scale and the height of OpenSCAD's slice
-        // boundary j, each point as Eigen computes (S·R)·v.
-        let level = |j: usize| {
-            let rot = cut.twist * j as f64 / slices as f64;
-            let k = DVec2::new(
-                1.0 - (1.0 - sx) * j as f64 / slices as f64,
-                1.0 - (1.0 - sy) * j as f64 / slices as f64,
-            );
-            let (sn, cs) = facet_sin_cos(-rot);
-            let m = [[k.x * cs, -k.x * sn], [k.y * sn, k.y * cs]];
-            (m, h1 + (h2 - h1) * j as f64 / slices as f64, rot, k)
-        };
+        // Level j (0 to slices), once for every outline: the matrix, the
+        // height, the turn and the scale of OpenSCAD's slice boundary j, each
+        // point as Eigen computes (S·R)·v.
+        let levels: Vec<_> = (0..=slices)
+            .map(|j| {
+                let rot = cut.twist * j as f64 / slices as f64;
+                let k = DVec2::new(
+                    1.0 - (1.0 - sx) * j as f64 / slices as f64,
+                    1.0 - (1.0 - sy) * j as f64 / slices as f64,
+                );
+                let (sn, cs) = facet_sin_cos(-rot);
+                let m = [[k.x * cs, -k.x * sn], [k.y * sn, k.y * cs]];
+                (m, h1 + (h2 - h1) * j as f64 / slices as f64, rot, k)
+            })
+            .collect();
         let mut pts = Vec::new();
         let mut faces: Vec<Vec<u32>> = Vec::new();
         let mut bases = Vec::new();
@@ -107,10 +110,7 @@ impl Resolver<'_> {
             let n = l.len();
             let base = pts.len();
             bases.push(base);
-            let mut levels = Vec::with_capacity(slices + 1);
-            for j in 0..=slices {
-                let (m, z, rot, k) = level(j);
-                levels.push((rot, k));
+            for &(m, z, _, _) in &levels {
                 pts.extend(l.iter().map(|v| {
                     DVec3::new(
                         m[0][0] * v.x + m[0][1] * v.y,
@@ -122,8 +122,8 @@ impl Resolver<'_> {
             let at = |j: usize, i: usize| (base + j * n + i % n) as u32;
             let p2 = |k: u32| pts[k as usize].truncate();
             for j in 0..slices {
-                let (rot1, _) = levels[j];
-                let (rot2, k2) = levels[j + 1];
+                let (_, _, rot1, _) = levels[j];
+                let (_, _, rot2, k2) = levels[j + 1];
                 let any_zero = k2.x == 0.0 || k2.y == 0.0;
                 let any_non_zero = k2.x != 0.0 || k2.y != 0.0;
                 let back_twist = rot2 <= rot1;
@@ -185,15 +185,18 @@ impl Resolver<'_> {
             Flat::Polygon(o) if !o.curved() => {
                 let full = angle == 360.0;
                 let rings = if full { steps } else { steps + 1 };
-                let ring_angle = |j: usize| {
-                    // OpenSCAD's fill_ring angle a puts (x, y) at
-                    // (x sin a, x cos a, y).
-                    if full {
-                        -90.0 + j as f64 * 360.0 / steps as f64
-                    } else {
-                        90.0 - j as f64 * angle / steps as f64
-                    }
-                };
+                // Each ring's (sin a, cos a), once for every outline:
+                // OpenSCAD's fill_ring angle a puts (x, y) at (x sin a,
+                // x cos a, y).
+                let trig: Vec<(f64, f64)> = (0..rings)
+                    .map(|j| {
+                        facet_sin_cos(if full {
+                            -90.0 + j as f64 * 360.0 / steps as f64
+                        } else {
+                            90.0 - j as f64 * angle / steps as f64
+                        })
+                    })
+                    .collect();
                 let mut pts = Vec::new();
                 let mut faces: Vec<Vec<u32>> = Vec::new();
                 let loops: Vec<Vec<DVec2>> =
@@ -202,8 +205,7 @@ impl Resolver<'_> {
                 for l in &loops {
                     let base = pts.len();
                     bases.push(base);
-                    for j in 0..rings {
-                        let (sa, ca) = facet_sin_cos(ring_angle(j));
+                    for &(sa, ca) in &trig {
                         pts.extend(l.iter().map(|p| DVec3::new(p.x * sa, p.x * ca, p.y)));
                     }
                     let m = l.len();
