@@ -24,6 +24,7 @@ pub const NAMES: &[&str] = &[
     "drawing_unnested",
     "section_unflattened",
     "resize_auto_ignored",
+    "ellipse_turned_back",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -430,7 +430,7 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     );
     assert_eq!(
         fails("linear_extrude(height = 1, twist = 10) text(\"J\");\n"),
-        "error: twisting or unevenly scaling curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | linear_extrude(height = 1, twist = 10) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt twists polygons and circles about their centre\n"
+        "error: twisting or unevenly scaling curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | linear_extrude(height = 1, twist = 10) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt twists polygons, circles and ellipses\n"
     );
     // OpenSCAD's error for a shape across the axis, with its range.
     assert_eq!(

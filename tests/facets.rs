@@ -110,9 +110,7 @@ fn openscad_facets_are_openscads_own_mesh() {
 #[test]
 fn the_exact_surfaces_are_not_openscads_mesh() {
     // The check above can fail: the smooth solids differ from the mesh.
-    // (Not the twisted ones: csgrt does not twist a circle off the axis
-    // exactly yet.)
-    for name in ["solids", "turned"] {
+    for name in ["solids", "turned", "twisted"] {
         let got = scene(name, Facets::Exact);
         let (same, miss, off) = compare(name, &got, &openscad_mesh(name), 2e-4);
         eprintln!("{name}, exact: {same} agree, {miss} hit one only, {off} disagree");

@@ -9,6 +9,8 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
+mod common;
+
 /// A convex mesh: the octahedron of the unit axis points.
 fn octahedron() -> Shape {
     use csgrt::geometry::mesh::{Mesh, MeshData};
@@ -110,5 +112,76 @@ proptest! {
             prop_assert!(next.normal.dot(inward) > 0.0, "it must leave, not enter");
             prop_assert!(next.t > 1e-9 * size, "re-hit at t = {} (size {})", next.t, size);
         }
+    }
+}
+
+/// A twisted or unevenly scaled extrusion: an ellipse anywhere in the
+/// plane, or the L region of `tests/common`.
+fn twisted_shape() -> impl Strategy<Value = Shape> {
+    use csgrt::geometry::{Section, Twisted};
+    let ellipse = (
+        prop::array::uniform4(-1.0..1.0f64),
+        prop::array::uniform2(-1.0..1.0f64),
+        -4.0..4.0f64,
+        prop::array::uniform2(0.2..2.0f64),
+        any::<bool>(),
+    )
+        .prop_filter_map("a flattened ellipse", |(m, c, twist, scale, centered)| {
+            let m = glam::DMat2::from_cols_array(&m);
+            (m.determinant().abs() > 0.05).then(|| {
+                Shape::Twisted(Twisted {
+                    section: Section::Ellipse(glam::DAffine2::from_mat2_translation(
+                        m,
+                        glam::DVec2::from(c),
+                    )),
+                    twist,
+                    scale: glam::DVec2::from(scale),
+                    centered,
+                })
+            })
+        });
+    let region = (-4.0..4.0f64, prop::array::uniform2(0.2..2.0f64))
+        .prop_map(|(twist, scale)| common::l_twisted(twist, glam::DVec2::from(scale)));
+    prop_oneof![ellipse, region]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// Not convex, so only along the normal: leaving, the line does not
+    /// meet the same side again nearby; entering, it meets a side where it
+    /// leaves.
+    #[test]
+    fn leaving_a_twisted_side_along_its_normal_does_not_hit_it_again(
+        shape in twisted_shape(),
+        scale_exp in -3i32..=3,
+        offset_exp in 0i32..=6,
+        from in prop::array::uniform3(-1.0..1.0f64),
+        aim in prop::array::uniform3(-0.3..0.3f64),
+    ) {
+        let Some(from) = unit(from) else { return Ok(()) };
+        let size = 10f64.powi(scale_exp);
+        let center = DVec3::new(1.0, -0.7, 0.4) * 10f64.powi(offset_exp);
+        let m = DAffine3::from_scale_rotation_translation(DVec3::splat(size), DQuat::IDENTITY, center);
+        let mut csg = Csg::default();
+        let root = csg.add_prim(Primitive::new(shape.clone(), Transform::new(m).unwrap(), 0));
+        csg.root = Some(root);
+        let mut st = Stats::default();
+        let b = shape.object_bounds();
+        let target = m.transform_point3(b.center() + (b.max - b.min) * DVec3::from(aim));
+        let look = Ray::new(target - from * 10.0 * size, from);
+        let Some(hit) = csg.first_hit(&look, 0.0, f64::INFINITY, &mut st) else { return Ok(()) };
+        let n = hit.normal;
+        let err = point_error(hit.point, look.origin, hit.t * look.dir);
+        let r = Ray::new(offset_origin(hit.point, n, err, n), n);
+        if let Some(again) = csg.first_hit(&r, 0.0, f64::INFINITY, &mut st) {
+            prop_assert!(again.t > 1e-6 * size, "hit again at t = {} (size {}, offset {})", again.t, size, center);
+        }
+        let r = Ray::new(offset_origin(hit.point, n, err, -n), -n);
+        let next = csg.first_hit(&r, 0.0, f64::INFINITY, &mut st);
+        prop_assert!(next.is_some(), "an entering ray must leave the solid");
+        let next = next.unwrap();
+        prop_assert!(next.normal.dot(-n) > 0.0, "it must leave, not enter (t = {})", next.t);
+        prop_assert!(next.t > 1e-6 * size, "re-hit at t = {} (size {})", next.t, size);
     }
 }

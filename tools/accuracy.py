@@ -257,7 +257,9 @@ class Prim:
 
 L_SHAPE = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.0), (0.0, 0.0), (0.0, 0.5), (-0.5, 0.5)]
 PROFILE = [(0.25, -0.5), (0.5, -0.5), (0.5, 0.0), (0.375, 0.25), (0.25, 0.5)]
-EXTRUSIONS = ["prism", "tapered", "twisted", "glyph", "lathe"]
+EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "lathe"]
+# The twisted ellipse: the unit circle under x -> A x + c (times the size).
+ELLIPSE_A, ELLIPSE_C = ((0.3, 0.12), (-0.05, 0.2)), (0.12, 0.08)
 TAPER = 0.5
 TWIST, TWIST_SCALE = 90.0, (0.7, 1.3)
 
@@ -288,6 +290,10 @@ class Extruded(Prim):
                 for a, c_, b in reader.curve_pieces(g):
                     pts = [a, b] if c_ is None else [a, c_, b]
                     self.edges.append([[M(float(x)) for x in q] for q in pts])
+        elif kind == "twisted_ellipse":
+            self.edges = []
+            self.A = [[M(x * s) for x in row] for row in ELLIPSE_A]
+            self.ec = [M(x * s) for x in ELLIPSE_C]
         else:
             pts = PROFILE if kind == "lathe" else L_SHAPE
             pts = [[M(x * s) for x in q] for q in pts]
@@ -299,13 +305,17 @@ class Extruded(Prim):
             return f"linear_extrude(height = {s!r}, center = true) text(\"e\", size = {s!r}, halign = \"center\", valign = \"center\");"
         pts = PROFILE if self.kind == "lathe" else L_SHAPE
         poly = "polygon([" + ", ".join(f"[{x * s!r}, {y * s!r}]" for x, y in pts) + "])"
+        if self.kind == "twisted_ellipse":
+            (a, b), (c, d) = [[x * s for x in row] for row in ELLIPSE_A]
+            cx, cy = [x * s for x in ELLIPSE_C]
+            poly = f"multmatrix([[{a!r}, {b!r}, 0, {cx!r}], [{c!r}, {d!r}, 0, {cy!r}], [0, 0, 1, 0], [0, 0, 0, 1]]) circle(r = 1)"
         if self.kind == "lathe":
             return f"rotate_extrude() {poly};"
         extra = {
             "prism": "",
             "tapered": f", scale = {TAPER!r}",
             "twisted": f", twist = {TWIST!r}, scale = [{TWIST_SCALE[0]!r}, {TWIST_SCALE[1]!r}]",
-        }[self.kind]
+        }.get(self.kind, f", twist = {TWIST!r}, scale = [{TWIST_SCALE[0]!r}, {TWIST_SCALE[1]!r}]")
         return f"linear_extrude(height = {s!r}, center = true{extra}) {poly};"
 
     # The section at height z (fraction f from the bottom): the region's
@@ -318,15 +328,25 @@ class Extruded(Prim):
         if self.kind == "tapered":
             w = 1 + (M(TAPER) - 1) * f
             return [p[0] / w, p[1] / w] if w > 0 else None
-        if self.kind == "twisted":
+        if self.kind in ("twisted", "twisted_ellipse"):
             sx, sy = 1 + (M(TWIST_SCALE[0]) - 1) * f, 1 + (M(TWIST_SCALE[1]) - 1) * f
             a = mp.pi * M(TWIST) / 180 * f
             u, v = p[0] / sx, p[1] / sy
             return [mp.cos(a) * u - mp.sin(a) * v, mp.sin(a) * u + mp.cos(a) * v]
         return [p[0], p[1]]
 
+    def ellipse_form(self, q):
+        """|A^-1 (q - c)|^2 - 1: negative inside the ellipse."""
+        (a, b), (c, d) = self.A
+        x, y = q[0] - self.ec[0], q[1] - self.ec[1]
+        det = a * d - b * c
+        u, v = (d * x - b * y) / det, (-c * x + a * y) / det
+        return u * u + v * v - 1
+
     def inside2(self, q):
         """Even-odd: crossings of the line from q along +x."""
+        if self.kind == "twisted_ellipse":
+            return self.ellipse_form(q) <= 0
         inside = False
         for e in self.edges:
             if len(e) == 2:
@@ -396,7 +416,37 @@ class Extruded(Prim):
         for i, e in enumerate(self.edges):
             for t in self.side_roots(o, d, e, tlo, thi):
                 out.append((t, ("side", i)))
+        if self.kind == "twisted_ellipse":
+            for t in self.sampled_roots(lambda t: self.ellipse_form(self.to_region([o[i] + t * d[i] for i in range(3)])), o, d, tlo, thi):
+                out.append((t, ("side", -1)))
         return sorted(out, key=lambda x: x[0])
+
+    def reach(self):
+        """The farthest any point of the twisted extrusion gets from its
+        axis: the section's farthest point, times the larger scale."""
+        if self.kind == "twisted_ellipse":
+            (a, b), (c, d) = self.A
+            f = a * a + b * b + c * c + d * d
+            smax = mp.sqrt((f + mp.sqrt(f * f - 4 * (a * d - b * c) ** 2)) / 2)
+            rho = mp.sqrt(self.ec[0] ** 2 + self.ec[1] ** 2) + smax
+        else:
+            rho = max(mp.sqrt(e[0][0] ** 2 + e[0][1] ** 2) for e in self.edges)
+        return rho * max(1, *[M(x) for x in TWIST_SCALE])
+
+    def sampled_roots(self, g, o, d, tlo, thi):
+        """The sign changes of g over [tlo, thi] where the line is within
+        the extrusion's reach of its axis: sampled finely, then bisected."""
+        r = self.reach()
+        near = side_pieces(d[0] ** 2 + d[1] ** 2, o[0] * d[0] + o[1] * d[1], o[0] ** 2 + o[1] ** 2 - r * r)
+        if not near:
+            return []
+        tlo, thi = max(tlo, near[0][0]), min(thi, near[0][1])
+        if tlo >= thi:
+            return []
+        steps = 160
+        ts = [tlo + (thi - tlo) * j / steps for j in range(steps + 1)]
+        gs = [g(t) for t in ts]
+        return [mp.findroot(g, (ts[j], ts[j + 1]), solver="anderson") for j in range(steps) if (gs[j] > 0) != (gs[j + 1] > 0)]
 
     def side_roots(self, o, d, e, tlo, thi):
         """Where the line meets the side over edge e, within the slab."""
@@ -441,16 +491,11 @@ class Extruded(Prim):
             q = self.to_region([o[i] + t * d[i] for i in range(3)])
             return n[0] * q[0] + n[1] * q[1] - c
 
-        steps = 160
-        ts = [tlo + (thi - tlo) * j / steps for j in range(steps + 1)]
-        gs = [g(t) for t in ts]
-        for j in range(steps):
-            if (gs[j] > 0) != (gs[j + 1] > 0):
-                t = mp.findroot(g, (ts[j], ts[j + 1]), solver="anderson")
-                q = self.to_region([o[i] + t * d[i] for i in range(3)])
-                u = ((q[0] - a[0]) * ed[0] + (q[1] - a[1]) * ed[1]) / (ed[0] ** 2 + ed[1] ** 2)
-                if 0 <= u <= 1:
-                    out.append(t)
+        for t in self.sampled_roots(g, o, d, tlo, thi):
+            q = self.to_region([o[i] + t * d[i] for i in range(3)])
+            u = ((q[0] - a[0]) * ed[0] + (q[1] - a[1]) * ed[1]) / (ed[0] ** 2 + ed[1] ** 2)
+            if 0 <= u <= 1:
+                out.append(t)
         return out
 
     def crossings(self, o, d):
@@ -462,6 +507,8 @@ class Extruded(Prim):
         kind, i = tag
         if kind == "cap":
             return [M(0), M(0), M(i)]
+        if i == -1:
+            return [mp.diff(lambda x, y, z: self.ellipse_form(self.to_region([x, y, z])), (p[0], p[1], p[2]), tuple(int(j == k) for j in range(3))) for k in range(3)]
         e = self.edges[i]
         if kind in ("cone", "ring"):
             a, b = e
@@ -510,7 +557,7 @@ class Extruded(Prim):
         # |B'|^3 / |B' x B''|; a twisted side the rate its normal field
         # turns along the ray (half of it, for margin).
         kind, i = tag
-        if kind == "cap" or self.kind in ("prism", "tapered") or kind == "side" and len(self.edges[i]) == 2 and self.kind == "glyph":
+        if kind == "cap" or self.kind in ("prism", "tapered") or self.kind == "glyph" and kind == "side" and len(self.edges[i]) == 2:
             rho = mp.inf
         elif kind in ("cone", "ring"):
             rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
@@ -731,7 +778,7 @@ def main():
         if a.kinds:
             kinds = [k for k in kinds if k in a.kinds.split(",")]
         for kind in kinds:
-            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "glyph") else POSES
+            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph") else POSES
             for pose in poses:
                 for off in OFFSETS:
                     for size in SIZES:

@@ -45,6 +45,7 @@ MUTANTS = {
     "drawing_unnested": (["tests/openscad/example015.csg"], False),
     "section_unflattened": (["tests/openscad/projection_cut.csg"], False),
     "resize_auto_ignored": (["tests/openscad/resize.csg"], False),
+    "ellipse_turned_back": (["tests/openscad/twisted_circles.csg"], ["twisted_ellipse"]),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

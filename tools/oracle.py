@@ -138,6 +138,98 @@ def flatten_curves(f, n):
     return loops
 
 
+def arc_sweep(a, arc, b):
+    """(centre, radius, start angle, sweep) of a drawing's arc from a to b
+    through its middle point (either way round)."""
+    c, r, mid = arc
+    a0 = math.atan2(a[1] - c[1], a[0] - c[0])
+    am = math.atan2(mid[1] - c[1], mid[0] - c[0])
+    a1 = math.atan2(b[1] - c[1], b[0] - c[0])
+    ccw = (am - a0) % (2 * math.pi) < (a1 - a0) % (2 * math.pi) or abs(a1 - a0) < 1e-15
+    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
+    return c, r, a0, sweep if sweep != 0 else 2 * math.pi
+
+
+class Line:
+    """The straight piece a + u (b - a), u in [0, 1]."""
+
+    def __init__(self, a, b):
+        self.a, self.b = np.asarray(a, float), np.asarray(b, float)
+        self.first = self.a
+
+    def __call__(self, u):
+        u = np.asarray(u, float)
+        return self.a + u[..., None] * (self.b - self.a) if u.ndim else self.a + u * (self.b - self.a)
+
+    def d(self, u):
+        return np.broadcast_to(self.b - self.a, np.shape(u) + (2,))
+
+    def reach(self):
+        return max(float(np.linalg.norm(self.a)), float(np.linalg.norm(self.b)))
+
+
+class Arc:
+    """The piece c + A (cos w, sin w) of an ellipse, w from w0 over dw;
+    its ends lie on the ellipse, as the inscribed polygon's vertices do."""
+
+    def __init__(self, A, c, w0, dw, first=None):
+        self.A, self.c, self.w0, self.dw = np.asarray(A, float), np.asarray(c, float), w0, dw
+        # The loop's vertex where the piece starts: the path's own point
+        # where it has one.
+        self.first = self(0.0) if first is None else np.asarray(first, float)
+
+    def __call__(self, u):
+        w = self.w0 + np.asarray(u, float) * self.dw
+        return self.c + np.stack([np.cos(w), np.sin(w)], axis=-1) @ self.A.T
+
+    def d(self, u):
+        w = self.w0 + np.asarray(u, float) * self.dw
+        return self.dw * np.stack([-np.sin(w), np.cos(w)], axis=-1) @ self.A.T
+
+    def reach(self):
+        return float(np.linalg.norm(self.c)) + float(np.linalg.svd(self.A, compute_uv=False)[0])
+
+
+def circle_pieces(A, c, n):
+    """An ellipse's n pieces, between the vertices of manifold's n-gon."""
+    return [Arc(A, c, 2 * math.pi * i / n, 2 * math.pi / n) for i in range(n)]
+
+
+def drawing_pieces(f, n):
+    """A drawing's loops as pieces: its paths' lines and arcs (cut into
+    steps of at most 2 pi / n), then its circles."""
+    _, paths, circles = f[3]
+    loops = []
+    for path in paths:
+        pieces = []
+        for i, (a, arc) in enumerate(path):
+            b = path[(i + 1) % len(path)][0]
+            if arc is None:
+                pieces.append(Line(a, b))
+                continue
+            c, r, a0, sweep = arc_sweep(a, arc, b)
+            k = max(1, math.ceil(abs(sweep) / (2 * math.pi / n)))
+            pieces += [Arc(r * np.eye(2), c, a0 + sweep * j / k, sweep / k, a if j == 0 else None) for j in range(k)]
+        loops.append(pieces)
+    for c, r in circles:
+        loops.append(circle_pieces(r * np.eye(2), c, n))
+    return loops
+
+
+def section_pieces(f, n):
+    """The pieces of every edge a 2-D tree's cross-section is cut from at n
+    (polygons' edges, circles' and arcs' steps), for the twisted bounds."""
+    if f[0] == "poly":
+        return [Line(l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
+    if f[0] == "ellipse":
+        return circle_pieces(f[1], f[2], n)
+    if f[0] == "op" and len(f) == 4 and f[3][0] == "drawing":
+        return [g for loop in drawing_pieces(f, n) for g in loop]
+    if f[0] == "op":
+        return [g for k in f[2] for g in section_pieces(k, n)]
+    return []
+
+
 def cross_section(f, n):
     """manifold's cross-section of a 2-D tree of scene.py (circles as
     n-gons inscribed in them, quadratic edges as inscribed polylines)."""
@@ -151,31 +243,7 @@ def cross_section(f, n):
     if len(f) == 4 and f[3][0] == "drawing":
         # A drawing: its own paths, arcs cut into steps of at most 2 pi / n
         # (inscribed), and its circles, filled even-odd.
-        _, paths, circles = f[3]
-        loops = []
-        for path in paths:
-            pts = []
-            for i, (a, arc) in enumerate(path):
-                pts.append(a)
-                if arc is not None:
-                    b = path[(i + 1) % len(path)][0]
-                    c, r, mid = arc
-                    a0 = math.atan2(a[1] - c[1], a[0] - c[0])
-                    am = math.atan2(mid[1] - c[1], mid[0] - c[0])
-                    a1 = math.atan2(b[1] - c[1], b[0] - c[0])
-                    # The sweep from a0 through am to a1 (either way round).
-                    ccw = (am - a0) % (2 * math.pi) < (a1 - a0) % (2 * math.pi) or abs(a1 - a0) < 1e-15
-                    sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
-                    if sweep == 0:
-                        sweep = 2 * math.pi
-                    k = max(1, math.ceil(abs(sweep) / (2 * math.pi / n)))
-                    for j in range(1, k):
-                        ang = a0 + sweep * j / k
-                        pts.append(c + r * np.array([math.cos(ang), math.sin(ang)]))
-            loops.append(np.array(pts))
-        for c, r in circles:
-            ang = 2 * math.pi * np.arange(n) / n
-            loops.append(np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang)]))
+        loops = [np.array([g.first for g in path]) for path in drawing_pieces(f, n)]
         return mf.CrossSection([l.tolist() for l in loops if len(l) >= 3], mf.FillRule.EvenOdd)
     if len(f) == 4:
         # An offset: manifold's own (Clipper2's) of the child, then moved.
@@ -200,10 +268,23 @@ def twist_steps(leaf, n):
 
 
 def refined(f, m):
-    """A 2-D tree with each polygon edge cut into m equal pieces."""
+    """A 2-D tree with each straight edge (of a polygon or a drawing's
+    path) cut into m equal pieces."""
     if f[0] == "poly":
         u = np.arange(m)[:, None] / m
         return ("poly", [np.concatenate([(1 - u) * l[i] + u * l[(i + 1) % len(l)] for i in range(len(l))]) for l in f[1]])
+    if f[0] == "op" and len(f) == 4 and f[3][0] == "drawing":
+        _, paths, circles = f[3]
+        cut = []
+        for path in paths:
+            out = []
+            for i, (a, arc) in enumerate(path):
+                out.append((a, arc))
+                if arc is None:
+                    b = path[(i + 1) % len(path)][0]
+                    out += [((1 - j / m) * a + j / m * b, None) for j in range(1, m)]
+            cut.append(out)
+        return ("op", f[1], [refined(k, m) for k in f[2]], ("drawing", cut, circles))
     if f[0] == "op":
         return ("op", f[1], [refined(k, m) for k in f[2]]) + tuple(f[3:])
     return f
@@ -359,27 +440,19 @@ def extrusion_facets(leaf, n):
     return dist, ang
 
 
-def poly_edges(f):
-    """The straight edges (a, b) of a 2-D tree's polygons."""
-    if f[0] == "poly":
-        return [(l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
-    if f[0] == "op":
-        return [e for k in f[2] for e in poly_edges(k)]
-    return []
-
-
-def twist_surface(p, a, e, u, t):
-    """Points X and unit normals N of a twisted side, over edge a + u e at
-    height fraction t (arrays), in the extrusion's own coordinates:
-    X = (S(t) R(-theta t)(a + u e), z0 + h t), N along X_u x X_t."""
+def twist_surface(p, g, u, t):
+    """Points X and unit normals N of a twisted side, over the section's
+    piece g (a Line or an Arc) at parameter u and height fraction t
+    (arrays), in the extrusion's own coordinates: X = (S(t) R(-theta t)
+    g(u), z0 + h t), N along X_u x X_t."""
     th = math.radians(p["twist"])
     sx, sy = p["scale2"]
     sg = np.stack([1 + (sx - 1) * t, 1 + (sy - 1) * t], axis=-1)
     ang = -th * t
     c, s_ = np.cos(ang), np.sin(ang)
-    q = a + u[..., None] * e
+    q, e = g(u), g.d(u)
     rq = np.stack([c * q[..., 0] - s_ * q[..., 1], s_ * q[..., 0] + c * q[..., 1]], axis=-1)
-    re = np.stack([c * e[0] - s_ * e[1], s_ * e[0] + c * e[1]], axis=-1)
+    re = np.stack([c * e[..., 0] - s_ * e[..., 1], s_ * e[..., 0] + c * e[..., 1]], axis=-1)
     # d/dt of R(-theta t) q is -theta R(-theta t + pi/2) q.
     drq = -th * np.stack([-rq[..., 1], rq[..., 0]], axis=-1)
     xu = np.concatenate([sg * re, np.zeros(u.shape + (1,))], axis=-1)
@@ -394,15 +467,18 @@ def twist_surface(p, a, e, u, t):
 def twisted_facets(leaf, n):
     """(distance, angle, curvature radius) of a twisted extrusion's mesh
     at n, computed once a leaf and n. Distance, derived: the mesh's
-    vertices lie on the surface X(u, t) = S(t) R(-theta t)(a + u e), linear
-    in u; between slices Delta t apart it departs from its chords by at
-    most Delta t^2 / 8 max|X_tt| <= Delta t^2 rho (2 k theta + s theta^2) / 8
-    (rho the farthest vertex, k = max|s_i - 1|, s = max(1, s_i)), and a
-    cell's bilinear patch from its two triangles by a quarter of its twist
-    |(M(t1) - M(t0)) e| <= Delta t (k + s theta) l (l the longest edge
-    piece); a centred circle adds its inscribed polygon's r b s. Angle and
-    curvature radius, sampled: the largest angle between the surface's
-    normal at each cell's corners and middle and the normals of the cell's
+    vertices lie on the surface X(u, t) = S(t) R(-theta t) g(u) over the
+    section's pieces g (straight edges cut in m, circles' and arcs' steps
+    of at most 2 pi / n, whose ends lie on the curve); between slices
+    Delta t apart it departs from its chords by at most Delta t^2 / 8
+    max|X_tt| <= Delta t^2 rho (2 k theta + s theta^2) / 8 (rho the
+    farthest point of the section, k = max|s_i - 1|, s = max(1, s_i)), and
+    a cell's bilinear patch from its two triangles by a quarter of its
+    twist |(M(t1) - M(t0)) e| <= Delta t (k + s theta) l (l the longest
+    chord of a piece); a circle or arc adds its inscribed polygon's r b s.
+    Angle and curvature radius, sampled: the largest angle between the
+    true surface's normal at each cell's corners and middle (on the curve
+    itself for a circle's or arc's step) and the normals of the cell's
     triangles (either diagonal), and the smallest ratio of distance to
     normal turn between neighbouring samples, each with a factor 2 of
     margin."""
@@ -415,48 +491,48 @@ def twisted_facets(leaf, n):
     sx, sy = p["scale2"]
     k, sg = max(abs(sx - 1), abs(sy - 1)), max(1.0, sx, sy)
     dt = 1.0 / slices
-    edges = poly_edges(p["flat"])
+    pieces = section_pieces(refined(p["flat"], m), n)
     sv = ellipse_singular_values(leaf)
     radii = [s[0] for s in sv]
-    rho = max([float(np.linalg.norm(a)) for a, _ in edges] + radii + [0.0])
-    piece = max([float(np.linalg.norm(b - a)) / m for a, b in edges] + [2 * r * math.sin(math.pi / n) for r in radii] + [0.0])
+    rho = max([g.reach() for g in pieces] + [0.0])
+    piece = max([float(np.linalg.norm(g(1.0) - g(0.0))) for g in pieces] + [0.0])
     bcirc = 1 - math.cos(math.pi / n)
     dist = dt * dt * rho * (2 * k * th + sg * th * th) / 8 + dt * (k + sg * th) * piece / 4
     dist += max((r * bcirc * sg for r in radii), default=0.0)
     ang, curv = 0.0, math.inf
     t = np.linspace(0.0, 1.0, slices + 1)
-    for a, b in edges:
-        e = (b - a) / m
-        for j in range(m):
-            a0 = a + j * e
-            uu, tt = np.meshgrid(np.array([0.0, 0.5, 1.0]), np.concatenate([t, (t[:-1] + t[1:]) / 2]))
-            X, N = twist_surface(p, a0, e, uu, tt)
-            corner = X[: slices + 1]
-            c00, c10 = corner[:-1, 0], corner[:-1, 2]
-            c01, c11 = corner[1:, 0], corner[1:, 2]
-            tri = [np.cross(c10 - c00, c11 - c00), np.cross(c11 - c00, c01 - c00), np.cross(c10 - c00, c01 - c00), np.cross(c11 - c10, c01 - c10)]
+    uu, tt = np.meshgrid(np.array([0.0, 0.5, 1.0]), np.concatenate([t, (t[:-1] + t[1:]) / 2]))
+    for g in pieces:
+        X, N = twist_surface(p, g, uu, tt)
+        corner = X[: slices + 1]
+        c00, c10 = corner[:-1, 0], corner[:-1, 2]
+        c01, c11 = corner[1:, 0], corner[1:, 2]
+        tri = [np.cross(c10 - c00, c11 - c00), np.cross(c11 - c00, c01 - c00), np.cross(c10 - c00, c01 - c00), np.cross(c11 - c10, c01 - c10)]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # (a cell shrunk to a point, at a pyramid's apex, has none)
+            tri = [f / np.linalg.norm(f, axis=-1, keepdims=True) for f in tri]
+        Nc = N[: slices + 1]
+        samples = [Nc[:-1, 0], Nc[:-1, 2], Nc[1:, 0], Nc[1:, 2], N[slices + 1 :, 1]]
+        if isinstance(g, Arc):
+            # A curved piece bulges from its chord most at its middle.
+            samples += [Nc[:-1, 1], Nc[1:, 1]]
+        for f in tri:
+            for s_ in samples:
+                cosv = np.abs(np.sum(f * s_, axis=-1)).clip(0, 1)
+                ok = np.isfinite(cosv)
+                if ok.any():
+                    ang = max(ang, float(np.arccos(cosv[ok]).max()))
+        # Curvature: normal turn against distance along t and along u.
+        for (X1, N1, X2, N2) in ((X[:slices, 0], Nc[:-1, 0], X[1 : slices + 1, 0], Nc[1:, 0]), (X[: slices + 1, 0], Nc[:, 0], X[: slices + 1, 2], Nc[:, 2])):
+            turn = np.arccos(np.abs(np.sum(N1 * N2, axis=-1)).clip(0, 1))
+            dd = np.linalg.norm(X2 - X1, axis=-1)
             with np.errstate(divide="ignore", invalid="ignore"):
-                # (a cell shrunk to a point, at a pyramid's apex, has none)
-                tri = [f / np.linalg.norm(f, axis=-1, keepdims=True) for f in tri]
-            Nc = N[: slices + 1]
-            samples = [Nc[:-1, 0], Nc[:-1, 2], Nc[1:, 0], Nc[1:, 2], N[slices + 1 :, 1]]
-            for f in tri:
-                for s_ in samples:
-                    cosv = np.abs(np.sum(f * s_, axis=-1)).clip(0, 1)
-                    ok = np.isfinite(cosv)
-                    if ok.any():
-                        ang = max(ang, float(np.arccos(cosv[ok]).max()))
-            # Curvature: normal turn against distance along t and along u.
-            for (X1, N1, X2, N2) in ((X[:slices, 0], Nc[:-1, 0], X[1 : slices + 1, 0], Nc[1:, 0]), (X[: slices + 1, 0], Nc[:, 0], X[: slices + 1, 2], Nc[:, 2])):
-                turn = np.arccos(np.abs(np.sum(N1 * N2, axis=-1)).clip(0, 1))
-                dd = np.linalg.norm(X2 - X1, axis=-1)
-                with np.errstate(divide="ignore", invalid="ignore"):
-                    r = np.where(turn > 0, dd / turn, np.inf)
-                r = r[np.isfinite(turn)]
-                if r.size:
-                    curv = min(curv, float(r.min()) / 2)
+                r = np.where(turn > 0, dd / turn, np.inf)
+            r = r[np.isfinite(turn)]
+            if r.size:
+                curv = min(curv, float(r.min()) / 2)
     circ = max((s[0] / s[1] * math.pi / n for s in sv), default=0.0)
-    cache[n] = (dist, max(2 * ang, circ), min(curv, min((s[1] * min(1.0, sx) for s in sv), default=math.inf)))
+    cache[n] = (dist, max(2 * ang, circ), min(curv, min((s[1] * min(1.0, sx, sy) for s in sv), default=math.inf)))
     return cache[n]
 
 

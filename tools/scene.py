@@ -1514,15 +1514,10 @@ def section_tree(node, big):
 
 
 def check_twistable(rd, s, f, twist, sc):
-    """The oracle twists polygons and circles centred on the axis (the
-    same circle turned), and scales circles evenly only."""
+    """The oracle twists and scales polygons, circles, ellipses and
+    drawings, not text."""
     if f[0] == "curves":
         raise rd.err(s, "twisted text is not in the oracle")
-    if f[0] == "ellipse":
-        A, c = f[1], f[2]
-        circle = abs(A[:, 0] @ A[:, 1]) <= 1e-12 * (A[:, 0] @ A[:, 0]) and abs(A[:, 1] @ A[:, 1] - A[:, 0] @ A[:, 0]) <= 1e-12 * (A[:, 0] @ A[:, 0])
-        if sc[0] != sc[1] or twist != 0 and not (circle and not np.any(c)):
-            raise rd.err(s, "a twisted circle off the axis, or one scaled unevenly, is not in the oracle")
     if f[0] == "op":
         for k in f[2]:
             check_twistable(rd, s, k, twist, sc)
@@ -1972,6 +1967,21 @@ def wedge_normals(angle, flip):
     return [np.array([0.0, -sg, 0.0]) * turn, np.array([-sa, ca * sg, 0.0]) * turn]
 
 
+def largest_stretch(A):
+    """The largest singular value of a 2x2 matrix, as csgrt computes it."""
+    (a, b), (c, d) = A
+    f = a * a + b * b + c * c + d * d
+    det = a * d - b * c
+    return math.sqrt(0.5 * (f + math.sqrt(max(f * f - 4 * det * det, 0.0))))
+
+
+def is_circle(A):
+    """Whether A maps the unit circle to a circle (as csgrt decides)."""
+    x, y = A[:, 0], A[:, 1]
+    r2 = x @ x
+    return abs(x @ y) <= 1e-12 * r2 and abs(y @ y - r2) <= 1e-12 * r2
+
+
 def cone_box(m, A, c, s, z0, h):
     """The exact box of the cone over the ellipse A x + c (z = z0) tapered
     by s to z0 + h, placed by m: the hull of its two ellipses."""
@@ -2010,7 +2020,19 @@ def extrusion_box(leaf):
                     lo, hi = -grow * rho, grow * rho
                 return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
             if f[0] == "ellipse":
-                return cone_box(m, f[1], f[2], sx, z0, h)
+                A, c = f[1], f[2]
+                if sx == sy and (p["twist"] == 0 or is_circle(A) and not np.any(c)):
+                    return cone_box(m, A, c, sx, z0, h)
+                # As csgrt's twisted ellipse: its box, or the disc of its
+                # farthest point |c| + the largest singular value.
+                if p["twist"] == 0:
+                    e = np.sqrt(A[:, 0] ** 2 + A[:, 1] ** 2)
+                    lo, hi = c - e, c + e
+                    lo, hi = np.minimum(lo, lo * [sx, sy]), np.maximum(hi, hi * [sx, sy])
+                else:
+                    rho = math.hypot(c[0], c[1]) + largest_stretch(A)
+                    lo, hi = -grow * rho, grow * rho
+                return corner_box(m, np.array([lo[0], lo[1], z0]), np.array([hi[0], hi[1], z0 + h]))
             return combine_boxes(f[1], [rec(k) for k in f[2]])
 
         return rec(p["flat"])

@@ -21,6 +21,7 @@ pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
+pub mod trig;
 pub mod twist;
 
 pub use aabb::Aabb;
@@ -35,7 +36,7 @@ pub use solid::{Need, Param, Probe, Solid};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
-pub use twist::Twisted;
+pub use twist::{Section, Twisted};
 
 use glam::DVec3;
 

@@ -1,41 +1,58 @@
 //! A twisted, or unevenly scaled, prism: OpenSCAD's `linear_extrude` with
 //! `twist` or `scale = [sx, sy]` (sx ≠ sy), in object space z ∈ [0, 1],
-//! as the smooth limit of OpenSCAD's slices.
+//! as the smooth limit of OpenSCAD's slices, over a straight-edged region
+//! or an ellipse (a circle anywhere in the plane, a drawing's arc).
 //!
-//! OpenSCAD (`GeometryEvaluator.cc`, `add_slice`) puts the region's point
+//! OpenSCAD (`GeometryEvaluator.cc`, `add_slice`) puts the section's point
 //! p at height z at x = S(z)·R(−θz)·p, S(z) = diag(1 + (sx − 1)z, 1 + (sy −
 //! 1)z), θ the twist (clockwise seen from above). So a point x is inside
-//! where p(x) = R(θz)·S(z)⁻¹·x_xy is in the region. Along the line o + t·d
-//! the path p(t) is no longer straight, and the side over the edge n·p = c
+//! where p(x) = R(θz)·S(z)⁻¹·x_xy is in the section. Along the line o + t·d
+//! the path p(t) is no longer straight. With w(t) = (σy·x, σx·y)(t) and
+//! σ̄ = σx·σy (p = R(φ)·w/σ̄, φ(t) = θ·z(t)), the side over the edge n·p = c
 //! is met where
 //!
-//!   G(t) = A(t)·cos φ(t) + B(t)·sin φ(t) − C(t) = 0,
+//!   G(t) = A(t)·cos φ + B(t)·sin φ − C(t) = 0,
 //!
-//! φ(t) = θ·z(t), w(t) = (σy·x, σx·y)(t), A = n·w, B = −n × w, C = c·σx·σy
-//! (G is n·p − c times σx·σy > 0; A, B, C are quadratics in t). Its roots
-//! are isolated with guaranteed bounds: over an interval of half-width r
-//! about m, |G − G(m)| ≤ r·max|G′| and |G′ − G′(m)| ≤ r·max|G″| (the maxima
-//! from the quadratics' ranges, |cos|, |sin| ≤ 1), so an interval is
-//! dropped when |G(m)| > r·max|G′|, holds exactly one root when G′ keeps
-//! its sign and G changes sign, and is halved otherwise (down to 2⁻⁶⁰ of
-//! its piece; φ changes by at most 1 radian a piece). A root counts where
-//! p(t) lies on the edge itself. A ray at constant z sees a straight path
-//! and the region's own crossings.
+//! A = n·w, B = −n × w, C = c·σ̄ (G is n·p − c times σ̄ > 0; A, B, C are
+//! quadratics in t). The ellipse (p − c)ᵀQ(p − c) ≤ 1 is met where σ̄² times
+//! that form minus 1 vanishes: with Q = s·I + [[a, b], [b, −a]] and
+//! g = Q·c, it is
+//!
+//!   s|w|² + σ̄²(cᵀQc − 1) − 2σ̄[(w·g) cos φ + (w × g) sin φ]
+//!     + [a(wx² − wy²) + 2b·wx·wy] cos 2φ + [b(wx² − wy²) − 2a·wx·wy] sin 2φ,
+//!
+//! quartics in t (quadratics under an even scale, where w = x and σ̄ = σ
+//! serve, the common factor σ² left out), the second harmonic only for an
+//! ellipse that is not a circle. Roots are isolated by [`super::trig`]
+//! over pieces in which φ turns by at most a radian, searched only where
+//! the path's distance from the axis can reach the edge or ellipse. A root
+//! on an edge's line counts where p(t) lies on the edge itself. A ray at
+//! constant z sees a straight path and the section's own crossings.
 
 use super::solid::{Param, Probe, RawSpan, Solid};
+use super::trig::{Pol, Trig};
 use super::{Aabb, Part, NO_PART};
 use crate::plane::Region;
-use glam::{DMat2, DVec2, DVec3};
+use glam::{DAffine2, DMat2, DVec2, DVec3};
+use smallvec::SmallVec;
 use std::sync::Arc;
 
 const BOTTOM: Part = 0;
 const TOP: Part = 1;
 const SIDE: Part = 2;
 
+/// What is swept.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Section {
+    /// Straight-edged outlines only; edge e is part SIDE + e.
+    Region(Arc<Region>),
+    /// The image of the unit disc (part SIDE), not flattened.
+    Ellipse(DAffine2),
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Twisted {
-    /// Straight-edged outlines only.
-    pub region: Arc<Region>,
+    pub section: Section,
     /// OpenSCAD's twist over the height, in radians.
     pub twist: f64,
     /// The top section's scale in x and y (≥ 0).
@@ -44,130 +61,71 @@ pub struct Twisted {
     pub centered: bool,
 }
 
-/// A quadratic q0 + q1·t + q2·t².
-#[derive(Clone, Copy, Debug)]
-struct Quad([f64; 3]);
+/// An ellipse's inside test as a quadratic form: (p − c)ᵀQ(p − c) ≤ 1.
+struct Form {
+    q: glam::DMat2,
+    c: DVec2,
+}
 
-impl Quad {
-    fn at(&self, t: f64) -> f64 {
-        (self.0[2] * t + self.0[1]) * t + self.0[0]
-    }
-    fn d(&self, t: f64) -> f64 {
-        2.0 * self.0[2] * t + self.0[1]
-    }
-    fn dd(&self) -> f64 {
-        2.0 * self.0[2]
-    }
-    /// The largest |q| over [l, h].
-    fn max_abs(&self, l: f64, h: f64) -> f64 {
-        let mut m = self.at(l).abs().max(self.at(h).abs());
-        if self.0[2] != 0.0 {
-            let v = -self.0[1] / (2.0 * self.0[2]);
-            if v > l && v < h {
-                m = m.max(self.at(v).abs());
-            }
+impl Form {
+    fn of(e: &DAffine2) -> Form {
+        let inv = e.matrix2.inverse();
+        Form {
+            q: inv.transpose() * inv,
+            c: e.translation,
         }
-        m
-    }
-    /// The largest |q′| over [l, h].
-    fn max_abs_d(&self, l: f64, h: f64) -> f64 {
-        self.d(l).abs().max(self.d(h).abs())
-    }
-    /// u·p + v·q.
-    fn comb(p: Quad, q: Quad, u: f64, v: f64) -> Quad {
-        Quad([
-            u * p.0[0] + v * q.0[0],
-            u * p.0[1] + v * q.0[1],
-            u * p.0[2] + v * q.0[2],
-        ])
     }
 
-    fn mul_lin(a: [f64; 2], b: [f64; 2]) -> Quad {
-        Quad([a[0] * b[0], a[0] * b[1] + a[1] * b[0], a[1] * b[1]])
+    /// ½ of the gradient of (p − c)ᵀQ(p − c).
+    fn grad(&self, p: DVec2) -> DVec2 {
+        self.q * (p - self.c)
+    }
+
+    fn contains(&self, p: DVec2) -> bool {
+        (p - self.c).dot(self.q * (p - self.c)) <= 1.0
     }
 }
 
-/// G(t) = A cos φ + B sin φ − C along one side, φ = φ0 + φ1·t.
-struct SideFn {
-    a: Quad,
-    b: Quad,
-    c: Quad,
-    phi: [f64; 2],
+impl Section {
+    fn contains(&self, p: DVec2) -> bool {
+        match self {
+            Section::Region(r) => r.contains(p),
+            Section::Ellipse(e) => Form::of(e).contains(p),
+        }
+    }
+
+    /// The farthest distance of the section from the axis (at least).
+    fn reach(&self) -> f64 {
+        match self {
+            Section::Region(r) => r.edges.iter().map(|(a, _)| a.length()).fold(0.0, f64::max),
+            Section::Ellipse(e) => e.translation.length() + largest_stretch(e.matrix2),
+        }
+    }
+
+    /// The box of the section.
+    fn box2(&self) -> (DVec2, DVec2) {
+        match self {
+            Section::Region(r) => (r.lo, r.hi),
+            Section::Ellipse(e) => {
+                let m = e.matrix2;
+                let h = DVec2::new(
+                    DVec2::new(m.x_axis.x, m.y_axis.x).length(),
+                    DVec2::new(m.x_axis.y, m.y_axis.y).length(),
+                );
+                (e.translation - h, e.translation + h)
+            }
+        }
+    }
 }
 
-impl SideFn {
-    fn g(&self, t: f64) -> f64 {
-        let (s, c) = (self.phi[0] + self.phi[1] * t).sin_cos();
-        self.a.at(t) * c + self.b.at(t) * s - self.c.at(t)
-    }
-    fn g1(&self, t: f64) -> f64 {
-        let (s, c) = (self.phi[0] + self.phi[1] * t).sin_cos();
-        let w = self.phi[1];
-        self.a.d(t) * c + self.b.d(t) * s + w * (self.b.at(t) * c - self.a.at(t) * s) - self.c.d(t)
-    }
-    /// Bounds of |G′| and |G″| over [l, h].
-    fn bounds(&self, l: f64, h: f64) -> (f64, f64) {
-        let w = self.phi[1].abs();
-        let (a0, b0) = (self.a.max_abs(l, h), self.b.max_abs(l, h));
-        let (a1, b1) = (self.a.max_abs_d(l, h), self.b.max_abs_d(l, h));
-        let (a2, b2) = (self.a.dd().abs(), self.b.dd().abs());
-        let m1 = a1 + b1 + w * (a0 + b0) + self.c.max_abs_d(l, h);
-        let m2 = a2 + b2 + 2.0 * w * (a1 + b1) + w * w * (a0 + b0) + self.c.dd().abs();
-        // Room for the rounding of G's own evaluation.
-        let slack = 1e-13 * (a0 + b0 + self.c.max_abs(l, h));
-        (m1 * (1.0 + 1e-12) + slack, m2 * (1.0 + 1e-12) + slack)
-    }
-
-    /// The roots of G in [l, h) where it changes sign, appended to `out`.
-    fn roots(&self, l: f64, h: f64, out: &mut smallvec::SmallVec<[f64; 8]>) {
-        let (gl, gh) = (self.g(l), self.g(h));
-        self.isolate(l, h, gl, gh, 0, out);
-    }
-
-    fn isolate(
-        &self,
-        l: f64,
-        h: f64,
-        gl: f64,
-        gh: f64,
-        depth: u32,
-        out: &mut smallvec::SmallVec<[f64; 8]>,
-    ) {
-        let (m, r) = (0.5 * (l + h), 0.5 * (h - l));
-        let gm = self.g(m);
-        let (m1, m2) = self.bounds(l, h);
-        let slack = 1e-13 * (self.a.max_abs(l, h) + self.b.max_abs(l, h) + self.c.max_abs(l, h));
-        if gm.abs() > r * m1 + slack && (gl > 0.0) == (gm > 0.0) && (gh > 0.0) == (gm > 0.0) {
-            return;
-        }
-        let changes = (gl > 0.0) != (gh > 0.0);
-        if self.g1(m).abs() > r * m2 || depth >= 60 || m <= l || m >= h {
-            // Monotone (or as narrow as it gets): one root if G changes sign.
-            if changes {
-                out.push(self.bisect(l, h, gl));
-            }
-            return;
-        }
-        self.isolate(l, m, gl, gm, depth + 1, out);
-        self.isolate(m, h, gm, gh, depth + 1, out);
-    }
-
-    /// The sign change of G in [l, h], to the last bit.
-    fn bisect(&self, mut l: f64, mut h: f64, gl: f64) -> f64 {
-        let left = gl > 0.0;
-        for _ in 0..200 {
-            let m = 0.5 * (l + h);
-            if m <= l || m >= h {
-                break;
-            }
-            if (self.g(m) > 0.0) == left {
-                l = m;
-            } else {
-                h = m;
-            }
-        }
-        0.5 * (l + h)
-    }
+/// The largest singular value of a 2×2 matrix, √λmax(MᵀM) (the farthest
+/// point of the ellipse from its centre).
+fn largest_stretch(m: DMat2) -> f64 {
+    let (a, b, c, d) = (m.x_axis.x, m.y_axis.x, m.x_axis.y, m.y_axis.y);
+    let f = a * a + b * b + c * c + d * d;
+    let det = a * d - b * c;
+    let disc = (f * f - 4.0 * det * det).max(0.0);
+    (0.5 * (f + disc.sqrt())).sqrt()
 }
 
 /// The distance from the origin to the segment a–b.
@@ -186,10 +144,10 @@ type Spans = smallvec::SmallVec<[(f64, f64); 2]>;
 /// Where q ≤ 0 in [l, h], as at most two intervals, each widened by a
 /// little (1e-9 of the range, and the roots' own rounding) so that no
 /// point where q = 0 is lost.
-fn nonpositive(q: Quad, l: f64, h: f64) -> Spans {
+fn nonpositive(q: Pol, l: f64, h: f64) -> Spans {
     let mut out = Spans::new();
     let pad = 1e-9 * (h - l).abs().max(l.abs().max(h.abs()) * 1e-7);
-    let [c0, c1, c2] = q.0;
+    let [c0, c1, c2, ..] = q.c;
     let mut cuts: smallvec::SmallVec<[f64; 2]> = smallvec::SmallVec::new();
     if c2 != 0.0 {
         let disc = c1 * c1 - 4.0 * c2 * c0;
@@ -251,8 +209,8 @@ impl Twisted {
         DVec2::ONE + (self.scale - DVec2::ONE) * z
     }
 
-    /// The region frame at height z: p = R(θz)·S(z)⁻¹·x; `None` where the
-    /// section has shrunk to nothing.
+    /// The section's frame at height z: p = R(θz)·S(z)⁻¹·x; `None` where
+    /// the section has shrunk to nothing.
     fn frame(&self, z: f64) -> Option<DMat2> {
         let s = self.sigma(z);
         (s.x > 0.0 && s.y > 0.0)
@@ -260,90 +218,217 @@ impl Twisted {
     }
 
     /// The sides crossed along o + t·d, t in [t0, t1] (d.z ≠ 0), as (t, part).
-    fn crossings(
-        &self,
-        o: DVec3,
-        d: DVec3,
-        t0: f64,
-        t1: f64,
-    ) -> smallvec::SmallVec<[(f64, Part); 16]> {
-        let mut cuts = smallvec::SmallVec::new();
-        let k = self.scale - DVec2::ONE;
-        // σ(t) = σ0 + σ1·t, x(t) = o + d·t.
-        let sx = [1.0 + k.x * o.z, k.x * d.z];
-        let sy = [1.0 + k.y * o.z, k.y * d.z];
-        let wx = Quad::mul_lin(sy, [o.x, d.x]);
-        let wy = Quad::mul_lin(sx, [o.y, d.y]);
-        let ss = Quad::mul_lin(sx, sy);
-        let phi = [self.twist * o.z, self.twist * d.z];
-        // r(t)² = |x_xy(t)|², and σ² in x and y, to keep each edge's search
-        // to where the path can reach it (below).
-        let r2 = Quad([
-            o.truncate().length_squared(),
-            2.0 * o.truncate().dot(d.truncate()),
-            d.truncate().length_squared(),
-        ]);
-        let (sx2, sy2) = (Quad::mul_lin(sx, sx), Quad::mul_lin(sy, sy));
-        let mut roots: smallvec::SmallVec<[f64; 8]> = smallvec::SmallVec::new();
-        for (e, &(a, b)) in self.region.edges.iter().enumerate() {
-            let n = self.region.normals[e];
-            let c = n.dot(a);
-            let comb = Quad::comb;
-            let side = SideFn {
-                a: comb(wx, wy, n.x, n.y),
-                b: comb(wx, wy, n.y, -n.x),
-                c: Quad(ss.0.map(|x| c * x)),
-                phi,
-            };
-            // The edge lies between distances ρ₀ and ρ₁ of the axis, so
-            // the path meets it only where ρ₀·min σ ≤ r(t) ≤ ρ₁·max σ:
-            // where r² − ρ₁²σ² ≤ 0 for σx or σy, and ρ₀²σ² − r² ≤ 0 for
-            // σx or σy (quadratic inequalities, widened for rounding).
-            let (rho1, rho0) = (a.length().max(b.length()), segment_distance(a, b));
-            let near = |k: f64, q: Quad| comb(r2, q, 1.0, -k);
-            let far = |k: f64, q: Quad| comb(q, r2, k, -1.0);
-            let upper = union2(
-                nonpositive(near(rho1 * rho1, sx2), t0, t1),
-                nonpositive(near(rho1 * rho1, sy2), t0, t1),
-            );
-            let lower = union2(
-                nonpositive(far(rho0 * rho0, sx2), t0, t1),
-                nonpositive(far(rho0 * rho0, sy2), t0, t1),
-            );
-            roots.clear();
-            for &(ul, uh) in &upper {
-                for &(ll, lh) in &lower {
-                    let (l0, h0) = (ul.max(ll), uh.min(lh));
-                    if l0 > h0 {
-                        continue;
-                    }
-                    // Pieces over which φ turns by at most a radian.
-                    let pieces = ((phi[1] * (h0 - l0)).abs().ceil() as usize).clamp(1, 1 << 16);
-                    for i in 0..pieces {
-                        let l = l0 + (h0 - l0) * (i as f64 / pieces as f64);
-                        let h = if i + 1 == pieces {
-                            h0
-                        } else {
-                            l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
-                        };
-                        side.roots(l, h, &mut roots);
+    fn crossings(&self, o: DVec3, d: DVec3, t0: f64, t1: f64) -> SmallVec<[(f64, Part); 16]> {
+        let mut cuts = SmallVec::new();
+        let mut roots: SmallVec<[f64; 8]> = SmallVec::new();
+        match &self.section {
+            Section::Region(region) => {
+                let path = Path::new(self, o, d, t0, t1, 0.0);
+                for (e, &(a, b)) in region.edges.iter().enumerate() {
+                    let n = region.normals[e];
+                    let c = n.dot(a);
+                    let comb = Pol::comb;
+                    let side = Trig {
+                        a: comb(path.wx, path.wy, n.x, n.y),
+                        b: comb(path.wx, path.wy, n.y, -n.x),
+                        c: Pol::quad([c * path.ss.c[0], c * path.ss.c[1], c * path.ss.c[2]]),
+                        second: None,
+                        phi: path.phi,
+                    };
+                    roots.clear();
+                    let (rho1, rho0) = (a.length().max(b.length()), segment_distance(a, b));
+                    path.roots(&side, rho0, rho1, 1.0, &mut roots);
+                    let (ed, len2) = (b - a, (b - a).length_squared());
+                    for &t in &roots {
+                        let x = o + d * t;
+                        let Some(f) = self.frame(x.z) else { continue };
+                        let u = (f * x.truncate() - a).dot(ed) / len2;
+                        if (0.0..1.0).contains(&u) {
+                            cuts.push((t, SIDE + e as Part));
+                        }
                     }
                 }
             }
-            roots.sort_by(f64::total_cmp);
-            roots.dedup();
-            let (ed, len2) = (b - a, (b - a).length_squared());
-            for &t in &roots {
-                let x = o + d * t;
-                let Some(f) = self.frame(x.z) else { continue };
-                let u = (f * x.truncate() - a).dot(ed) / len2;
-                if (0.0..1.0).contains(&u) {
-                    cuts.push((t, SIDE + e as Part));
+            Section::Ellipse(e) => {
+                // The polynomials about the point of the line nearest the
+                // axis within the slab: their terms are then of the
+                // section's size, not of the line's length (quartics
+                // about a far origin cancel to 10⁴ ulps).
+                let dxy = d.truncate().length_squared();
+                let near = if dxy > 0.0 {
+                    -o.truncate().dot(d.truncate()) / dxy
+                } else {
+                    0.5 * (t0 + t1)
+                };
+                let path = Path::new(self, o, d, t0, t1, near.clamp(t0, t1));
+                let side = path.ellipse(&Form::of(e), self.scale.x == self.scale.y);
+                let rho1 = self.section.reach();
+                let rho0 = (e.translation.length() - largest_stretch(e.matrix2)).max(0.0);
+                let turns = if side.second.is_some() { 2.0 } else { 1.0 };
+                path.roots(&side, rho0, rho1, turns, &mut roots);
+                for &t in &roots {
+                    if self.frame(o.z + d.z * t).is_some() {
+                        cuts.push((t, SIDE));
+                    }
                 }
             }
         }
         cuts.sort_by(|x: &(f64, Part), y: &(f64, Part)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         cuts
+    }
+
+    /// The gradient's direction in the section at `p` on `part` (p in the
+    /// section's own coordinates).
+    fn section_normal(&self, p: DVec2, part: Part) -> DVec2 {
+        match &self.section {
+            Section::Region(r) => r.normals[(part - SIDE) as usize],
+            Section::Ellipse(e) => Form::of(e).grad(p),
+        }
+    }
+}
+
+/// The line o + t·d in a twisted extrusion's terms (see the module
+/// comment): σ, w, σ̄ and φ as polynomials in t.
+struct Path {
+    wx: Pol,
+    wy: Pol,
+    /// σ̄ = σx·σy.
+    ss: Pol,
+    phi: [f64; 2],
+    /// r(t)² = |x_xy(t)|², and σx², σy²: where the path can reach a
+    /// distance from the axis.
+    r2: Pol,
+    sx2: Pol,
+    sy2: Pol,
+    /// σx, and x and y, as linear functions of t.
+    sx: [f64; 2],
+    x: [f64; 2],
+    y: [f64; 2],
+    /// The range of τ, and the t where τ = 0.
+    t0: f64,
+    t1: f64,
+    tc: f64,
+}
+
+impl Path {
+    /// The line o + t·d over [t0, t1], its polynomials in τ = t − tc.
+    fn new(tw: &Twisted, o: DVec3, d: DVec3, t0: f64, t1: f64, tc: f64) -> Path {
+        let o = o + d * tc;
+        let k = tw.scale - DVec2::ONE;
+        // σ(τ) = σ0 + σ1·τ, x(τ) = o + d·τ.
+        let sx = [1.0 + k.x * o.z, k.x * d.z];
+        let sy = [1.0 + k.y * o.z, k.y * d.z];
+        Path {
+            wx: Pol::mul_lin(sy, [o.x, d.x]),
+            wy: Pol::mul_lin(sx, [o.y, d.y]),
+            ss: Pol::mul_lin(sx, sy),
+            phi: [tw.twist * o.z, tw.twist * d.z],
+            r2: Pol::quad([
+                o.truncate().length_squared(),
+                2.0 * o.truncate().dot(d.truncate()),
+                d.truncate().length_squared(),
+            ]),
+            sx2: Pol::mul_lin(sx, sx),
+            sy2: Pol::mul_lin(sy, sy),
+            sx,
+            x: [o.x, d.x],
+            y: [o.y, d.y],
+            t0: t0 - tc,
+            t1: t1 - tc,
+            tc,
+        }
+    }
+
+    /// The ellipse's G (see the module comment); under an even scale
+    /// w = x, σ̄ = σ.
+    fn ellipse(&self, f: &Form, even: bool) -> Trig {
+        let lin = |c: [f64; 2]| Pol {
+            c: [c[0], c[1], 0.0, 0.0, 0.0],
+            deg: 1,
+        };
+        let (wx, wy, ss) = if even {
+            (lin(self.x), lin(self.y), lin(self.sx))
+        } else {
+            (self.wx, self.wy, self.ss)
+        };
+        let q = f.q;
+        let (s, a, b) = (
+            0.5 * (q.x_axis.x + q.y_axis.y),
+            0.5 * (q.x_axis.x - q.y_axis.y),
+            q.x_axis.y,
+        );
+        let g = q * f.c;
+        let k0 = f.c.dot(g) - 1.0;
+        let (xx, yy, xy) = (wx.mul(&wx), wy.mul(&wy), wx.mul(&wy));
+        let norm2 = Pol::comb(xx, yy, 1.0, 1.0);
+        let diff = Pol::comb(xx, yy, 1.0, -1.0);
+        let ss2 = ss.mul(&ss);
+        // C is minus the constant harmonic.
+        let c = Pol::comb(norm2, ss2, -s, -k0);
+        let dot = Pol::comb(wx, wy, g.x, g.y);
+        let cross = Pol::comb(wx, wy, g.y, -g.x);
+        let turn = if crate::mutant::active("ellipse_turned_back") {
+            -1.0
+        } else {
+            1.0
+        };
+        let second = (a != 0.0 || b != 0.0).then(|| {
+            (
+                Pol::comb(diff, xy, a, 2.0 * b),
+                Pol::comb(diff, xy, turn * b, turn * -2.0 * a),
+            )
+        });
+        Trig {
+            a: ss.mul(&dot).scaled(-2.0),
+            b: ss.mul(&cross).scaled(-2.0),
+            c,
+            second,
+            phi: self.phi,
+        }
+    }
+
+    /// The roots of `side` in [t0, t1] where the path can reach distances
+    /// ρ₀ to ρ₁ from the axis, over pieces in which φ (`turns` times it)
+    /// turns by at most a radian.
+    fn roots(&self, side: &Trig, rho0: f64, rho1: f64, turns: f64, out: &mut SmallVec<[f64; 8]>) {
+        // Where ρ₀·min σ ≤ r(t) ≤ ρ₁·max σ: where r² − ρ₁²σ² ≤ 0 for σx or
+        // σy, and ρ₀²σ² − r² ≤ 0 for σx or σy (quadratic inequalities,
+        // widened for rounding).
+        let (t0, t1, r2) = (self.t0, self.t1, self.r2);
+        let near = |k: f64, q: Pol| Pol::comb(r2, q, 1.0, -k);
+        let far = |k: f64, q: Pol| Pol::comb(q, r2, k, -1.0);
+        let upper = union2(
+            nonpositive(near(rho1 * rho1, self.sx2), t0, t1),
+            nonpositive(near(rho1 * rho1, self.sy2), t0, t1),
+        );
+        let lower = union2(
+            nonpositive(far(rho0 * rho0, self.sx2), t0, t1),
+            nonpositive(far(rho0 * rho0, self.sy2), t0, t1),
+        );
+        let w = self.phi[1] * turns;
+        for &(ul, uh) in &upper {
+            for &(ll, lh) in &lower {
+                let (l0, h0) = (ul.max(ll), uh.min(lh));
+                if l0 > h0 {
+                    continue;
+                }
+                let pieces = ((w * (h0 - l0)).abs().ceil() as usize).clamp(1, 1 << 16);
+                for i in 0..pieces {
+                    let l = l0 + (h0 - l0) * (i as f64 / pieces as f64);
+                    let h = if i + 1 == pieces {
+                        h0
+                    } else {
+                        l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
+                    };
+                    side.roots(l, h, out);
+                }
+            }
+        }
+        if self.tc != 0.0 {
+            out.iter_mut().for_each(|t| *t += self.tc);
+        }
+        out.sort_by(f64::total_cmp);
+        out.dedup();
     }
 }
 
@@ -361,15 +446,24 @@ impl Solid for Twisted {
             let Some(f) = self.frame(o.z) else { return };
             let (o2, d2) = (f * o.truncate(), f * d.truncate());
             if d2 == DVec2::ZERO {
-                if self.region.contains(o2) {
+                if self.section.contains(o2) {
                     emit((f64::NEG_INFINITY, NO_PART, f64::INFINITY, NO_PART));
                 }
                 return;
             }
-            for pair in self.region.crossings(o2, d2).chunks_exact(2) {
-                let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
-                if s0 < s1 {
-                    emit((s0, SIDE + e0, s1, SIDE + e1));
+            match &self.section {
+                Section::Region(region) => {
+                    for pair in region.crossings(o2, d2).chunks_exact(2) {
+                        let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
+                        if s0 < s1 {
+                            emit((s0, SIDE + e0, s1, SIDE + e1));
+                        }
+                    }
+                }
+                Section::Ellipse(e) => {
+                    if let Some((s0, s1)) = line_ellipse(&Form::of(e), o2, d2) {
+                        emit((s0, SIDE, s1, SIDE));
+                    }
                 }
             }
             return;
@@ -384,7 +478,7 @@ impl Solid for Twisted {
         let at = |t: f64, z: f64| {
             let x = o + d * t;
             self.frame(z)
-                .is_some_and(|f| self.region.contains(f * x.truncate()))
+                .is_some_and(|f| self.section.contains(f * x.truncate()))
         };
         let mut inside = at(t0, if p0 == BOTTOM { 0.0 } else { 1.0 });
         let mut start = (t0, p0);
@@ -403,20 +497,21 @@ impl Solid for Twisted {
         }
     }
 
-    /// The gradient of n·p(x) − c: S⁻¹R(θz)ᵀn in x and y, and in z
-    /// n·(θ·R′(θz)S⁻¹x + R(θz)·d(S⁻¹)/dz·x).
+    /// The gradient of F(p(x)), F the section's side function (n·p − c,
+    /// or the ellipse's form) with gradient n in the section: S⁻¹R(θz)ᵀn in
+    /// x and y, and in z n·(θ·R′(θz)S⁻¹x + R(θz)·d(S⁻¹)/dz·x).
     fn normal(&self, p: DVec3, part: Part) -> DVec3 {
         let p = p - DVec3::Z * self.z_lo();
         match part {
             BOTTOM => DVec3::NEG_Z,
             TOP => DVec3::Z,
             k => {
-                let n = self.region.normals[(k - SIDE) as usize];
                 let s = self.sigma(p.z).max(DVec2::splat(1e-300));
                 let rot = DMat2::from_angle(self.twist * p.z);
                 let inv = DVec2::ONE / s;
-                let xy = rot.transpose() * n * inv;
                 let x = p.truncate();
+                let n = self.section_normal(rot * (x * inv), k);
+                let xy = rot.transpose() * n * inv;
                 let turn = DMat2::from_angle(self.twist * p.z + std::f64::consts::FRAC_PI_2);
                 let ds = -(self.scale - DVec2::ONE) * inv * inv;
                 let dz = n.dot(turn * (x * inv) * self.twist + rot * (x * ds));
@@ -430,19 +525,19 @@ impl Solid for Twisted {
         (0.0..=1.0).contains(&p.z)
             && self
                 .frame(p.z)
-                .is_some_and(|f| self.region.contains(f * p.truncate()))
+                .is_some_and(|f| self.section.contains(f * p.truncate()))
     }
 
-    /// Without twist, the region's box and that box scaled at the top;
-    /// with it, the disc of the farthest vertex, scaled by the larger of 1
-    /// and the top scale in each direction.
+    /// Without twist, the section's box and that box scaled at the top;
+    /// with it, the disc of the section's farthest point, scaled by the
+    /// larger of 1 and the top scale in each direction.
     fn object_bounds(&self) -> Aabb {
-        let r = &self.region;
         let grow = DVec2::ONE.max(self.scale);
         let (lo, hi) = if self.twist == 0.0 {
-            (r.lo.min(r.lo * self.scale), r.hi.max(r.hi * self.scale))
+            let (lo, hi) = self.section.box2();
+            (lo.min(lo * self.scale), hi.max(hi * self.scale))
         } else {
-            let rho = r.edges.iter().map(|(a, _)| a.length()).fold(0.0, f64::max);
+            let rho = self.section.reach();
             (-grow * rho, grow * rho)
         };
         let z = self.z_lo();
@@ -455,13 +550,27 @@ impl Solid for Twisted {
     }
 
     fn params(&self) -> Vec<(&'static str, Param)> {
-        vec![
-            ("edges", Param::Num(self.region.edges.len() as f64)),
+        let mut out = match &self.section {
+            Section::Region(r) => vec![("edges", Param::Num(r.edges.len() as f64))],
+            Section::Ellipse(e) => {
+                let (m, c) = (e.matrix2, e.translation);
+                vec![
+                    ("ellipse_xx", Param::Num(m.x_axis.x)),
+                    ("ellipse_xy", Param::Num(m.y_axis.x)),
+                    ("ellipse_yx", Param::Num(m.x_axis.y)),
+                    ("ellipse_yy", Param::Num(m.y_axis.y)),
+                    ("ellipse_cx", Param::Num(c.x)),
+                    ("ellipse_cy", Param::Num(c.y)),
+                ]
+            }
+        };
+        out.extend([
             ("twist", Param::Num(self.twist.to_degrees())),
             ("scale_x", Param::Num(self.scale.x)),
             ("scale_y", Param::Num(self.scale.y)),
             ("center", Param::Bool(self.centered)),
-        ]
+        ]);
+        out
     }
 
     /// POV-Ray has no twisted prism: the export stops POV-Ray with the
@@ -469,4 +578,18 @@ impl Solid for Twisted {
     fn pov(&self) -> String {
         "#error \"csgrt: a twisted or unevenly scaled linear_extrude has no POV-Ray equivalent\"\nsphere { <0, 0, 0>, 0".to_string()
     }
+}
+
+/// Where the line o + s·d (d ≠ 0) is inside the ellipse: the roots of
+/// |M⁻¹(o + s·d − c)|² = 1, by the formula that does not cancel.
+fn line_ellipse(f: &Form, o: DVec2, d: DVec2) -> Option<(f64, f64)> {
+    let v = o - f.c;
+    let (qa, qb, qc) = (d.dot(f.q * d), v.dot(f.q * d), v.dot(f.q * v) - 1.0);
+    let disc = qb * qb - qa * qc;
+    if disc.is_nan() || disc <= 0.0 {
+        return None;
+    }
+    let k = -(qb + disc.sqrt().copysign(qb));
+    let (x0, x1) = (k / qa, qc / k);
+    Some((x0.min(x1), x0.max(x1)))
 }

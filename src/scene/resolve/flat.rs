@@ -22,7 +22,9 @@ use super::transforms::{basis_from_z, facet_sin_cos, sin_cos_deg};
 use super::{combine, Resolver};
 use crate::csg::spans::Op;
 use crate::error::Result;
-use crate::geometry::{Cone, Cuboid, Halfspace, Lathe, Prism, Shape, Sphere, Torus, Twisted};
+use crate::geometry::{
+    Cone, Cuboid, Halfspace, Lathe, Prism, Section, Shape, Sphere, Torus, Twisted,
+};
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
 use crate::scene::Material;
@@ -748,34 +750,24 @@ impl Resolver<'_> {
                     return Err(self.src.error(
                         s.name_span,
                         "twisting or unevenly scaling curved outlines (text) is not supported yet",
-                        "csgrt twists polygons and circles about their centre",
+                        "csgrt twists polygons, circles and ellipses",
                     ));
                 }
-                let twist = if crate::mutant::active("twist_reversed") {
-                    -sweep.twist
-                } else {
-                    sweep.twist
-                };
-                let shape = Shape::Twisted(Twisted {
-                    region: Arc::new(Region::new(o.clone())),
-                    twist,
-                    scale: sweep.top,
-                    centered,
-                });
-                self.leaf(s, shape, xf * local, mat)
+                let section = Section::Region(Arc::new(Region::new(o.clone())));
+                self.twisted(s, section, xf * local, mat, sweep)
             }
             // A circle about the axis is the same circle turned: only an
-            // even taper changes it.
+            // even taper changes it, and the cone below serves. Any other
+            // ellipse is twisted as it is.
             Flat::Ellipse(e)
                 if !even
                     || sweep.twist != 0.0
                         && !(e.translation == DVec2::ZERO && is_circle(e.matrix2)) =>
             {
-                Err(self.src.error(
-                    s.name_span,
-                    "twisting a circle off the axis, or scaling one unevenly, is not supported yet",
-                    "csgrt twists polygons, and circles centred on the axis",
-                ))
+                if e.matrix2.determinant().is_nan() || e.matrix2.determinant() == 0.0 {
+                    return Ok(self.flattened(s));
+                }
+                self.twisted(s, Section::Ellipse(*e), xf * local, mat, sweep)
             }
             Flat::Ellipse(e) => {
                 // The cone over the ellipse with its apex where s(z) = 0:
@@ -825,6 +817,29 @@ impl Resolver<'_> {
                 Ok(self.op(*op, parts))
             }
         }
+    }
+
+    /// The twisted or unevenly scaled prism of `section` under `world`.
+    fn twisted(
+        &mut self,
+        s: &Statement,
+        section: Section,
+        world: DAffine3,
+        mat: Material,
+        sweep: Sweep,
+    ) -> Result<Option<u32>> {
+        let twist = if crate::mutant::active("twist_reversed") {
+            -sweep.twist
+        } else {
+            sweep.twist
+        };
+        let shape = Shape::Twisted(Twisted {
+            section,
+            twist,
+            scale: sweep.top,
+            centered: sweep.centered,
+        });
+        self.leaf(s, shape, world, mat)
     }
 
     /// The section z = 0 of projection `p`'s children (placed by `frame`)

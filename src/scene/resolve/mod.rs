@@ -380,14 +380,7 @@ impl Resolver<'_> {
     ) -> Result<Option<u32>> {
         let xf = match Transform::new(world) {
             Ok(xf) => xf,
-            Err(Degenerate::Flat) => {
-                self.warn(
-                    s.name_span,
-                    &format!("this `{}` is flattened by a singular transform", s.name),
-                    "it has no volume and is left out, as in OpenSCAD",
-                );
-                return Ok(None);
-            }
+            Err(Degenerate::Flat) => return Ok(self.flattened(s)),
             Err(Degenerate::OutOfRange) => {
                 return Err(self.src.error(
                     s.name_span,
@@ -398,6 +391,16 @@ impl Resolver<'_> {
         };
         let material = self.b.material_id(mat);
         Ok(Some(self.b.leaf(shape, xf, material)))
+    }
+
+    /// A statement flattened by a singular transform: warned, left out.
+    pub(super) fn flattened(&mut self, s: &Statement) -> Option<u32> {
+        self.warn(
+            s.name_span,
+            &format!("this `{}` is flattened by a singular transform", s.name),
+            "it has no volume and is left out, as in OpenSCAD",
+        );
+        None
     }
 
     pub(super) fn empty(&mut self, s: &Statement, why: &str) -> Result<Option<u32>> {
