@@ -61,6 +61,39 @@ pub fn exercise_readers(data: &[u8]) {
     let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
 }
 
+/// Any bytes as an SVG drawing (`fuzz/fuzz_targets/svg.rs`), imported by a
+/// scene — `linear_extrude(1) import("fuzz.svg", center = …)`, the first
+/// byte choosing `center` — and rendered small: an error with its place,
+/// or a picture of finite samples, never a panic.
+pub fn exercise_svg(data: &[u8]) {
+    let Some((&pick, rest)) = data.split_first() else {
+        return;
+    };
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    std::fs::write(dir.path().join("fuzz.svg"), rest).expect("the drawing written");
+    let center = if pick & 1 == 1 { "true" } else { "false" };
+    let text = format!("linear_extrude(height = 1) import(\"fuzz.svg\", center = {center});\n");
+    let name = dir.path().join("fuzz.csg").to_string_lossy().into_owned();
+    let src = Source::new(&name, &text);
+    let scene = match crate::load_csg(&src) {
+        Ok(scene) => scene,
+        Err(Error::Scene(d)) => {
+            let at = text.find("\"fuzz.svg\"").expect("the file argument") + 1;
+            assert_eq!((d.line, d.col), (1, at), "the error is at the file: {d}");
+            return;
+        }
+        Err(e) => panic!("an error without a place: {e}"),
+    };
+    let s = Settings {
+        width: 6,
+        height: 4,
+        spp: 1,
+        max_depth: 2,
+    };
+    let out = render::render(&scene, &s, &|| {});
+    assert_eq!(out.stats.nonfinite_samples, 0, "a non-finite sample");
+}
+
 /// The mesh readers' fuzz targets: (the target's and corpus's suffix, the
 /// format's extension): `fuzz/fuzz_targets/mesh_DIR.rs`, `fuzz/corpus/mesh_DIR`.
 pub const MESH_TARGETS: &[(&str, &str)] = &[

@@ -27,6 +27,7 @@ pub mod pov;
 pub mod render;
 pub mod scene;
 pub mod stats;
+pub mod svg;
 pub mod syntax;
 pub mod text;
 

@@ -25,6 +25,7 @@ pub const NAMES: &[&str] = &[
     "section_unflattened",
     "resize_auto_ignored",
     "ellipse_turned_back",
+    "svg_arcs_as_chords",
 ];
 
 /// Whether the fault `name` is switched on.

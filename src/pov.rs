@@ -14,6 +14,7 @@
 //! * `assumed_gamma 1.0` and `max_trace_level`, `adc_bailout 1/512` as
 //!   csgrt's ray tree. Render with `+FN +W… +H… File_Gamma=1.0` to match.
 
+use crate::csg::spans::Op;
 use crate::csg::{Csg, NodeKind};
 use crate::scene::{CameraSpec, Light, Scene};
 use glam::{DAffine3, DVec3};
@@ -39,10 +40,19 @@ fn matrix(m: &DAffine3) -> String {
 pub const SECTION_ERROR: &str =
     "#error \"csgrt: projection(cut = true) has no POV-Ray equivalent\"";
 
+/// Nor an even-odd combination of solids (a drawing's arcs, ellipses and
+/// strokes by parity with its outlines).
+pub const XOR_ERROR: &str =
+    "#error \"csgrt: a drawing's outlines combined even-odd have no POV-Ray equivalent\"";
+
 fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
     let pad = "  ".repeat(depth);
     let n = &csg.nodes[id as usize];
     let (word, kids) = match &n.kind {
+        NodeKind::Op(Op::Xor, _) => {
+            let _ = writeln!(out, "{pad}{XOR_ERROR}\n{pad}sphere {{ <0, 0, 0>, 0 }}");
+            return;
+        }
         // POV-Ray's union, intersection and difference mean the same.
         NodeKind::Op(op, ch) => (op.name(), ch),
         NodeKind::Section(..) => {

@@ -321,6 +321,74 @@ fn a_drawing_that_is_no_dxf_is_an_error_at_its_file() {
 }
 
 #[test]
+fn a_bad_svg_drawing_is_an_error_at_its_file_naming_its_line() {
+    let (dir, _) = scene("d.csg", "linear_extrude(1) import(\"bad.svg\");\n");
+    std::fs::write(
+        dir.path().join("bad.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\">\n  <rect width=\"1\" height=\"1\"/>\n  <path d=\"M 0 0 L 1 x\"/>\n</svg>\n",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["d.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .starts_with("error: `bad.svg`, line 3: `path` data: "),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.contains(" --> d.csg:1:26\n"), "{}", r.stderr);
+    assert!(
+        r.stderr.contains("expected an SVG drawing csgrt can read"),
+        "{}",
+        r.stderr
+    );
+    assert_eq!(files(dir.path()), ["bad.svg", "d.csg"]);
+    // A curved open path would be stroked: not supported yet, at its line.
+    std::fs::write(
+        dir.path().join("bad.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path d=\"M 0 0 Q 5 5 10 0\"/></svg>",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["d.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        r.stderr.starts_with(
+            "error: `bad.svg`, line 2: stroking an open path with curves or arcs is not supported yet\n"
+        ),
+        "{}",
+        r.stderr
+    );
+    // A missing one: the system's reason.
+    std::fs::remove_file(dir.path().join("bad.svg")).unwrap();
+    let r = csgrt(dir.path(), &["d.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .starts_with("error: cannot read drawing `bad.svg`: "),
+        "{}",
+        r.stderr
+    );
+}
+
+#[test]
+fn svg_text_and_images_are_left_out_with_a_warning() {
+    let (dir, _) = scene("d.csg", "linear_extrude(1) import(\"t.svg\");\n");
+    std::fs::write(
+        dir.path().join("t.svg"),
+        "<svg xmlns=\"http://www.w3.org/2000/svg\"><rect width=\"4\" height=\"2\"/><text>hi</text><text>ho</text><image href=\"x.png\"/></svg>",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["d.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .starts_with("warning: elements of the drawing left out: 2 `text`, 1 `image`\n"),
+        "{}",
+        r.stderr
+    );
+}
+
+#[test]
 fn an_empty_scene_warns_and_renders_the_background() {
     let (dir, _) = scene("e.csg", "background([0, 0, 1]);\n");
     let r = csgrt(dir.path(), &["e.csg", "--size", "4x3", "-q"]);
@@ -408,15 +476,19 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         fails("linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n"),
         "error: offsetting an outline that crosses or touches itself is not supported yet\n --> bad.csg:1:19\n  |\n1 | linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n  |                   ^^^^^^ csgrt offsets simple polygons and circles, unions when growing\n"
     );
-    // A drawing that is not there, a mesh csgrt does not import yet, and
-    // bytes that are no DXF: at the file argument.
+    // A drawing that is not there, a format csgrt does not import yet,
+    // and bytes that are no DXF: at the file argument.
     assert_eq!(
         fails("linear_extrude(1) import(file = \"nope.dxf\");\n"),
         "error: cannot read drawing `nope.dxf`: No such file or directory (os error 2)\n --> bad.csg:1:33\n  |\n1 | linear_extrude(1) import(file = \"nope.dxf\");\n  |                                 ^^^^^^^^^^ expected a DXF file beside the scene\n"
     );
     assert_eq!(
         fails("import(\"part.svg\");\n"),
-        "error: importing `.svg` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.svg\");\n  |        ^^^^^^^^^^ csgrt imports DXF drawings and STL, OFF, OBJ, 3MF and AMF meshes\n"
+        "error: cannot read drawing `part.svg`: No such file or directory (os error 2)\n --> bad.csg:1:8\n  |\n1 | import(\"part.svg\");\n  |        ^^^^^^^^^^ expected an SVG file beside the scene\n"
+    );
+    assert_eq!(
+        fails("import(\"part.eps\");\n"),
+        "error: importing `.eps` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.eps\");\n  |        ^^^^^^^^^^ csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes\n"
     );
     // A text that is no string, at the value; vertical text, at its
     // direction; a twisted text, at the extrusion.

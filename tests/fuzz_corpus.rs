@@ -64,3 +64,17 @@ fn the_mesh_corpora_pass_the_mesh_harness() {
         }
     }
 }
+
+#[test]
+fn the_svg_corpus_passes_the_svg_harness() {
+    // SVG drawings (the test drawings, whole, cut short and with bytes
+    // changed) imported and rendered (`fuzz/fuzz_targets/svg.rs`).
+    let files = inputs("fuzz/corpus/svg");
+    assert!(files.len() >= 3);
+    for f in files {
+        let data = std::fs::read(&f).unwrap();
+        if std::panic::catch_unwind(|| csgrt::harness::exercise_svg(&data)).is_err() {
+            panic!("{} fails the SVG harness", f.display());
+        }
+    }
+}

@@ -257,7 +257,11 @@ class Prim:
 
 L_SHAPE = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.0), (0.0, 0.0), (0.0, 0.5), (-0.5, 0.5)]
 PROFILE = [(0.25, -0.5), (0.5, -0.5), (0.5, 0.0), (0.375, 0.25), (0.25, 0.5)]
-EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "lathe"]
+EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "cubic", "lathe"]
+# The cubic prism: an SVG path of two cubic Bézier curves and two lines
+# (file units, times the size; y points down in the file, up once read).
+CUBIC_PATH = [((-0.4, -0.3), (-0.1, -0.6), (0.3, 0.1)), ((0.4, -0.35),), ((0.45, 0.3), (0.1, 0.0), (-0.2, 0.6)), ((-0.45, 0.25),)]
+SVG_DIR = tempfile.mkdtemp(prefix="csgrt-accuracy-")
 # The twisted ellipse: the unit circle under x -> A x + c (times the size).
 ELLIPSE_A, ELLIPSE_C = ((0.3, 0.12), (-0.05, 0.2)), (0.12, 0.08)
 TAPER = 0.5
@@ -290,6 +294,15 @@ class Extruded(Prim):
                 for a, c_, b in reader.curve_pieces(g):
                     pts = [a, b] if c_ is None else [a, c_, b]
                     self.edges.append([[M(float(x)) for x in q] for q in pts])
+        elif kind == "cubic":
+            # Points of the file at x, y are read at (x, -y) (no page size).
+            pts = [[float(x * s) for x in q] for seg in CUBIC_PATH for q in seg]
+            self.svg = os.path.join(SVG_DIR, f"cubic_{s!r}.svg")
+            d = f"M {pts[0][0]!r} {pts[0][1]!r} C {pts[1][0]!r} {pts[1][1]!r} {pts[2][0]!r} {pts[2][1]!r} {pts[3][0]!r} {pts[3][1]!r} L {pts[4][0]!r} {pts[4][1]!r} C {pts[5][0]!r} {pts[5][1]!r} {pts[6][0]!r} {pts[6][1]!r} {pts[7][0]!r} {pts[7][1]!r} Z"
+            with open(self.svg, "w") as f:
+                f.write(f'<svg xmlns="http://www.w3.org/2000/svg"><path d="{d}"/></svg>\n')
+            P = [[M(x), -M(y)] for x, y in pts]
+            self.edges = [[P[0], P[1], P[2], P[3]], [P[3], P[4]], [P[4], P[5], P[6], P[7]], [P[7], P[0]]]
         elif kind == "twisted_ellipse":
             self.edges = []
             self.A = [[M(x * s) for x in row] for row in ELLIPSE_A]
@@ -303,6 +316,8 @@ class Extruded(Prim):
         s = self.s
         if self.kind == "glyph":
             return f"linear_extrude(height = {s!r}, center = true) text(\"e\", size = {s!r}, halign = \"center\", valign = \"center\");"
+        if self.kind == "cubic":
+            return f"linear_extrude(height = {s!r}, center = true) import(\"{self.svg}\");"
         pts = PROFILE if self.kind == "lathe" else L_SHAPE
         poly = "polygon([" + ", ".join(f"[{x * s!r}, {y * s!r}]" for x, y in pts) + "])"
         if self.kind == "twisted_ellipse":
@@ -354,6 +369,14 @@ class Extruded(Prim):
                 if (a[1] > q[1]) != (b[1] > q[1]):
                     x = a[0] + (q[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0])
                     inside ^= x > q[0]
+                continue
+            if len(e) == 4:
+                ky = power(e, 1)
+                for u in cubic_roots([ky[3], ky[2], ky[1], ky[0] - q[1]]):
+                    if 0 <= u < 1:
+                        x = sum(power(e, 0)[j] * u**j for j in range(4))
+                        if x > q[0] and abs(sum(j * ky[j] * u ** (j - 1) for j in range(1, 4))) > 0:
+                            inside ^= True
                 continue
             a, c, b = e
             # y(u) = q_y: (a - 2c + b) u^2 + 2 (c - a) u + a - q
@@ -451,6 +474,17 @@ class Extruded(Prim):
     def side_roots(self, o, d, e, tlo, thi):
         """Where the line meets the side over edge e, within the slab."""
         out = []
+        if len(e) == 4:
+            # cross(B(u) - o, d) = 0: a cubic in u.
+            kx, ky = power(e, 0), power(e, 1)
+            kx[0], ky[0] = kx[0] - o[0], ky[0] - o[1]
+            for u in cubic_roots([kx[j] * d[1] - ky[j] * d[0] for j in (3, 2, 1, 0)]):
+                if 0 <= u <= 1:
+                    pt = [sum(k[j] * u**j for j in range(4)) for k in (power(e, 0), power(e, 1))]
+                    t = ((pt[0] - o[0]) * d[0] + (pt[1] - o[1]) * d[1]) / (d[0] ** 2 + d[1] ** 2)
+                    if tlo <= t <= thi:
+                        out.append(t)
+            return out
         if self.kind == "glyph" and len(e) == 3:
             a, c, b = e
             # cross(B(u) - o, d) = 0: a quadratic in u.
@@ -466,7 +500,7 @@ class Extruded(Prim):
             return out
         a, b = e
         ed = [b[0] - a[0], b[1] - a[1]]
-        if self.kind in ("prism", "glyph", "tapered"):
+        if self.kind in ("prism", "glyph", "cubic", "tapered"):
             # cross(p_xy - w a, e) = 0 with w = 1 + (k - 1) f(z): linear in t.
             kk = (M(TAPER) - 1) / (2 * self.h) if self.kind == "tapered" else M(0)
             w0 = 1 + kk * (o[2] + self.h)
@@ -515,6 +549,10 @@ class Extruded(Prim):
             rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
             er, ez = b[0] - a[0], b[1] - a[1]
             return [ez * p[0] / rho, ez * p[1] / rho, -er]
+        if len(e) == 4:
+            u = self.param(e, [p[0], p[1]])
+            tg = [sum(j * k[j] * u ** (j - 1) for j in range(1, 4)) for k in (power(e, 0), power(e, 1))]
+            return [tg[1], -tg[0], M(0)]
         if self.kind == "glyph" and len(e) == 3:
             a, c, b = e
             q = [p[0], p[1]]
@@ -531,6 +569,17 @@ class Extruded(Prim):
         return [mp.diff(F, (p[0], p[1], p[2]), tuple(int(j == k) for j in range(3))) for k in range(3)]
 
     def param(self, e, q):
+        if len(e) == 4:
+            best = None
+            for i in range(2):
+                k = power(e, i)
+                for u in cubic_roots([k[3], k[2], k[1], k[0] - q[i]]):
+                    if -1e-20 <= u <= 1 + 1e-20:
+                        pt = [sum(kk[j] * u**j for j in range(4)) for kk in (power(e, 0), power(e, 1))]
+                        dist = (pt[0] - q[0]) ** 2 + (pt[1] - q[1]) ** 2
+                        if best is None or dist < best[0]:
+                            best = (dist, u)
+            return best[1]
         a, c, b = e
         best = None
         for j in range(2):
@@ -557,8 +606,16 @@ class Extruded(Prim):
         # |B'|^3 / |B' x B''|; a twisted side the rate its normal field
         # turns along the ray (half of it, for margin).
         kind, i = tag
-        if kind == "cap" or self.kind in ("prism", "tapered") or self.kind == "glyph" and kind == "side" and len(self.edges[i]) == 2:
+        if kind == "cap" or self.kind in ("prism", "tapered") or self.kind in ("glyph", "cubic") and kind == "side" and len(self.edges[i]) == 2:
             rho = mp.inf
+        elif self.kind == "cubic":
+            e = self.edges[i]
+            u = self.param(e, p)
+            k = (power(e, 0), power(e, 1))
+            b1 = [sum(j * kk[j] * u ** (j - 1) for j in range(1, 4)) for kk in k]
+            b2 = [sum(j * (j - 1) * kk[j] * u ** (j - 2) for j in range(2, 4)) for kk in k]
+            cr = abs(cross2(b1, b2))
+            rho = mp.inf if cr == 0 else mp.sqrt(b1[0] ** 2 + b1[1] ** 2) ** 3 / cr
         elif kind in ("cone", "ring"):
             rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
         elif self.kind == "glyph":
@@ -581,6 +638,28 @@ class Extruded(Prim):
         w = apply(transpose(self.inv), g)
         ln = mp.sqrt(dot(w, w))
         return [x / ln for x in w], rho
+
+
+def power(e, i):
+    """Coordinate i of the cubic Bézier edge e in the power basis: k0 + k1
+    u + k2 u^2 + k3 u^3."""
+    p0, p1, p2, p3 = (q[i] for q in e)
+    return [p0, 3 * (p1 - p0), 3 * (p0 - 2 * p1 + p2), p3 - 3 * p2 + 3 * p1 - p0]
+
+
+def cubic_roots(c):
+    """The real roots of c[0] u^3 + c[1] u^2 + c[2] u + c[3] (lower degrees
+    when the leading coefficients vanish), polished at 50 digits."""
+    while c and c[0] == 0:
+        c = c[1:]
+    if len(c) < 2:
+        return []
+    if len(c) == 3:
+        return real_roots(c)
+    if len(c) == 2:
+        return [-c[1] / c[0]]
+    rs = mp.polyroots(c, maxsteps=200, extraprec=200)
+    return sorted(mp.re(r) for r in rs if abs(mp.im(r)) <= mp.mpf(10) ** -30 * (1 + abs(r)))
 
 
 def real_roots(c):
@@ -624,7 +703,7 @@ def extrusion_rays(p, n, rng):
             a = 2 * math.pi * j / n
             o = at(-3.0, 0.5 * (1 - slim), -0.25 + 0.05 * math.sin(a))
             out.append(("grazing", o, [1.0, 0.0, 0.0]))
-        elif p.kind != "glyph":
+        elif p.kind not in ("glyph", "cubic"):
             e = -0.5 + slim
             out.append(("edge", at(e, e, -3.0), [0.0, 0.0, 1.0]))
     return out
@@ -778,7 +857,7 @@ def main():
         if a.kinds:
             kinds = [k for k in kinds if k in a.kinds.split(",")]
         for kind in kinds:
-            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph") else POSES
+            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic") else POSES
             for pose in poses:
                 for off in OFFSETS:
                     for size in SIZES:

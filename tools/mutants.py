@@ -39,13 +39,14 @@ MUTANTS = {
     "outer_color_wins": (["tests/scenes/nested_colors.csg"], False),
     "fov_vertical": (["models/csg_ops.csg", "tests/scenes/nested_colors.csg"], False),
     "cylinder_center_ignored": (["models/csg_ops.csg"], False),
-    "curves_as_chords": (["tests/openscad/text.csg"], ["glyph"]),
+    "curves_as_chords": (["tests/openscad/text.csg"], ["glyph", "cubic"]),
     "kerning_ignored": (["tests/openscad/text.csg"], False),
     "twist_reversed": (["tests/openscad/twist.csg"], ["twisted"]),
     "drawing_unnested": (["tests/openscad/example015.csg"], False),
     "section_unflattened": (["tests/openscad/projection_cut.csg"], False),
     "resize_auto_ignored": (["tests/openscad/resize.csg"], False),
     "ellipse_turned_back": (["tests/openscad/twisted_circles.csg"], ["twisted_ellipse"]),
+    "svg_arcs_as_chords": (["tests/openscad/svg.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

@@ -116,15 +116,16 @@ def svd(leaf):
 
 
 def curve_steps(n):
-    """The pieces a quadratic edge is cut into at n circle segments."""
+    """The pieces a quadratic or cubic edge is cut into at n circle
+    segments."""
     return max(2, n // 16)
 
 
 def flatten_curves(f, n):
-    """A curves leaf as polygons: each quadratic cut into equal steps of
-    its parameter, the points on the curve (the chords inscribed)."""
+    """A curves leaf as polygons: each curve cut into equal steps of its
+    parameter, the points on the curve (the chords inscribed)."""
     m = curve_steps(n)
-    u = np.arange(m)[:, None] / m
+    u = np.arange(m) / m
     loops = []
     for l in f[1]:
         pts = []
@@ -133,7 +134,7 @@ def flatten_curves(f, n):
                 pts.append(a[None, :])
             else:
                 b = l[(i + 1) % len(l)][0]
-                pts.append((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b)
+                pts.append(reader.bezier_eval(reader.bezier_points(a, c, b), u))
         loops.append(np.concatenate(pts))
     return loops
 
@@ -230,6 +231,24 @@ def section_pieces(f, n):
     return []
 
 
+def svg_loop_points(x, n):
+    """An SVG loop cut up at n: lines as they are, curves in curve_steps(n)
+    steps, arcs in steps of at most 2 pi / n (inscribed)."""
+    _, pts, segs = x
+    out = []
+    for i, sg in enumerate(segs):
+        a, b = pts[i], pts[(i + 1) % len(pts)]
+        if sg is None:
+            out.append(a)
+        elif sg[0] == "A":
+            out += reader.svg_arc_steps(sg[1], sg[2], a, b, sg[3], 2 * math.pi / n)
+        else:
+            m = curve_steps(n)
+            P = reader.bezier_points(a, sg[1] if sg[0] == "Q" else np.array(sg[1:3]), b)
+            out += list(reader.bezier_eval(P, np.arange(m) / m))
+    return np.array(out)
+
+
 def cross_section(f, n):
     """manifold's cross-section of a 2-D tree of scene.py (circles as
     n-gons inscribed in them, quadratic edges as inscribed polylines)."""
@@ -240,6 +259,22 @@ def cross_section(f, n):
     if f[0] == "ellipse":
         A, c = f[1], f[2]
         return mf.CrossSection.circle(1.0, n).transform([[A[0, 0], A[0, 1], c[0]], [A[1, 0], A[1, 1], c[1]]])
+    if len(f) == 4 and f[3][0] == "svg":
+        # Each element's loops (curves and arcs cut up, ellipses as n-gons,
+        # strokes as Clipper made them) even-odd; the elements united.
+        shapes = []
+        for _, parts, _ in f[3][1]:
+            loops = []
+            for x in parts:
+                if x[0] == "polys":
+                    loops += list(x[1])
+                elif x[0] == "ellipse":
+                    ang = 2 * math.pi * np.arange(n) / n
+                    loops.append(np.column_stack([np.cos(ang), np.sin(ang)]) @ x[1].T + x[2])
+                else:
+                    loops.append(svg_loop_points(x, n))
+            shapes.append(mf.CrossSection([l.tolist() for l in loops if len(l) >= 3], mf.FillRule.EvenOdd))
+        return mf.CrossSection.batch_boolean(shapes, mf.OpType.Add)
     if len(f) == 4 and f[3][0] == "drawing":
         # A drawing: its own paths, arcs cut into steps of at most 2 pi / n
         # (inscribed), and its circles, filled even-odd.
@@ -254,6 +289,11 @@ def cross_section(f, n):
     kids = [cross_section(k, n) for k in f[2]]
     if f[1] == "union":
         return mf.CrossSection.batch_boolean(kids, mf.OpType.Add)
+    if f[1] == "xor":
+        acc = kids[0]
+        for k in kids[1:]:
+            acc = (acc - k) + (k - acc)
+        return acc
     if f[1] == "intersection":
         return mf.CrossSection.batch_boolean(kids, mf.OpType.Intersect)
     return kids[0] - mf.CrossSection.batch_boolean(kids[1:], mf.OpType.Add)
@@ -429,15 +469,34 @@ def extrusion_facets(leaf, n):
     if leaf.kind == "linear_extrude":
         k = max(1.0, p["scale"])
         qd, qa = quad_facets(leaf, n)
-        dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k) + CROSS_SECTION_GRID * k
-        ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa)
+        sd, sa = svg_slack(p["flat"])
+        dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k) + (CROSS_SECTION_GRID + sd) * k
+        ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa) + sa
         return dist, ang
     R = flat_extent(p["flat"])
     emax = max((s[0] for s in sv), default=0.0)
     qd, qa = quad_facets(leaf, n)
-    dist = (R + emax) * b + max(emax * b, qd) + CROSS_SECTION_GRID
-    ang = (2 if sv or qa else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0) + qa
+    sd, sa = svg_slack(p["flat"])
+    dist = (R + emax) * b + max(emax * b, qd) + CROSS_SECTION_GRID + sd
+    ang = (2 if sv or qa else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0) + qa + sa
     return dist, ang
+
+
+def svg_slack(f):
+    """(distance, angle) by which an SVG drawing's strokes in a 2-D tree,
+    as Clipper makes them, may stand off the exact ones (scene.py's
+    svg_stroke_slack, carried by each element's transform: distances by
+    its largest singular value, angles by its condition number)."""
+    if f[0] != "op":
+        return 0.0, 0.0
+    if len(f) == 4 and f[3][0] == "svg":
+        dist = ang = 0.0
+        for m, _, (d, a) in f[3][1]:
+            sv_ = np.linalg.svd(m[:2, :2], compute_uv=False)
+            dist, ang = max(dist, d * float(sv_[0])), max(ang, a * float(sv_[0] / sv_[1]))
+        return dist, ang
+    rs = [svg_slack(k) for k in f[2]]
+    return max(r[0] for r in rs), max(r[1] for r in rs)
 
 
 def twist_surface(p, g, u, t):
@@ -537,50 +596,68 @@ def twisted_facets(leaf, n):
 
 
 def quads(f):
-    """The quadratic edges (a, c, b) of a 2-D tree."""
+    """The curved edges of a 2-D tree, each as its control points (3 for a
+    quadratic, 4 for a cubic)."""
     if f[0] == "curves":
-        return [e for e in reader.curve_pieces(f) if e[1] is not None]
+        return [reader.bezier_points(*e) for e in reader.curve_pieces(f) if e[1] is not None]
     if f[0] in ("poly", "ellipse"):
         return []
     return [e for k in f[2] for e in quads(k)]
 
 
 def quad_facets(leaf, n):
-    """(distance, angle) of the inscribed polylines of the leaf's quadratic
-    edges at n: a parabola B with B'' = 2 (a - 2c + b) is within |B''| h^2
-    / 8 of its chord over a parameter step h = 1/m; its tangent turns one
-    way only, and a chord is parallel to the tangent somewhere in its step
-    (the mean value theorem), so the chord's normal is within the angle
-    between the tangents at the step's ends of the curve's, which is the
-    largest over the steps. Computed once a leaf and n."""
+    """(distance, angle) of the inscribed polylines of the leaf's curved
+    edges at n. Distance: over a parameter step h = 1/m a curve is within
+    h^2 / 8 max|B''| of its chord; B'' is constant for a quadratic,
+    2 (a - 2c + b), and linear for a cubic, 6 (a - 2c1 + c2) to
+    6 (c1 - 2c2 + b), largest at an end. Angle: somewhere in its step the
+    curve is parallel to its chord (Rolle's theorem on the distance from
+    the chord's line), so the chord's normal is within the range of the
+    tangent's direction over the step of the curve's: for a quadratic
+    (which turns one way) the angle between the step's end tangents; for a
+    cubic that range sampled at 9 points a step, with a factor 2 of
+    margin. Computed once a leaf and n."""
     cache = leaf.__dict__.setdefault("_quad_facets", {})
     if n not in cache:
         m = curve_steps(n)
         dist = ang = 0.0
-        u = np.arange(m + 1) / m
-        for a, c, b in quads(leaf.params["flat"]):
-            dist = max(dist, float(np.linalg.norm(a - 2 * c + b)) * 2 / (8 * m * m))
-            t = 2 * (1 - u)[:, None] * (c - a) + 2 * u[:, None] * (b - c)
-            t0, t1 = t[:-1], t[1:]
-            cr = t0[:, 0] * t1[:, 1] - t0[:, 1] * t1[:, 0]
-            dt = (t0 * t1).sum(axis=1)
-            ang = max(ang, float(np.abs(np.arctan2(cr, dt)).max()))
+        for P in quads(leaf.params["flat"]):
+            k = len(P) - 1
+            dd = [k * (k - 1) * float(np.linalg.norm(P[i] - 2 * P[i + 1] + P[i + 2])) for i in range(k - 1)]
+            dist = max(dist, max(dd) / (8 * m * m))
+            sub = 1 if k == 2 else 8
+            u = np.arange(m * sub + 1) / (m * sub)
+            D = k * sum(math.comb(k - 1, i) * (1 - u[:, None]) ** (k - 1 - i) * u[:, None] ** i * (P[i + 1] - P[i]) for i in range(k))
+            rel = np.arctan2(D[:, 1], D[:, 0])
+            for j in range(m):
+                w = np.unwrap(rel[j * sub : (j + 1) * sub + 1])
+                ang = max(ang, float(w.max() - w.min()) * (1 if k == 2 else 2))
         cache[n] = (dist, ang)
     return cache[n]
 
 
-def quad_min_radius(a, c, b):
-    """The smallest curvature radius |B'|^3 / |B' x B''| of a quadratic
-    edge: B' x B'' is constant, so it is where |B'| is smallest (the
-    minimum of a quadratic in u on [0, 1])."""
-    p, q = 2 * (c - a), 2 * (b - c)
-    k = abs(float(p[0] * q[1] - p[1] * q[0]))
-    if k == 0:
-        return math.inf
-    d = q - p
-    u = 0.0 if d @ d == 0 else min(1.0, max(0.0, float(-(p @ d) / (d @ d))))
-    v = p + u * d
-    return float(np.linalg.norm(v)) ** 3 / k
+def quad_min_radius(P):
+    """The smallest curvature radius |B'|^3 / |B' x B''| of a curved edge:
+    for a quadratic B' x B'' is constant, so it is where |B'| is smallest
+    (the minimum of a quadratic in u on [0, 1]); for a cubic, sampled at
+    257 points, halved for margin."""
+    if len(P) == 3:
+        a, c, b = P
+        p, q = 2 * (c - a), 2 * (b - c)
+        k = abs(float(p[0] * q[1] - p[1] * q[0]))
+        if k == 0:
+            return math.inf
+        d = q - p
+        u = 0.0 if d @ d == 0 else min(1.0, max(0.0, float(-(p @ d) / (d @ d))))
+        v = p + u * d
+        return float(np.linalg.norm(v)) ** 3 / k
+    u = np.linspace(0.0, 1.0, 257)[:, None]
+    d1 = 3 * ((1 - u) ** 2 * (P[1] - P[0]) + 2 * u * (1 - u) * (P[2] - P[1]) + u * u * (P[3] - P[2]))
+    d2 = 6 * ((1 - u) * (P[2] - 2 * P[1] + P[0]) + u * (P[3] - 2 * P[2] + P[1]))
+    cr = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+    with np.errstate(divide="ignore"):
+        r = np.where(cr > 0, np.linalg.norm(d1, axis=1) ** 3 / cr, np.inf)
+    return float(r.min()) / 2
 
 
 def ellipse_singular_values(leaf):
@@ -600,7 +677,7 @@ def extrusion_curvature(leaf):
         sv = ellipse_singular_values(leaf)
         k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
         r = min((s[1] * k for s in sv), default=math.inf)
-        r = min([r] + [quad_min_radius(*e) * k for e in quads(leaf.params["flat"])])
+        r = min([r] + [quad_min_radius(e) * k for e in quads(leaf.params["flat"])])
         leaf._curvature = r
     return leaf._curvature
 
@@ -713,7 +790,7 @@ def features(f):
     if f[0] == "poly":
         return [("seg", l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
     if f[0] == "curves":
-        return [("seg", a, b_) if c is None else ("quad", a, c, b_) for a, c, b_ in reader.curve_pieces(f)]
+        return [("seg", a, b_) if c is None else ("quad", reader.bezier_points(a, c, b_)) for a, c, b_ in reader.curve_pieces(f)]
     if f[0] == "ellipse":
         return [f]
     return [x for k in f[2] for x in features(k)]
@@ -726,13 +803,11 @@ def feature_distance(ft, q):
     if ft[0] == "quad":
         # Which piece a point is on: the nearest of dense samples, refined
         # between its neighbours (a classification, not a bound).
-        a, c, b = ft[1], ft[2], ft[3]
-        u = QUAD_SAMPLES
-        d = np.linalg.norm((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b - q, axis=1)
+        P = ft[1]
+        d = np.linalg.norm(reader.bezier_eval(P, QUAD_SAMPLES[:, 0]) - q, axis=1)
         i = int(np.argmin(d))
         lo, hi = QUAD_SAMPLES[max(i - 1, 0), 0], QUAD_SAMPLES[min(i + 1, 256), 0]
-        u = np.linspace(lo, hi, 65)[:, None]
-        return float(np.linalg.norm((1 - u) ** 2 * a + 2 * u * (1 - u) * c + u * u * b - q, axis=1).min())
+        return float(np.linalg.norm(reader.bezier_eval(P, np.linspace(lo, hi, 65)) - q, axis=1).min())
     if ft[0] == "seg":
         a, b = ft[1], ft[2]
         e = b - a

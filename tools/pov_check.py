@@ -297,6 +297,8 @@ def combine(op, ins):
         return np.any(ins, axis=0)
     if op == "intersection":
         return np.all(ins, axis=0)
+    if op == "xor":
+        return np.sum(ins, axis=0) % 2 == 1
     return ins[0] & ~np.any(ins[1:], axis=0)
 
 
@@ -607,7 +609,7 @@ def flat_inside(f, q2):
     if f[0] == "poly":
         return even_odd(f[1], q2)
     if f[0] == "curves":
-        return bezier_even_odd([np.array([a, b]) if c is None else np.array([a, c, b]) for a, c, b in reader.curve_pieces(f)], q2)
+        return bezier_even_odd([reader.bezier_points(a, c, b) for a, c, b in reader.curve_pieces(f)], q2)
     if f[0] == "ellipse":
         u = np.linalg.solve(f[1], (q2 - f[2]).T).T
         return np.sum(u**2, axis=1) <= 1.0
@@ -622,6 +624,11 @@ def flat_leaves(f):
 
 TWIST_ERROR = '#error "csgrt: a twisted or unevenly scaled linear_extrude has no POV-Ray equivalent"'
 SECTION_ERROR = '#error "csgrt: projection(cut = true) has no POV-Ray equivalent"'
+XOR_ERROR = '#error "csgrt: a drawing\'s outlines combined even-odd have no POV-Ray equivalent"'
+
+
+def has_xor(f):
+    return f is not None and f[0] == "op" and (f[1] == "xor" or any(has_xor(k) for k in f[2]))
 
 
 def extrusion_parts(leaf, q):
@@ -743,6 +750,11 @@ def check(path, binary):
             # with the reason, and only for a scene that twists.
             twists = [x for x in sc.leaves if x.kind == "linear_extrude" and reader.twisted(x.params)]
             return [] if twists else ["the export refuses a twisted prism the file does not have"]
+        if XOR_ERROR in text:
+            # Nor an even-odd combination of solids: the same, for drawings
+            # whose arcs, ellipses or strokes join their outlines by parity.
+            xors = [x for x in sc.leaves if x.kind in reader.EXTRUSIONS and has_xor(x.params.get("flat"))]
+            return [] if xors else ["the export refuses an even-odd drawing the file does not have"]
         if SECTION_ERROR in text:
             # Nor a solid made of another's slice: the same, for projections.
             cuts = [x for x in sc.leaves if reader.has_slice(x)]

@@ -345,6 +345,15 @@ impl Csg {
                     q.sc.merge(Op::Union, base, top, q.ray);
                 }
             }
+            &NodeKind::Op(Op::Xor, ref ch) => {
+                // Every child matters over the whole ray.
+                self.push_spans(ch[0], q);
+                for &c in &ch[1..] {
+                    let top = q.sc.stack.len();
+                    self.push_spans(c, q);
+                    q.sc.merge(Op::Xor, base, top, q.ray);
+                }
+            }
             &NodeKind::Op(op, ref ch) => {
                 self.push_spans(ch[0], q);
                 for &c in &ch[1..] {
@@ -551,15 +560,19 @@ impl Csg {
             NodeKind::Op(Op::Difference, ch) => {
                 self.contains(ch[0], p) && !ch[1..].iter().any(|&c| self.contains(c, p))
             }
+            NodeKind::Op(Op::Xor, ch) => {
+                ch.iter().filter(|&&c| self.contains(c, p)).count() % 2 == 1
+            }
         }
     }
 }
 
-/// The box of an operation from its children's (in order): a union's
-/// join, an intersection's overlap, a difference's first child's.
+/// The box of an operation from its children's (in order): a union's or
+/// symmetric difference's join, an intersection's overlap, a difference's
+/// first child's.
 fn op_bounds(op: Op, mut boxes: impl Iterator<Item = Aabb>) -> Aabb {
     match op {
-        Op::Union => boxes.fold(Aabb::EMPTY, |a, x| a.union(&x)),
+        Op::Union | Op::Xor => boxes.fold(Aabb::EMPTY, |a, x| a.union(&x)),
         Op::Intersection => boxes.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
         Op::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
     }

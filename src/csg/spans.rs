@@ -1,4 +1,5 @@
-//! Span lists along a ray and their union, intersection and difference.
+//! Span lists along a ray and their union, intersection, difference and
+//! symmetric difference.
 //!
 //! A list holds the disjoint intervals of `t` inside a solid, sorted, each
 //! end remembering which primitive's surface made it ([`Boundary`]).
@@ -88,12 +89,15 @@ pub struct Span {
     pub exit: Boundary,
 }
 
-/// The three set operations.
+/// The set operations: OpenSCAD's three, and the symmetric difference
+/// (even-odd parity) that a drawing's fill rule combines its paths by.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Op {
     Union,
     Intersection,
     Difference,
+    /// Inside an odd number of the children.
+    Xor,
 }
 
 impl Op {
@@ -103,6 +107,7 @@ impl Op {
             Op::Union => "union",
             Op::Intersection => "intersection",
             Op::Difference => "difference",
+            Op::Xor => "xor",
         }
     }
 
@@ -111,7 +116,14 @@ impl Op {
             Op::Union => a || b,
             Op::Intersection => a && b,
             Op::Difference => a && !b,
+            Op::Xor => a != b,
         }
+    }
+
+    /// Whether a span of B alone may hold the result where A holds none
+    /// (so B is needed over the whole ray, not only over A's spans).
+    pub const fn b_alone(self) -> bool {
+        matches!(self, Op::Union | Op::Xor)
     }
 }
 
@@ -157,7 +169,7 @@ pub enum Quick {
 #[inline]
 pub fn quick(op: Op, a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
     quick_empty(op, a, b).or_else(|| {
-        if op == Op::Union {
+        if op.b_alone() {
             apart(a, b, scale)
         } else {
             None
@@ -169,17 +181,17 @@ pub fn quick(op: Op, a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
 #[inline]
 pub fn quick_empty(op: Op, a: &[Span], b: &[Span]) -> Option<Quick> {
     match op {
-        Op::Union if a.is_empty() => Some(Quick::B),
-        Op::Union | Op::Difference if b.is_empty() => Some(Quick::A),
+        Op::Union | Op::Xor if a.is_empty() => Some(Quick::B),
+        Op::Union | Op::Difference | Op::Xor if b.is_empty() => Some(Quick::A),
         Op::Intersection | Op::Difference if a.is_empty() => Some(Quick::Empty),
         Op::Intersection if b.is_empty() => Some(Quick::Empty),
         _ => None,
     }
 }
 
-/// The union of two non-empty lists apart by more than the coincidence
-/// bound: the two lists one after the other, the common case of a wide
-/// union.
+/// The union (or symmetric difference) of two non-empty lists apart by
+/// more than the coincidence bound: the two lists one after the other, the
+/// common case of a wide union.
 #[inline]
 pub fn apart(a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
     let gap_after = |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
@@ -257,12 +269,19 @@ pub fn sweep_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span
         let from_b = !a_agrees && (b_agrees || step_a.is_none());
         let mut bound = if from_b {
             let mut y = step_b.expect("B changed here");
-            if op == Op::Difference {
+            // A symmetric difference crosses B's surface the other way
+            // where A holds the point.
+            if op == Op::Difference || op == Op::Xor && in_b != now {
                 y = y.flipped();
             }
             y
         } else {
-            step_a.expect("A changed here")
+            let x = step_a.expect("A changed here");
+            if op == Op::Xor && in_a != now {
+                x.flipped()
+            } else {
+                x
+            }
         };
         bound.t = t;
         if now {
@@ -273,7 +292,7 @@ pub fn sweep_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span
         inside = now;
         // Once both lists are exhausted and we are outside, we are done; for
         // an intersection or difference, running out of A ends everything.
-        if ia >= a.len() && (op != Op::Union || ib >= b.len()) && !inside {
+        if ia >= a.len() && (!op.b_alone() || ib >= b.len()) && !inside {
             break;
         }
     }
@@ -333,7 +352,7 @@ mod tests {
         assert_eq!(rows(&got), want, "{op:?} of {a:?} and {bb:?}");
     }
 
-    use Op::{Difference as D, Intersection as I, Union as U};
+    use Op::{Difference as D, Intersection as I, Union as U, Xor as X};
     const F: bool = false;
     const T: bool = true;
 
@@ -344,6 +363,35 @@ mod tests {
         check(I, a, bb, &[]);
         check(D, a, bb, &[(0.0, 0, F, 1.0, 0, F)]);
         check(D, bb, a, &[(2.0, 0, F, 3.0, 0, F)]);
+    }
+
+    #[test]
+    fn symmetric_difference() {
+        // Overlapping: A's part before B, then B's after A, the surfaces
+        // met from the other side flipped.
+        check(
+            X,
+            &[(0.0, 2.0)],
+            &[(1.0, 3.0)],
+            &[(0.0, 0, F, 1.0, 1, T), (2.0, 0, T, 3.0, 1, F)],
+        );
+        // Nested: a shell.
+        check(
+            X,
+            &[(0.0, 3.0)],
+            &[(1.0, 2.0)],
+            &[(0.0, 0, F, 1.0, 1, T), (2.0, 1, T, 3.0, 0, F)],
+        );
+        // Apart, touching, equal, empty.
+        check(
+            X,
+            &[(0.0, 1.0)],
+            &[(2.0, 3.0)],
+            &[(0.0, 0, F, 1.0, 0, F), (2.0, 1, F, 3.0, 1, F)],
+        );
+        check(X, &[(0.0, 1.0)], &[(1.0, 2.0)], &[(0.0, 0, F, 2.0, 1, F)]);
+        check(X, &[(0.0, 1.0)], &[(0.0, 1.0)], &[]);
+        check(X, &[], &[(0.0, 1.0)], &[(0.0, 1, F, 1.0, 1, F)]);
     }
 
     #[test]
@@ -450,7 +498,7 @@ mod tests {
     }
 
     fn arb_op() -> impl Strategy<Value = Op> {
-        prop_oneof![Just(U), Just(I), Just(D)]
+        prop_oneof![Just(U), Just(I), Just(D), Just(X)]
     }
 
     /// Like [`arb_list`], but its spans may sit anywhere from -20 to 40, so
@@ -507,7 +555,27 @@ mod tests {
                 for e in [s.enter, s.exit] {
                     let src = if e.prim == 0 { &la } else { &lb };
                     prop_assert!(src.iter().any(|x| x.enter.t == e.t || x.exit.t == e.t));
-                    prop_assert_eq!(e.flip(), op == D && e.prim == 1);
+                    if op != X {
+                        prop_assert_eq!(e.flip(), op == D && e.prim == 1);
+                    }
+                }
+            }
+        }
+
+        /// The normal a boundary stands for points out of the result: its
+        /// operand's own outward side (back along the line where the
+        /// operand is entered, on where it is left), turned by the flip,
+        /// is back at the result's enter and on at its exit.
+        #[test]
+        fn normals_point_out_of_the_result(a in arb_list(), bb in arb_list(), op in arb_op()) {
+            let la = list(0, &a);
+            let lb = list(1, &bb);
+            for s in combine(op, &la, &lb, 0.0) {
+                for (e, want) in [(s.enter, -1.0), (s.exit, 1.0)] {
+                    let src = if e.prim == 0 { &la } else { &lb };
+                    let own = if src.iter().any(|x| x.enter.t == e.t) { -1.0 } else { 1.0 };
+                    let dir = if e.flip() { -own } else { own };
+                    prop_assert_eq!(dir, want, "{:?} at t = {}", op, e.t);
                 }
             }
         }

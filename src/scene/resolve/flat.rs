@@ -50,8 +50,9 @@ pub(crate) enum Flat {
 }
 
 impl Flat {
-    /// The extent in x (exact for leaves; a union joins, an intersection
-    /// meets, a difference keeps its first operand's).
+    /// The extent in x (exact for leaves; a union or symmetric difference
+    /// joins, an intersection meets, a difference keeps its first
+    /// operand's).
     fn x_range(&self) -> (f64, f64) {
         self.range(DVec2::X)
     }
@@ -70,9 +71,10 @@ impl Flat {
             Flat::Op(op, kids) => {
                 let rs = kids.iter().map(|k| k.range(axis));
                 match op {
-                    Op::Union => rs.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
-                        (a.min(c), b.max(d))
-                    }),
+                    Op::Union | Op::Xor => rs
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                            (a.min(c), b.max(d))
+                        }),
                     Op::Intersection => rs
                         .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (c, d)| {
                             (a.max(c), b.min(d))
@@ -637,20 +639,23 @@ impl Resolver<'_> {
         Ok((file, span, ext, self.named_file(file)))
     }
 
-    /// `import()` of a drawing (DXF), under `m`.
+    /// `import()` of a drawing (DXF or SVG), under `m`.
     pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
         let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
         let (_, span, ext, path) = self.import_file(&a)?;
+        if ext == "svg" {
+            return self.import_svg(s, &a, span, &path, m);
+        }
         if ext != "dxf" {
             let (message, label) = if crate::meshfile::FORMATS.contains(&ext.as_str()) {
                 (
                     format!("a `.{ext}` mesh is a solid and cannot stand in a 2-D shape"),
-                    "expected a DXF drawing here",
+                    "expected a DXF or SVG drawing here",
                 )
             } else {
                 (
                     format!("importing `.{ext}` files is not supported yet"),
-                    "csgrt imports DXF drawings and STL, OFF, OBJ, 3MF and AMF meshes",
+                    "csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes",
                 )
             };
             return Err(self.src.error(span, message, label));
@@ -699,6 +704,56 @@ impl Resolver<'_> {
             );
         }
         Ok(drawing_flat(&d).map(|f| f.moved(m)))
+    }
+
+    /// `import()` of an SVG drawing (`dpi`, `center`; OpenSCAD reads no
+    /// `origin`, `scale` or layer of one), under `m`.
+    fn import_svg(
+        &mut self,
+        s: &Statement,
+        a: &Args,
+        span: crate::error::TextRange,
+        path: &std::path::Path,
+        m: DAffine2,
+    ) -> Result<Option<Flat>> {
+        self.openscad_facets_unsupported(s, "a drawing's curves")?;
+        let mut dpi = a.number("dpi")?.unwrap_or(72.0);
+        if dpi < 0.001 {
+            self.warn(
+                a.span_of("dpi"),
+                "the dpi must be at least 0.001: the default of 72 is used",
+                "as OpenSCAD does",
+            );
+            dpi = 72.0;
+        }
+        let center = a.boolean("center")?.unwrap_or(false);
+        let bytes = self.read_named(
+            span,
+            path,
+            "drawing",
+            "expected an SVG file beside the scene",
+        )?;
+        let d = crate::svg::read(&bytes, dpi, center).map_err(|e| {
+            let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
+            self.src.error(
+                span,
+                format!("`{}`{at}: {}", path.display(), e.message),
+                "expected an SVG drawing csgrt can read",
+            )
+        })?;
+        if !d.skipped.is_empty() {
+            let what: Vec<String> = d
+                .skipped
+                .iter()
+                .map(|(k, n)| format!("{n} `{k}`"))
+                .collect();
+            self.warn(
+                span,
+                &format!("elements of the drawing left out: {}", what.join(", ")),
+                "OpenSCAD leaves them out too",
+            );
+        }
+        Ok(super::svg::svg_flat(&d).map(|f| f.moved(m)))
     }
 
     /// A 2-D shape standing where a solid is expected: OpenSCAD's preview

@@ -12,6 +12,7 @@ mod offset;
 mod resize;
 mod solids;
 mod statements;
+mod svg;
 mod transforms;
 
 pub use solids::unsupported;

@@ -77,6 +77,7 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
                 Op::Union => "union",
                 Op::Intersection => "intersection",
                 Op::Difference => "difference",
+                Op::Xor => "drawing's even-odd paths",
             }
         )),
         Flat::Ellipse(e) => {

@@ -87,6 +87,22 @@ fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
             Ok(r)
         }
         Flat::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
+        // Even-odd: a far point that only one operand reaches lies in an odd
+        // number of them.
+        Flat::Op(Op::Xor, kids) => {
+            let r: Vec<(f64, f64)> = kids
+                .iter()
+                .map(|k| flat_extent(k, axis))
+                .collect::<Result<_, _>>()?;
+            let lo = r.iter().map(|x| x.0).fold(f64::INFINITY, f64::min);
+            let hi = r.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
+            if r.iter().filter(|x| x.0 == lo).count() > 1
+                || r.iter().filter(|x| x.1 == hi).count() > 1
+            {
+                return Err("the extent of a drawing whose paths share a far side");
+            }
+            Ok((lo, hi))
+        }
     }
 }
 
