@@ -257,7 +257,10 @@ class Prim:
 
 L_SHAPE = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.0), (0.0, 0.0), (0.0, 0.5), (-0.5, 0.5)]
 PROFILE = [(0.25, -0.5), (0.5, -0.5), (0.5, 0.0), (0.375, 0.25), (0.25, 0.5)]
-EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "cubic", "lathe"]
+EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "cubic", "lathe", "turned_cubic"]
+# The turned cubic profile: a vase's half section in the file (x, y), read
+# as (r, z) = (x, -y) (no page size), times the size over 60.
+VASE = [((5, 30),), ((20, 30), (32, 10), (8, -10)), ((18, -30),), ((15, -30), (4, -12), (28, 10)), ((5, 26),)]
 # The cubic prism: an SVG path of two cubic Bézier curves and two lines
 # (file units, times the size; y points down in the file, up once read).
 CUBIC_PATH = [((-0.4, -0.3), (-0.1, -0.6), (0.3, 0.1)), ((0.4, -0.35),), ((0.45, 0.3), (0.1, 0.0), (-0.2, 0.6)), ((-0.45, 0.25),)]
@@ -303,6 +306,15 @@ class Extruded(Prim):
                 f.write(f'<svg xmlns="http://www.w3.org/2000/svg"><path d="{d}"/></svg>\n')
             P = [[M(x), -M(y)] for x, y in pts]
             self.edges = [[P[0], P[1], P[2], P[3]], [P[3], P[4]], [P[4], P[5], P[6], P[7]], [P[7], P[0]]]
+        elif kind == "turned_cubic":
+            pts = [[float(x * s / 60) for x in q] for seg in VASE for q in seg]
+            self.svg = os.path.join(SVG_DIR, f"vase_{s!r}.svg")
+            f_ = lambda q: f"{q[0]!r} {q[1]!r}"
+            d = f"M {f_(pts[0])} L {f_(pts[1])} C {f_(pts[2])} {f_(pts[3])} {f_(pts[4])} L {f_(pts[5])} C {f_(pts[6])} {f_(pts[7])} {f_(pts[8])} Z"
+            with open(self.svg, "w") as f:
+                f.write(f'<svg xmlns="http://www.w3.org/2000/svg"><path d="{d}"/></svg>\n')
+            P = [[M(x), -M(y)] for x, y in pts]
+            self.edges = [[P[0], P[1]], [P[1], P[2], P[3], P[4]], [P[4], P[5]], [P[5], P[6], P[7], P[8]], [P[8], P[0]]]
         elif kind == "twisted_ellipse":
             self.edges = []
             self.A = [[M(x * s) for x in row] for row in ELLIPSE_A]
@@ -318,6 +330,8 @@ class Extruded(Prim):
             return f"linear_extrude(height = {s!r}, center = true) text(\"e\", size = {s!r}, halign = \"center\", valign = \"center\");"
         if self.kind == "cubic":
             return f"linear_extrude(height = {s!r}, center = true) import(\"{self.svg}\");"
+        if self.kind == "turned_cubic":
+            return f"rotate_extrude() import(\"{self.svg}\");"
         pts = PROFILE if self.kind == "lathe" else L_SHAPE
         poly = "polygon([" + ", ".join(f"[{x * s!r}, {y * s!r}]" for x, y in pts) + "])"
         if self.kind == "twisted_ellipse":
@@ -389,7 +403,7 @@ class Extruded(Prim):
         return inside
 
     def contains(self, p):
-        if self.kind == "lathe":
+        if self.kind in ("lathe", "turned_cubic"):
             return self.inside2([mp.sqrt(p[0] ** 2 + p[1] ** 2), p[2]])
         if abs(p[2]) > self.h:
             return False
@@ -399,8 +413,30 @@ class Extruded(Prim):
     def tagged(self, o, d):
         """Every boundary crossing (t, surface) of the local line."""
         out = []
-        if self.kind == "lathe":
-            for i, (a, b) in enumerate(self.edges):
+        if self.kind in ("lathe", "turned_cubic"):
+            for i, e_ in enumerate(self.edges):
+                if len(e_) == 4:
+                    # X(u)^2 = rho(t(u))^2 with t(u) = (Z(u) - o_z) / d_z: a
+                    # sextic in u.
+                    if d[2] == 0:
+                        continue
+                    kx, kz = power(e_, 0), power(e_, 1)
+                    kt = [(kz[j] - (o[2] if j == 0 else 0)) / d[2] for j in range(4)]
+                    mulp = lambda p_, q_: [sum(p_[i_] * q_[j - i_] for i_ in range(len(p_)) if 0 <= j - i_ < len(q_)) for j in range(len(p_) + len(q_) - 1)]
+                    a2 = d[0] ** 2 + d[1] ** 2
+                    b2 = 2 * (o[0] * d[0] + o[1] * d[1])
+                    c2 = o[0] ** 2 + o[1] ** 2
+                    x2, t2 = mulp(kx, kx), mulp(kt, kt)
+                    g = [x2[j] - a2 * t2[j] - b2 * (kt[j] if j < 4 else 0) - (c2 if j == 0 else 0) for j in range(7)]
+                    while g and g[-1] == 0:
+                        g.pop()
+                    rs = mp.polyroots(g[::-1], maxsteps=400, extraprec=400) if len(g) > 1 else []
+                    for u in rs:
+                        if abs(mp.im(u)) <= mp.mpf(10) ** -25 and -mp.mpf(10) ** -30 <= mp.re(u) <= 1 + mp.mpf(10) ** -30:
+                            u = mp.re(u)
+                            out.append((sum(kt[j] * u**j for j in range(4)), ("curve", i)))
+                    continue
+                a, b = e_
                 e = [b[0] - a[0], b[1] - a[1]]
                 # rho e_z = a_r e_z + (z - a_z) e_r, squared: a quadratic.
                 L0, L1 = a[0] * e[1] + (o[2] - a[1]) * e[0], d[2] * e[0]
@@ -544,6 +580,11 @@ class Extruded(Prim):
         if i == -1:
             return [mp.diff(lambda x, y, z: self.ellipse_form(self.to_region([x, y, z])), (p[0], p[1], p[2]), tuple(int(j == k) for j in range(3))) for k in range(3)]
         e = self.edges[i]
+        if kind == "curve":
+            u = self.param(e, [mp.sqrt(p[0] ** 2 + p[1] ** 2), p[2]])
+            tg = [sum(j * k[j] * u ** (j - 1) for j in range(1, 4)) for k in (power(e, 0), power(e, 1))]
+            rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+            return [tg[1] * p[0] / rho, tg[1] * p[1] / rho, -tg[0]]
         if kind in ("cone", "ring"):
             a, b = e
             rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
@@ -618,6 +659,16 @@ class Extruded(Prim):
             rho = mp.inf if cr == 0 else mp.sqrt(b1[0] ** 2 + b1[1] ** 2) ** 3 / cr
         elif kind in ("cone", "ring"):
             rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+        elif kind == "curve":
+            e = self.edges[i]
+            u = self.param(e, [mp.sqrt(p[0] ** 2 + p[1] ** 2), p[2]])
+            k = (power(e, 0), power(e, 1))
+            b1 = [sum(j * kk[j] * u ** (j - 1) for j in range(1, 4)) for kk in k]
+            b2 = [sum(j * (j - 1) * kk[j] * u ** (j - 2) for j in range(2, 4)) for kk in k]
+            cr = abs(cross2(b1, b2))
+            rho = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+            if cr != 0:
+                rho = min(rho, mp.sqrt(b1[0] ** 2 + b1[1] ** 2) ** 3 / cr)
         elif self.kind == "glyph":
             a, c, b = self.edges[i]
             u = self.param(self.edges[i], p)
@@ -857,7 +908,7 @@ def main():
         if a.kinds:
             kinds = [k for k in kinds if k in a.kinds.split(",")]
         for kind in kinds:
-            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic") else POSES
+            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic", "turned_cubic") else POSES
             for pose in poses:
                 for off in OFFSETS:
                     for size in SIZES:

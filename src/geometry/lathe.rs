@@ -17,6 +17,7 @@
 //! read from the plane's own line spans. The side over edge k is a cone, a
 //! cylinder or a disc; parts are the edges' indices.
 
+use super::poly::{Poly, MAX_DEGREE};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::plane::{side_changes, Ctrl, Curve, Region};
@@ -81,30 +82,28 @@ impl Lathe {
                 // at t(u) = (Z(u) − o_z)/d_z, where its squared distance
                 // from the axis is ρ²(t(u)), so the curve's side of the
                 // line's trace is the sign of X(u)² − ρ²(t(u)), a
-                // polynomial of degree ≤ 4 (2·degree) in u.
+                // polynomial of degree ≤ 6 (2·degree) in u.
                 let c = Curve::new(a, ctrl, b, DVec2::ZERO);
                 let deg = c.degree;
-                let mut xs = [0.0f64; 5];
-                let mut ts = [0.0f64; 5];
+                let mut xs = [0.0f64; MAX_DEGREE + 1];
+                let mut ts = [0.0f64; MAX_DEGREE + 1];
                 for i in 0..=deg {
                     xs[i] = c.k[i].x;
                     ts[i] = c.k[i].y / d.z;
                 }
                 ts[0] -= o.z / d.z;
-                let mul = |p: &[f64; 5], q: &[f64; 5]| {
-                    let mut r = [0.0f64; 5];
+                let mul = |p: &Poly, q: &Poly| {
+                    let mut r = [0.0f64; MAX_DEGREE + 1];
                     for i in 0..=deg {
                         for j in 0..=deg {
-                            if i + j <= 4 {
-                                r[i + j] += p[i] * q[j];
-                            }
+                            r[i + j] += p[i] * q[j];
                         }
                     }
                     r
                 };
                 let (x2, t2) = (mul(&xs, &xs), mul(&ts, &ts));
-                let mut f = [0.0f64; 5];
-                for i in 0..5 {
+                let mut f = [0.0f64; MAX_DEGREE + 1];
+                for i in 0..=MAX_DEGREE {
                     f[i] = x2[i] - (a2 * t2[i] + b2 * ts[i]);
                 }
                 f[0] -= c2;
@@ -119,7 +118,7 @@ impl Lathe {
                     let der = 2.0 * q.x * dq.x - 2.0 * w.dot(dxy) * dq.y / d.z;
                     (val, der)
                 };
-                side_changes(value(a), value(b), &f, (2 * deg).min(4), |u| {
+                side_changes(value(a), value(b), &f, 2 * deg, |u| {
                     let u = if u == 0.0 || u == 1.0 {
                         u
                     } else {

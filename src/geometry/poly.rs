@@ -1,4 +1,4 @@
-//! Real roots of polynomials of degree ≤ 4 inside an interval.
+//! Real roots of polynomials of degree ≤ 6 inside an interval.
 //!
 //! No closed forms above degree 2: the roots of a polynomial's derivative
 //! split the interval into pieces where it is monotonic, and each piece with
@@ -7,10 +7,23 @@
 //! quadratic, solved by the formula that does not cancel.
 //! This is slower than Ferrari's formula but loses no roots to cancellation.
 
-/// Coefficients, lowest degree first: `c[0] + c[1]·x + …`.
-pub type Poly = [f64; 5];
+/// The highest degree handled.
+pub const MAX_DEGREE: usize = 6;
 
-pub fn eval(c: &Poly, degree: usize, x: f64) -> f64 {
+/// Coefficients, lowest degree first: `c[0] + c[1]·x + …`.
+pub type Poly = [f64; MAX_DEGREE + 1];
+
+/// Room for every root of a polynomial of [`MAX_DEGREE`].
+pub type Roots = [f64; MAX_DEGREE];
+
+/// A polynomial from its first coefficients (the rest zero).
+pub fn poly(c: &[f64]) -> Poly {
+    let mut p = [0.0; MAX_DEGREE + 1];
+    p[..c.len()].copy_from_slice(c);
+    p
+}
+
+pub fn eval(c: &[f64], degree: usize, x: f64) -> f64 {
     let mut v = c[degree];
     for i in (0..degree).rev() {
         v = v * x + c[i];
@@ -19,7 +32,7 @@ pub fn eval(c: &Poly, degree: usize, x: f64) -> f64 {
 }
 
 fn derivative(c: &Poly, degree: usize) -> Poly {
-    let mut d = [0.0; 5];
+    let mut d = [0.0; MAX_DEGREE + 1];
     for i in 1..=degree {
         d[i - 1] = c[i] * i as f64;
     }
@@ -29,7 +42,7 @@ fn derivative(c: &Poly, degree: usize) -> Poly {
 /// The simple real roots of `c` (of the given degree) in `(lo, hi)`, sorted,
 /// written to `out`; returns how many. Roots of even multiplicity (tangent
 /// touches) do not change sign and are not reported.
-pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -> usize {
+pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut Roots) -> usize {
     let mut degree = degree;
     while degree > 0 && c[degree] == 0.0 {
         degree -= 1;
@@ -50,7 +63,7 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -
     }
     // Split (lo, hi) at the critical points.
     let d = derivative(c, degree);
-    let mut crit = [0.0; 4];
+    let mut crit = [0.0; MAX_DEGREE];
     let nc = roots_in(&d, degree - 1, lo, hi, &mut crit);
     let mut n = 0;
     let mut a = lo;
@@ -59,7 +72,7 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -
         let fb = eval(c, degree, b);
         if fa == 0.0 && i > 0 {
             // A root exactly on a critical point is a multiple root: skip it.
-        } else if (fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < 4 {
+        } else if (fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < MAX_DEGREE {
             out[n] = refine(c, degree, &d, a, b, fa);
             n += 1;
         }
@@ -72,7 +85,7 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut [f64; 4]) -
 /// The simple roots of the quadratic `c` in `(lo, hi)`, sorted, by the
 /// formula that does not cancel: q = −(b + sign(b)·√disc)/2, roots q/a and
 /// c/q. A double root (disc = 0) touches without crossing: none.
-fn quadratic_in(c: &Poly, lo: f64, hi: f64, out: &mut [f64; 4]) -> usize {
+fn quadratic_in(c: &Poly, lo: f64, hi: f64, out: &mut Roots) -> usize {
     let (a, b, k) = (c[2], c[1], c[0]);
     let disc = b * b - 4.0 * a * k;
     if disc <= 0.0 || !disc.is_finite() {
@@ -129,11 +142,11 @@ mod tests {
     use super::*;
 
     fn from_roots(r: &[f64]) -> Poly {
-        let mut c = [0.0; 5];
+        let mut c = [0.0; MAX_DEGREE + 1];
         c[0] = 1.0;
         for (deg, &x) in r.iter().enumerate() {
             // multiply by (t - x)
-            let mut n = [0.0; 5];
+            let mut n = [0.0; MAX_DEGREE + 1];
             for i in 0..=deg {
                 n[i + 1] += c[i];
                 n[i] -= x * c[i];
@@ -147,7 +160,7 @@ mod tests {
     fn finds_four_close_roots_of_a_quartic() {
         let r = [0.1, 0.1001, 3.0, 7.5];
         let c = from_roots(&r);
-        let mut out = [0.0; 4];
+        let mut out = [0.0; MAX_DEGREE];
         let n = roots_in(&c, 4, 0.0, 10.0, &mut out);
         assert_eq!(n, 4);
         for i in 0..4 {
@@ -158,16 +171,28 @@ mod tests {
     #[test]
     fn a_double_root_is_a_touch_not_a_crossing() {
         let c = from_roots(&[1.0, 1.0, 4.0, 5.0]);
-        let mut out = [0.0; 4];
+        let mut out = [0.0; MAX_DEGREE];
         let n = roots_in(&c, 4, 0.0, 10.0, &mut out);
         assert_eq!(n, 2, "{out:?}");
         assert!((out[0] - 4.0).abs() < 1e-12 && (out[1] - 5.0).abs() < 1e-12);
     }
 
     #[test]
+    fn finds_the_roots_of_a_sextic() {
+        let r = [-0.3, 0.05, 0.0501, 0.7, 1.9, 2.0];
+        let c = from_roots(&r);
+        let mut out = [0.0; MAX_DEGREE];
+        let n = roots_in(&c, 6, -1.0, 3.0, &mut out);
+        assert_eq!(n, 6, "{out:?}");
+        for i in 0..6 {
+            assert!((out[i] - r[i]).abs() < 1e-12, "{out:?}");
+        }
+    }
+
+    #[test]
     fn roots_outside_the_interval_are_not_reported() {
         let c = from_roots(&[-1.0, 2.0, 30.0]);
-        let mut out = [0.0; 4];
+        let mut out = [0.0; MAX_DEGREE];
         assert_eq!(roots_in(&c, 3, 0.0, 10.0, &mut out), 1);
         assert!((out[0] - 2.0).abs() < 1e-14);
     }

@@ -121,14 +121,14 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
         return;
     }
     // (s² + 2b s + c)² − 4(axy s² + 2 bxy s + cxy), |u| = 1.
-    let poly: Poly = [
+    let poly: Poly = super::poly::poly(&[
         c * c - 4.0 * cxy,
         4.0 * b * c - 8.0 * bxy,
         4.0 * b * b + 2.0 * c - 4.0 * axy,
         4.0 * b,
         1.0,
-    ];
-    let mut roots = [0.0; 4];
+    ]);
+    let mut roots = [0.0; super::poly::MAX_DEGREE];
     let n = roots_in(&poly, 4, 0.0, span, &mut roots);
     // The box ends are outside the torus; spans are where the quartic < 0.
     let mut prev = 0.0;

@@ -15,7 +15,10 @@
 //! and G changes sign, and is halved otherwise (at most 60 times); the root
 //! is then bisected to the last bit.
 
-use super::poly::{self, Poly};
+use super::poly;
+
+/// Coefficients up to degree 4, lowest first.
+type Poly = [f64; 5];
 use smallvec::SmallVec;
 
 /// A polynomial of degree ≤ 4, `c[0] + c[1]·t + …`, kept at a fixed degree

@@ -119,21 +119,15 @@ impl Curve {
     /// The polynomial n·(B(u) − o) − c.
     pub fn along(&self, n: DVec2, c: f64) -> Poly {
         let k = &self.k;
-        [k[0].dot(n) - c, k[1].dot(n), k[2].dot(n), k[3].dot(n), 0.0]
+        poly::poly(&[k[0].dot(n) - c, k[1].dot(n), k[2].dot(n), k[3].dot(n)])
     }
 
     /// Calls `f` with each u in (0, 1) where B′(u)·dir = 0 (where the
     /// curve's extent along dir may be reached between its ends).
     pub fn turning(&self, dir: DVec2, mut f: impl FnMut(f64)) {
         let k = &self.k;
-        let d = [
-            k[1].dot(dir),
-            2.0 * k[2].dot(dir),
-            3.0 * k[3].dot(dir),
-            0.0,
-            0.0,
-        ];
-        let mut roots = [0.0; 4];
+        let d = poly::poly(&[k[1].dot(dir), 2.0 * k[2].dot(dir), 3.0 * k[3].dot(dir)]);
+        let mut roots = [0.0; poly::MAX_DEGREE];
         let n = roots_in(&d, self.degree - 1, 0.0, 1.0, &mut roots);
         roots[..n].iter().for_each(|&u| f(u));
     }
@@ -152,7 +146,7 @@ impl Curve {
         };
         try_u(0.0);
         try_u(1.0);
-        let mut roots = [0.0; 4];
+        let mut roots = [0.0; poly::MAX_DEGREE];
         for axis in [DVec2::X, DVec2::Y] {
             let n = roots_in(
                 &self.along(axis, p.dot(axis)),
@@ -603,7 +597,7 @@ pub fn crossings(
 /// the stretches between the simple roots of f in (0, 1), a change between
 /// an end and the next stretch placed at that end. "Left" is f > 0.
 pub fn side_changes(sa: f64, sb: f64, f: &Poly, degree: usize, mut at_u: impl FnMut(f64)) {
-    let mut roots = [0.0; 4];
+    let mut roots = [0.0; poly::MAX_DEGREE];
     let nr = roots_in(f, degree, 0.0, 1.0, &mut roots);
     let mut left = sa > 0.0;
     let mut u0 = 0.0;

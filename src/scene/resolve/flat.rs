@@ -1097,17 +1097,6 @@ impl Resolver<'_> {
     ) -> Result<Option<u32>> {
         match f {
             Flat::Polygon(o) => {
-                if o.ctrl
-                    .iter()
-                    .flatten()
-                    .any(|c| matches!(c, plane::Ctrl::Cubic(..)))
-                {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "turning cubic curves (a CFF font's outlines) is not supported yet",
-                        "csgrt turns polygons, circles and quadratic curves (TrueType text)",
-                    ));
-                }
                 // A curved outline is wholly on one side of the axis (the
                 // rule above), so there is nothing to cut.
                 let clipped = if o.curved() { o.clone() } else { clip_right(o) };
