@@ -897,6 +897,7 @@ def main():
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--report", default=None)
     ap.add_argument("--kinds", default=None, help="only these primitives (comma-separated)")
+    ap.add_argument("--same-as", default=None, help="instead of exact answers, require another build's, to the byte")
     a = ap.parse_args()
     rng = random.Random(20261122)
     worst = {}  # (kind, pose, case) -> (error, description)
@@ -917,6 +918,11 @@ def main():
                         maker = extrusion_rays if kind in EXTRUSIONS else rays_for
                         rays = [(case, *p.place(o, d)) for case, o, d in maker(p, a.rays, rng)]
                         got = run(a.csgrt, p, rays, work)
+                        if a.same_as:
+                            if got != run(a.same_as, p, rays, work):
+                                failures.append(f"{kind} ({pose}) size {size:g} at offset {off:g}: not the same as {a.same_as}")
+                            worst[(kind, pose, "same")] = (0.0, "")
+                            continue
                         for (case, o, d), c in zip(rays, got):
                             check_ray(p, case, o, d, c, worst, worst_angle, failures)
     lines = [

@@ -1293,6 +1293,32 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None):
     return rows, verdict(rows)
 
 
+def same_outputs(path, cmd, other, w, h, nrays, env=None):
+    """Problems (none: the same) where csgrt's command `cmd` (under env)
+    answers differently from `other` on everything check_scene reads of
+    it — the mask, the image, the pixel-centre and random rays — so that
+    the oracle's verdict on one is its verdict on the other, without
+    meshing the scene again."""
+    name = os.path.splitext(os.path.basename(path))[0]
+    sc = reader.read(path)
+    view = sc.view(w, h)
+    rays = camera_rays(view, w, h) + random_rays(sc, nrays, seed_of(name))
+    outs = []
+    for c, e in ((cmd, env), (other, None)):
+        with tempfile.TemporaryDirectory() as work:
+            cmask, img, traced = run_csgrt(c, path, work, w, h, rays, e)
+        outs.append((np.asarray(cmask), np.asarray(img), traced))
+    (m0, i0, t0), (m1, i1, t1) = outs
+    bad = []
+    if not np.array_equal(m0, m1):
+        bad.append("the masks differ")
+    if not np.array_equal(i0, i1):
+        bad.append("the images differ")
+    if repr(t0) != repr(t1):
+        bad.append("the traced rays differ")
+    return bad
+
+
 TABLE_HEAD = [
     "| scene | n | pixels disagreeing (off edge) | edge pixels | rays beyond bound | worst depth err | worst normal angle | worst ray err/bound | colours checked (wrong) |",
     "|---|---|---|---|---|---|---|---|---|",
