@@ -32,6 +32,10 @@
 
 use glam::{DAffine2, DMat2, DVec2};
 
+/// The farthest a point of a drawing may lie from the origin, placed
+/// (csgrt's limit on sizes and positions).
+pub const MAX_COORD: f64 = crate::geometry::transform::MAX_MAGNITUDE;
+
 /// The most elements, and the most path segments, a drawing may have.
 pub const MAX_ELEMENTS: usize = 100_000;
 pub const MAX_SEGMENTS: usize = 1_000_000;
@@ -822,6 +826,25 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
         DMat2::from_diagonal(DVec2::new(scale.x, -scale.y)),
         DVec2::new(-scale.x * origin.x - cx, -scale.y * origin.y + cy),
     );
+    // Every point where OpenSCAD would put it, finite and in range.
+    for s in &shapes {
+        let mut pts = Vec::new();
+        s.parts.iter().for_each(|p| openscad_points(p, &mut pts));
+        let m = place * s.transform;
+        let far = |q: DVec2| !(q.abs().max_element() <= MAX_COORD);
+        if far(m.matrix2.x_axis)
+            || far(m.matrix2.y_axis)
+            || pts.into_iter().any(|q| far(m.transform_point2(q)))
+        {
+            return Err(fail(
+                s.line,
+                format!(
+                    "a point of this `{}` lies out of range (beyond ±{MAX_COORD:e})",
+                    s.element
+                ),
+            ));
+        }
+    }
     Ok(Svg {
         shapes,
         place,
@@ -926,5 +949,16 @@ mod tests {
         )
         .unwrap_err();
         assert!(e.message.contains("not supported yet"), "{}", e.message);
+        let e = read(
+            b"<svg xmlns='http://www.w3.org/2000/svg'>\n\n<circle r='1e300'/></svg>",
+            72.0,
+            true,
+        )
+        .unwrap_err();
+        assert_eq!(e.line, Some(3));
+        assert_eq!(
+            e.message,
+            "a point of this `circle` lies out of range (beyond ±1e15)"
+        );
     }
 }
