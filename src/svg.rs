@@ -831,7 +831,7 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
         let mut pts = Vec::new();
         s.parts.iter().for_each(|p| openscad_points(p, &mut pts));
         let m = place * s.transform;
-        let far = |q: DVec2| !(q.abs().max_element() <= MAX_COORD);
+        let far = |q: DVec2| q.is_nan() || q.abs().max_element() > MAX_COORD;
         if far(m.matrix2.x_axis)
             || far(m.matrix2.y_axis)
             || pts.into_iter().any(|q| far(m.transform_point2(q)))
