@@ -205,12 +205,12 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
 }
 
 #[test]
-fn a_projection_that_is_a_shadow_is_refused_at_its_cut() {
+fn the_shadow_of_a_difference_is_refused_at_its_projection() {
     // OpenSCAD's own export writes `cut = false` for a plain projection().
-    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tsphere(r = 5);\n\t}\n}\n";
+    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tdifference() { sphere(r = 5); cube(3); }\n\t}\n}\n";
     assert_eq!(
         common::fails(text),
-        "error: projection(cut = false), the shadow of a solid, is not supported yet\n --> bad.csg:2:19\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t                 ^^^^^ csgrt renders projection(cut = true), the slice at z = 0\n"
+        "error: the shadow (projection(cut = false)) of a 3-D difference is not supported yet\n --> bad.csg:2:2\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t^^^^^^^^^^ csgrt casts the shadows of meshes, cubes and spheres and of their unions\n"
     );
 }
 

@@ -256,6 +256,9 @@ def cross_section(f, n):
         return mf.CrossSection([l.tolist() for l in flatten_curves(f, n)], mf.FillRule.EvenOdd)
     if f[0] == "poly":
         return mf.CrossSection([l.tolist() for l in f[1]], mf.FillRule.EvenOdd)
+    if f[0] == "faces":
+        # A shadow: the union of its faces' (each counter-clockwise).
+        return mf.CrossSection([l.tolist() for l in f[1]], mf.FillRule.Positive)
     if f[0] == "ellipse":
         A, c = f[1], f[2]
         return mf.CrossSection.circle(1.0, n).transform([[A[0, 0], A[0, 1], c[0]], [A[1, 0], A[1, 1], c[1]]])
@@ -431,13 +434,18 @@ def ellipses(f):
     """The ellipses (A, c) of a 2-D tree."""
     if f[0] == "ellipse":
         return [(f[1], f[2])]
-    if f[0] in ("poly", "curves"):
+    if f[0] in ("poly", "curves", "faces"):
         return []
     return [e for k in f[2] for e in ellipses(k)]
 
 
 def flat_extent(f):
     """The largest |coordinate| of a 2-D tree's leaves."""
+    if f[0] == "faces":
+        # (thousands of loops: once a shadow)
+        if id(f) not in SHADOW_EXTENT:
+            SHADOW_EXTENT[id(f)] = (f, float(np.abs(np.concatenate(f[1])).max()))
+        return SHADOW_EXTENT[id(f)][1]
     if f[0] == "poly":
         return float(max(np.abs(l).max() for l in f[1]))
     if f[0] == "curves":
@@ -600,7 +608,7 @@ def quads(f):
     quadratic, 4 for a cubic)."""
     if f[0] == "curves":
         return [reader.bezier_points(*e) for e in reader.curve_pieces(f) if e[1] is not None]
-    if f[0] in ("poly", "ellipse"):
+    if f[0] in ("poly", "ellipse", "faces"):
         return []
     return [e for k in f[2] for e in quads(k)]
 
@@ -784,9 +792,19 @@ def face_class(leaf, x):
     return 0
 
 
+SHADOW_EDGES = {}
+SHADOW_EXTENT = {}
+
+
 def features(f):
     """The smooth pieces of a 2-D tree's boundary: ("seg", a, b) per
-    polygon edge, ("ellipse", A, c) per circle."""
+    polygon edge, ("ellipse", A, c) per circle; a shadow's, the edges of
+    the union of its faces (computed once)."""
+    if f[0] == "faces":
+        if id(f) not in SHADOW_EDGES:
+            polys = [np.asarray(l) for l in cross_section(f, 0).to_polygons()]
+            SHADOW_EDGES[id(f)] = (f, [("seg", l[i], l[(i + 1) % len(l)]) for l in polys for i in range(len(l))])
+        return SHADOW_EDGES[id(f)][1]
     if f[0] == "poly":
         return [("seg", l[i], l[(i + 1) % len(l)]) for l in f[1] for i in range(len(l))]
     if f[0] == "curves":
@@ -824,7 +842,9 @@ def extrusion_face(leaf, q):
     p = leaf.params
     if leaf.kind == "linear_extrude":
         h, z0 = p["h"], p["z0"]
-        fts = features(p["flat"])
+        if not hasattr(leaf, "_features"):
+            leaf._features = seg_arrays(features(p["flat"]))
+        fts = leaf._features
         if reader.twisted(p):
             tq = (q[2] - z0) / h
             sx, sy = p["scale2"]
@@ -833,18 +853,39 @@ def extrusion_face(leaf, q):
         else:
             w = 1 + (p["scale"] - 1) * (q[2] - z0) / h
             q2 = q[:2] / w if w > 0 else q[:2] * 0
-        cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + [feature_distance(ft, q2) for ft in fts]
+        cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + feature_distances(fts, q2)
         return int(np.argmin(cand))
     f, flip = reader.revolve_setup(p)
     # Points off the axis are nearest the same piece of a polygon whether
     # or not it was cut to x >= 0 first.
-    fts = features(f)
+    fts = seg_arrays(features(f))
     q2 = np.array([math.hypot(q[0], q[1]), q[2]])
     cuts = [math.inf, math.inf]
     if p["angle"] != 360:
         cuts = [abs(float(n @ q)) for n in reader.wedge_normals(p["angle"], flip)]
-    cand = cuts + [feature_distance(ft, q2) for ft in fts]
+    cand = cuts + feature_distances(fts, q2)
     return int(np.argmin(cand))
+
+
+def seg_arrays(fts):
+    """Features, with their segments' ends as arrays when all are straight
+    (so that feature_distances takes them at once)."""
+    if fts and all(ft[0] == "seg" for ft in fts):
+        return (fts, np.array([ft[1] for ft in fts], float), np.array([ft[2] for ft in fts], float))
+    return (fts, None, None)
+
+
+def feature_distances(fts, q):
+    """feature_distance for each feature of seg_arrays' answer."""
+    fts, a, b = fts
+    if a is None:
+        return [feature_distance(ft, q) for ft in fts]
+    e = b - a
+    ee = np.einsum("ij,ij->i", e, e)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.where(ee > 0, np.einsum("ij,ij->i", q - a, e) / ee, 0.0)
+    u = np.clip(u, 0.0, 1.0)
+    return list(np.linalg.norm(q - a - u[:, None] * e, axis=1))
 
 
 class Caster:

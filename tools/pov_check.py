@@ -613,18 +613,25 @@ def flat_inside(f, q2):
     if f[0] == "ellipse":
         u = np.linalg.solve(f[1], (q2 - f[2]).T).T
         return np.sum(u**2, axis=1) <= 1.0
+    if f[0] == "faces":
+        return np.any([even_odd([l], q2) for l in f[1]], axis=0)
     return combine(f[1], [flat_inside(k, q2) for k in f[2]])
 
 
 def flat_leaves(f):
-    if f[0] in ("poly", "ellipse", "curves"):
+    if f[0] in ("poly", "ellipse", "curves", "faces"):
         return [f]
     return [x for k in f[2] for x in flat_leaves(k)]
 
 
 TWIST_ERROR = '#error "csgrt: a twisted or unevenly scaled linear_extrude has no POV-Ray equivalent"'
 SECTION_ERROR = '#error "csgrt: projection(cut = true) has no POV-Ray equivalent"'
+SHADOW_ERROR = '#error "csgrt: projection(cut = false) has no POV-Ray equivalent"'
 XOR_ERROR = '#error "csgrt: a drawing\'s outlines combined even-odd have no POV-Ray equivalent"'
+
+
+def has_faces(f):
+    return f is not None and (f[0] == "faces" or f[0] == "op" and any(has_faces(k) for k in f[2]))
 
 
 def has_xor(f):
@@ -750,6 +757,10 @@ def check(path, binary):
             # with the reason, and only for a scene that twists.
             twists = [x for x in sc.leaves if x.kind == "linear_extrude" and reader.twisted(x.params)]
             return [] if twists else ["the export refuses a twisted prism the file does not have"]
+        if SHADOW_ERROR in text:
+            # Nor a shadow of triangles: the same, for projections' shadows.
+            shadows = [x for x in sc.leaves if x.kind in reader.EXTRUSIONS and has_faces(x.params.get("flat"))]
+            return [] if shadows else ["the export refuses a shadow the file does not have"]
         if XOR_ERROR in text:
             # Nor an even-odd combination of solids: the same, for drawings
             # whose arcs, ellipses or strokes join their outlines by parity.

@@ -605,14 +605,13 @@ class Reader:
             k = [sc[i] if not auto[i] or newsize[i] > 0 else autoscale for i in range(2)]
             return flat_moved(child, m @ np.diag([k[0], k[1], 1.0]))
         if name == "projection":
-            if a.get("cut", False) is not True:
-                raise self.err(s, "projection(cut = false) is not in the oracle")
             # The children as solids, kept out of the scene's leaves: read
-            # again, exactly, when the slice is extruded.
+            # again, exactly, when the slice (or shadow) is extruded.
             n0 = len(self.scene.leaves)
             node = self.union([k for k in (self.node(c, np.eye(4), dict(CORNFIELD)) for c in s.children) if k is not None])
             del self.scene.leaves[n0:]
-            return None if node is None else ("section", node, m, s)
+            kind = "section" if a.get("cut", False) is True else "shadow"
+            return None if node is None else (kind, node, m, s)
         op = name if name in ("intersection", "difference") else "union"
         return self.flat_kids(s, op, m)
 
@@ -650,6 +649,18 @@ class Reader:
         the xy box of its children's box; None when empty."""
         if f is None:
             return None
+        if f[0] == "shadow":
+            _, node, m, st = f
+            M = np.eye(4)
+            M[np.ix_([0, 1, 3], [0, 1, 3])] = m
+            try:
+                t = shadow_tree(moved_node(node, M))
+            except ValueError as e:
+                raise self.err(st, str(e))
+            if t is None:
+                return None
+            lo, hi = flat_box(t)
+            return t, ("framed", t, lo, hi)
         if f[0] == "section":
             _, node, m, st = f
             M = np.eye(4)
@@ -1171,8 +1182,10 @@ def text_2d(rd, s, a, place):
 
 def flat_moved(f, m):
     """A 2-D tree moved by the plane matrix m (3x3, homogeneous)."""
-    if f[0] == "section":
-        return ("section", f[1], m @ f[2], f[3])
+    if f[0] in ("section", "shadow"):
+        return (f[0], f[1], m @ f[2], f[3])
+    if f[0] == "faces":
+        return ("faces", [ccw(l @ m[:2, :2].T + m[:2, 2]) for l in f[1]])
     if f[0] == "poly":
         return ("poly", [l @ m[:2, :2].T + m[:2, 2] for l in f[1]])
     if f[0] == "ellipse":
@@ -1277,7 +1290,7 @@ def offset_pieces(f, join, d):
 
 
 def has_section(f):
-    return f is not None and (f[0] == "section" or f[0] == "op" and any(has_section(k) for k in f[2]))
+    return f is not None and (f[0] in ("section", "shadow") or f[0] == "op" and any(has_section(k) for k in f[2]))
 
 
 def flat_stmt(s):
@@ -1462,6 +1475,56 @@ def mesh_slice(node):
         if len(loop) >= 3:
             loops.append(np.array([point[i] for i in loop]))
     return ("poly", loops) if loops else None
+
+
+def ccw(loop):
+    """A loop turned counter-clockwise."""
+    x, y = loop[:, 0], loop[:, 1]
+    area = float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    return loop if area >= 0 else loop[::-1]
+
+
+def shadow_tree(node):
+    """The shadow on z = 0 of a 3-D union of meshes, boxes and spheres,
+    exactly, as a 2-D tree: a mesh's or box's as the union of its faces'
+    shadows, ("faces", loops counter-clockwise) filled where any loop is;
+    a sphere's, the ellipse E u + c with E E^T = P P^T (P its matrix's x
+    and y rows). The shadow of an intersection or a difference is not its
+    operands', and not in the oracle; nor a cylinder's."""
+    if isinstance(node, Op):
+        if node.op != "union":
+            raise ValueError(f"the shadow of a 3-D {node.op} is not in the oracle")
+        kids = [k for k in (shadow_tree(c) for c in node.children) if k is not None]
+        return None if not kids else kids[0] if len(kids) == 1 else ("op", "union", kids)
+    m, p = node.matrix, node.params
+    if node.kind == "polyhedron":
+        pts = p["points"] @ m[:3, :3].T + m[:3, 3]
+        loops = [ccw(pts[f][:, :2]) for f in p["faces"]]
+        return ("faces", [l for l in loops if abs(float(np.sum(l[:, 0] * np.roll(l[:, 1], -1) - np.roll(l[:, 0], -1) * l[:, 1]))) > 0])
+    if node.kind == "cube":
+        s0 = -p["size"] / 2 if p["center"] else np.zeros(3)
+        c = [np.array([s0[0] + (i & 1) * p["size"][0], s0[1] + (i >> 1 & 1) * p["size"][1], s0[2] + (i >> 2 & 1) * p["size"][2]]) for i in range(8)]
+        pts = np.array(c) @ m[:3, :3].T + m[:3, 3]
+        faces = [[0, 1, 3, 2], [4, 5, 7, 6], [0, 1, 5, 4], [2, 3, 7, 6], [0, 2, 6, 4], [1, 3, 7, 5]]
+        loops = [ccw(pts[f][:, :2]) for f in faces]
+        return ("faces", [l for l in loops if abs(float(np.sum(l[:, 0] * np.roll(l[:, 1], -1) - np.roll(l[:, 0], -1) * l[:, 1]))) > 0])
+    if node.kind == "sphere":
+        P = m[:2, :3] * p["r"]
+        E = np.linalg.cholesky(P @ P.T)
+        return ("ellipse", E, m[:2, 3].copy())
+    raise ValueError(f"the shadow of a {node.kind} is not in the oracle")
+
+
+def flat_box(f):
+    """The box (lo, hi) of a shadow tree's leaves (csgrt's framing of it)."""
+    if f[0] == "faces":
+        pts = np.concatenate(f[1])
+        return pts.min(axis=0), pts.max(axis=0)
+    if f[0] == "ellipse":
+        h = np.sqrt(f[1][:, 0] ** 2 + f[1][:, 1] ** 2)
+        return f[2] - h, f[2] + h
+    bs = [flat_box(k) for k in f[2]]
+    return np.min([b[0] for b in bs], axis=0), np.max([b[1] for b in bs], axis=0)
 
 
 def section_tree(node, big):

@@ -2,7 +2,9 @@
 //! only lists them and dispatches to their modules (see [`Solid`]).
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Cone, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Sphere, Torus, Twisted};
+use super::{
+    Aabb, Cone, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Shadow, Sphere, Torus, Twisted,
+};
 use glam::{DAffine3, DVec3};
 
 /// Not `Copy`: a leaf may carry shared data (a prism's region).
@@ -17,6 +19,7 @@ pub enum Shape {
     Lathe(Lathe),
     Twisted(Twisted),
     Mesh(Mesh),
+    Shadow(Shadow),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -32,6 +35,7 @@ macro_rules! each {
             Shape::Lathe($s) => $e,
             Shape::Twisted($s) => $e,
             Shape::Mesh($s) => $e,
+            Shape::Shadow($s) => $e,
         }
     };
 }

@@ -404,7 +404,8 @@ impl Region {
 pub const FLAT_EDGES: usize = 32;
 
 /// A bounding-box tree over a region's edges (the box of a curve is that
-/// of its control points, which hold it), so that a line is tested against
+/// of its control points, which hold it) or any boxes (a shadow's
+/// triangles), so that a line is tested against
 /// about log(edges) boxes and the edges near it. A box is passed over only
 /// when all four corners lie strictly on one side of the line by more than
 /// the rounding of the side's value (1e-14 of the terms' magnitude, far
@@ -429,7 +430,7 @@ struct TreeNode {
 const TREE_LEAF: usize = 8;
 
 impl EdgeTree {
-    fn new(boxes: &[(DVec2, DVec2)]) -> EdgeTree {
+    pub fn new(boxes: &[(DVec2, DVec2)]) -> EdgeTree {
         let mut t = EdgeTree {
             nodes: Vec::new(),
             order: (0..boxes.len() as u32).collect(),
@@ -480,7 +481,7 @@ impl EdgeTree {
     }
 
     /// Calls `f` with every edge in a box the line ℓ·(x, y, 1) = 0 may meet.
-    fn visit(&self, line: DVec3, f: &mut impl FnMut(u32)) {
+    pub fn visit(&self, line: DVec3, f: &mut impl FnMut(u32)) {
         let mut stack: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
         stack.push(0);
         while let Some(i) = stack.pop() {

@@ -42,9 +42,10 @@ pub(crate) enum Flat {
     Polygon(Outlines),
     /// The image of the unit disc.
     Ellipse(DAffine2),
-    /// `projection(cut = true)`: the slice z = 0 of its children, moved
-    /// in the plane by the transform. The children are read only when the
-    /// slice is extruded, in the extrusion's frame.
+    /// `projection(cut)`: the slice z = 0 of its children (cut = true) or
+    /// their shadow on it, moved in the plane by the transform. The
+    /// children are read only when it is extruded, in the extrusion's
+    /// frame.
     Section(Box<Statement>, DAffine2),
     Op(Op, Vec<Flat>),
 }
@@ -382,18 +383,7 @@ impl Resolver<'_> {
         }
         if name == "projection" {
             let a = Args::bind(self.src, s, &["cut", "convexity"])?;
-            if !a.boolean("cut")?.unwrap_or(false) {
-                let place = if a.has("cut") {
-                    a.span_of("cut")
-                } else {
-                    s.name_span
-                };
-                return Err(self.src.error(
-                    place,
-                    "projection(cut = false), the shadow of a solid, is not supported yet",
-                    "csgrt renders projection(cut = true), the slice at z = 0",
-                ));
-            }
+            a.boolean("cut")?;
             if s.children.iter().all(super::skipped) {
                 return Ok(None);
             }
@@ -862,7 +852,12 @@ impl Resolver<'_> {
                         DMat3::from_mat2(at.matrix2),
                         at.translation.extend(0.0),
                     );
-                self.section(p, frame, mat)
+                let cut = Args::bind(self.src, p, &["cut", "convexity"])?.boolean("cut")?;
+                if cut.unwrap_or(false) {
+                    self.section(p, frame, mat)
+                } else {
+                    self.shadow(p, frame, mat)
+                }
             }
             Flat::Op(op, kids) => {
                 let mut parts = Vec::new();

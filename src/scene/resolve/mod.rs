@@ -10,6 +10,7 @@ mod facet_mesh;
 mod flat;
 mod offset;
 mod resize;
+mod shadow;
 mod solids;
 mod statements;
 mod svg;
