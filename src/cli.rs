@@ -398,6 +398,7 @@ pub fn stats_json(s: &Stats, seconds: f64) -> String {
         "primitive_tests": s.primitive_tests,
         "bound_tests": s.bound_tests,
         "triangle_tests": s.triangle_tests,
+        "convex_steps": s.convex_steps,
         "bound_culled": s.bound_culled,
         "normals_computed": s.normals_computed,
         "span_allocations": s.span_allocations,

@@ -26,6 +26,8 @@ pub const NAMES: &[&str] = &[
     "resize_auto_ignored",
     "ellipse_turned_back",
     "svg_arcs_as_chords",
+    "hull_gjk_normals",
+    "minkowski_moved_twice",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -12,6 +12,8 @@ pub struct Stats {
     pub primitive_tests: u64,
     /// Ray–triangle tests inside meshes.
     pub triangle_tests: u64,
+    /// GJK steps of rays cast against hulls and Minkowski sums.
+    pub convex_steps: u64,
     /// Ray–bounding-box tests of CSG nodes.
     pub bound_tests: u64,
     /// Subtrees skipped because the ray missed their box.
@@ -36,6 +38,7 @@ impl Stats {
         self.refracted_rays += o.refracted_rays;
         self.primitive_tests += o.primitive_tests;
         self.triangle_tests += o.triangle_tests;
+        self.convex_steps += o.convex_steps;
         self.bound_tests += o.bound_tests;
         self.bound_culled += o.bound_culled;
         self.normals_computed += o.normals_computed;

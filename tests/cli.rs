@@ -240,8 +240,8 @@ fn a_degenerate_camera_is_an_error() {
 #[test]
 fn an_unsupported_openscad_node_is_an_error_not_skipped() {
     assert_eq!(
-        fails("group() {\n\tlinear_extrude(height = 10) hull() cube(1);\n}\n"),
-        "error: `hull` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) hull() cube(1);\n  | \t                            ^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, resize and polyhedron\n"
+        fails("group() {\n\tlinear_extrude(height = 10) roof() square(1);\n}\n"),
+        "error: `roof` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) roof() square(1);\n  | \t                            ^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, hull, minkowski, resize and polyhedron\n"
     );
 }
 

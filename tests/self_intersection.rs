@@ -37,8 +37,32 @@ fn octahedron() -> Shape {
     })
 }
 
+/// hull() of two balls (a tapered capsule) and minkowski() of a cube
+/// and a ball (a rounded box), within the unit box.
+fn hull_and_sum() -> [Shape; 2] {
+    use csgrt::geometry::convex::{Convex, Part};
+    let ball = |c: DVec3, r: f64| Part {
+        shape: Shape::Sphere(Sphere),
+        to_world: DAffine3::from_scale_rotation_translation(DVec3::splat(r), DQuat::IDENTITY, c),
+    };
+    let cube = Part {
+        shape: Shape::Cuboid(Cuboid { centered: true }),
+        to_world: DAffine3::from_scale(DVec3::new(1.2, 0.8, 0.6)),
+    };
+    [
+        Shape::Convex(Convex::new(vec![vec![
+            ball(DVec3::new(-0.5, 0.0, 0.0), 0.5),
+            ball(DVec3::new(0.8, 0.1, 0.0), 0.2),
+        ]])),
+        Shape::Convex(Convex::new(vec![vec![cube], vec![ball(DVec3::ZERO, 0.3)]])),
+    ]
+}
+
 fn convex_shape() -> impl Strategy<Value = Shape> {
+    let [hull, sum] = hull_and_sum();
     prop_oneof![
+        Just(hull),
+        Just(sum),
         Just(Shape::Sphere(Sphere)),
         Just(octahedron()),
         any::<bool>().prop_map(|centered| Shape::Cuboid(Cuboid { centered })),

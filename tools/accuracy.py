@@ -786,8 +786,289 @@ def side_pieces(a, b, c):
 
 
 # --------------------------------------------------------------------------
+# hull() and minkowski(): closed forms of a tapered capsule, a rounded box
+# and the hull of points
+# --------------------------------------------------------------------------
+
+CONVEXES = ["hull_spheres", "rounded_box", "hull_points"]
+# The hull of two balls on the z axis: centres and radii, times the size.
+CAPSULE = ((-0.3, 0.35), (0.4, 0.15))
+# The rounded box: a centred box's sides and the ball's radius, times the size.
+BOX_SIDES, BOX_R = (0.6, 0.4, 0.3), 0.15
+# The hull of points: twelve points in general position, as three
+# tetrahedra, times the size.
+POINTS = [
+    (-0.41, -0.33, -0.28), (0.37, -0.29, -0.35), (0.05, 0.44, -0.31), (-0.02, 0.03, 0.47),
+    (0.45, 0.21, 0.08), (-0.46, 0.18, 0.13), (0.12, -0.47, 0.19), (0.21, 0.36, 0.33),
+    (-0.23, -0.12, -0.49), (0.31, -0.05, 0.42), (-0.35, 0.39, -0.17), (0.02, -0.21, -0.11),
+]
+
+
+class Convexed(Prim):
+    """hull() of two balls (a tapered capsule), minkowski() of a box and a
+    ball (a rounded box), or hull() of twelve points, of size s centred at
+    c. The line meets a convex set in one interval: the union of the
+    intervals of convex pieces that cover it (the balls and the frustum
+    tangent to both; 3 boxes, 12 cylinders and 8 balls), or the facets'
+    half-spaces."""
+
+    def __init__(self, kind, c, s, pose="plain"):
+        super().__init__(kind, c, s, pose)
+        S = M(s)
+        if kind == "hull_spheres":
+            (z1, r1), (z2, r2) = [(M(float(z * s)), M(float(r * s))) for z, r in CAPSULE]
+            self.balls = [([M(0), M(0), z1], r1), ([M(0), M(0), z2], r2)]
+            sin_a = (r1 - r2) / (z2 - z1)
+            cos_a = mp.sqrt(1 - sin_a**2)
+            # The frustum between the tangency circles.
+            self.z1t, self.z2t = z1 + r1 * sin_a, z2 + r2 * sin_a
+            self.rho1, self.k = r1 * cos_a, -sin_a / cos_a
+        elif kind == "rounded_box":
+            self.half = [M(float(x * s)) / 2 for x in BOX_SIDES]
+            self.r = M(float(BOX_R * s))
+        else:
+            self.pts = [[M(float(x * s)) for x in q] for q in POINTS]
+            self.planes = hull_planes(self.pts)
+        self.S = S
+
+    def body(self):
+        s = self.s
+        f = lambda x: repr(float(x * s))
+        if self.kind == "hull_spheres":
+            balls = " ".join(f"translate([0, 0, {f(z)}]) sphere(r = {f(r)});" for z, r in CAPSULE)
+            return f"hull() {{ {balls} }}"
+        if self.kind == "rounded_box":
+            sides = ", ".join(f(x) for x in BOX_SIDES)
+            return f"minkowski() {{ cube([{sides}], center = true); sphere(r = {f(BOX_R)}); }}"
+        tets = []
+        for j in range(0, len(POINTS), 4):
+            p = [[float(x * s) for x in q] for q in POINTS[j : j + 4]]
+            pts = ", ".join("[" + ", ".join(repr(x) for x in q) + "]" for q in p)
+            faces = ", ".join(str(fc) for fc in tetra_faces([[M(x) for x in q] for q in p]))
+            tets.append(f"polyhedron(points = [{pts}], faces = [{faces}]);")
+        return "hull() { " + " ".join(tets) + " }"
+
+    def intervals(self, o, d):
+        """The intervals of t in each convex piece (local ray)."""
+        out = []
+        if self.kind == "hull_spheres":
+            for cen, r in self.balls:
+                rel = [o[i] - cen[i] for i in range(3)]
+                q = quadratic(dot(d, d), dot(rel, d), dot(rel, rel) - r * r)
+                if q:
+                    out.append(tuple(q))
+            # x^2 + y^2 = (rho1 + k (z - z1t))^2 for z1t <= z <= z2t
+            rz0 = self.rho1 + self.k * (o[2] - self.z1t)
+            a = d[0] ** 2 + d[1] ** 2 - self.k**2 * d[2] ** 2
+            b = o[0] * d[0] + o[1] * d[1] - self.k * d[2] * rz0
+            c = o[0] ** 2 + o[1] ** 2 - rz0 * rz0
+            out += clipped(pieces(a, b, c), slab(o[2], d[2], self.z1t, self.z2t))
+        elif self.kind == "rounded_box":
+            h, r = self.half, self.r
+            for i in range(3):
+                grown = [h[j] + (r if j == i else 0) for j in range(3)]
+                box = clip_box(o, d, [-x for x in grown], grown)
+                if box:
+                    out.append(box)
+                j, k = (i + 1) % 3, (i + 2) % 3
+                for sj in (-1, 1):
+                    for sk in (-1, 1):
+                        cj, ck = sj * h[j], sk * h[k]
+                        a = d[j] ** 2 + d[k] ** 2
+                        b = (o[j] - cj) * d[j] + (o[k] - ck) * d[k]
+                        c = (o[j] - cj) ** 2 + (o[k] - ck) ** 2 - r * r
+                        out += clipped(pieces(a, b, c), slab(o[i], d[i], -h[i], h[i]))
+            for sx in (-1, 1):
+                for sy in (-1, 1):
+                    for sz in (-1, 1):
+                        rel = [o[0] - sx * h[0], o[1] - sy * h[1], o[2] - sz * h[2]]
+                        q = quadratic(dot(d, d), dot(rel, d), dot(rel, rel) - r * r)
+                        if q:
+                            out.append(tuple(q))
+        else:
+            lo, hi = -mp.inf, mp.inf
+            for n, h in self.planes:
+                nd, no = dot(n, d), dot(n, o)
+                if nd == 0:
+                    if no > h:
+                        return []
+                    continue
+                t = (h - no) / nd
+                lo, hi = (max(lo, t), hi) if nd < 0 else (lo, min(hi, t))
+            if lo < hi:
+                out.append((lo, hi))
+        return out
+
+    def crossings(self, o, d):
+        o, d = self.local(o, d)
+        iv = [x for x in self.intervals(o, d) if x[0] < x[1]]
+        if not iv:
+            return []
+        return [min(x[0] for x in iv), max(x[1] for x in iv)]
+
+    def normal(self, o, d, t):
+        lo, ld = self.local(o, d)
+        p = [lo[i] + t * ld[i] for i in range(3)]
+        if self.kind == "hull_spheres":
+            if p[2] <= self.z1t or p[2] >= self.z2t:
+                cen, r = self.balls[0] if p[2] <= self.z1t else self.balls[1]
+                n, rho = [p[i] - cen[i] for i in range(3)], r
+            else:
+                rxy = mp.sqrt(p[0] ** 2 + p[1] ** 2)
+                n = [p[0] / rxy, p[1] / rxy, -self.k]
+                rho = (self.rho1 + self.k * (p[2] - self.z1t)) * mp.sqrt(1 + self.k**2)
+        elif self.kind == "rounded_box":
+            h = self.half
+            q = [max(-h[i], min(h[i], p[i])) for i in range(3)]
+            n = [p[i] - q[i] for i in range(3)]
+            # Off a face by the rounding error of p: the face's normal.
+            big = max(abs(x) for x in n)
+            curved = sum(1 for x in n if abs(x) > big * mp.mpf(10) ** -20) > 1
+            rho = self.r if curved else mp.inf
+        else:
+            n, _ = min(self.planes, key=lambda nh: abs(dot(nh[0], p) - nh[1]))
+            rho = mp.inf
+        w = apply(transpose(self.inv), n)
+        ln = mp.sqrt(dot(w, w))
+        return [x / ln for x in w], rho
+
+
+def tetra_faces(p):
+    """The four faces of a tetrahedron, clockwise seen from outside
+    (OpenSCAD's order)."""
+    out = []
+    for i, j, k, l in ((0, 1, 2, 3), (0, 1, 3, 2), (0, 2, 3, 1), (1, 2, 3, 0)):
+        n = cross3([p[j][m] - p[i][m] for m in range(3)], [p[k][m] - p[i][m] for m in range(3)])
+        inward = dot(n, [p[l][m] - p[i][m] for m in range(3)]) > 0
+        out.append([i, j, k] if inward else [i, k, j])
+    return out
+
+
+def cross3(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def hull_planes(pts):
+    """The facet planes (n, h) with n.x <= h inside, of points in general
+    position: every triple with all other points on one side."""
+    out = []
+    n_ = len(pts)
+    for i in range(n_):
+        for j in range(i + 1, n_):
+            for k in range(j + 1, n_):
+                n = cross3([pts[j][m] - pts[i][m] for m in range(3)], [pts[k][m] - pts[i][m] for m in range(3)])
+                h = dot(n, pts[i])
+                side = [dot(n, q) - h for q in pts]
+                if all(x <= 0 for x in side):
+                    out.append((n, h))
+                elif all(x >= 0 for x in side):
+                    out.append(([-x for x in n], -h))
+    return out
+
+
+def pieces(a, b, c):
+    """Intervals where a t^2 + 2 b t + c <= 0, a >= 0 (a cylinder's or a
+    cone's side; a = 0: the line runs along it)."""
+    if a == 0:
+        return [(-mp.inf, mp.inf)] if c <= 0 else []
+    return side_pieces(a, b, c)
+
+
+def slab(o, d, lo, hi):
+    """The interval of t with lo <= o + t d <= hi."""
+    if d == 0:
+        return (-mp.inf, mp.inf) if lo <= o <= hi else None
+    a, b = (lo - o) / d, (hi - o) / d
+    return (min(a, b), max(a, b))
+
+
+def clipped(iv, s):
+    if s is None:
+        return []
+    return [(max(a, s[0]), min(b, s[1])) for a, b in iv if max(a, s[0]) < min(b, s[1])]
+
+
+def clip_box(o, d, lo, hi):
+    a, b = -mp.inf, mp.inf
+    for i in range(3):
+        s = slab(o[i], d[i], lo[i], hi[i])
+        if s is None:
+            return None
+        a, b = max(a, s[0]), min(b, s[1])
+    return (a, b) if a < b else None
+
+
+def convex_rays(p, n, rng):
+    """Random rays at the middle part, rays from inside, and rays grazing
+    1e-9 of the size inside: the capsule's cone, the box's rounded edges,
+    the hull's edges; and rays at its corners."""
+    c, s = p.c, p.s
+    out = []
+
+    def at(*rel):
+        return [c[i] + rel[i] * s for i in range(3)]
+
+    for _ in range(n):
+        o, d, u = from_outside(at, rng, 0.15)
+        out.append(("random", o, d))
+        out.append(("inside", at(*(rng.uniform(-0.05, 0.05) for _ in range(3))), u))
+    ulp = math.ulp(max(abs(x) for x in c) or 1.0)
+    slim = max(SLIM, 8 * ulp / s)
+    for j in range(n):
+        a = 2 * math.pi * j / n
+        if p.kind == "hull_spheres":
+            # Across the cone at z = 0.1, 1e-9 of the size inside it.
+            z = M(0.1) * p.S
+            rz = (p.rho1 + p.k * (z - p.z1t)) / p.S
+            y = float(rz * (1 - M(slim)))
+            o = at(-3.0 * math.cos(a) - y * math.sin(a), -3.0 * math.sin(a) + y * math.cos(a), 0.1)
+            out.append(("grazing", o, [math.cos(a), math.sin(a), 0.0]))
+        elif p.kind == "rounded_box":
+            # Along a rounded vertical edge, 1e-9 of the size inside it.
+            q = a / 4  # within the corner's quarter
+            e = (1 - slim) * BOX_R
+            x, y = BOX_SIDES[0] / 2 + e * math.cos(q), BOX_SIDES[1] / 2 + e * math.sin(q)
+            out.append(("edge", at(x, y, -3.0), [0.0, 0.0, 1.0]))
+            # At a rounded corner, from outside along the diagonal.
+            corner = at(*(BOX_SIDES[i] / 2 + (1 - slim) * BOX_R / 3**0.5 for i in range(3)))
+            o = at(3.0, 2.5, 3.5)
+            out.append(("corner", o, unit([corner[i] - o[i] for i in range(3)])))
+        else:
+            # Past the middle of a hull edge, 1e-9 of the size inside it.
+            nplanes = len(p.planes)
+            (n1, h1), (n2, h2) = p.planes[j % nplanes], p.planes[(j * 7 + 1) % nplanes]
+            common = [q for q in p.pts if abs(dot(n1, q) - h1) < 1e-30 and abs(dot(n2, q) - h2) < 1e-30]
+            if len(common) != 2:
+                continue
+            mid = [(common[0][i] + common[1][i]) / 2 for i in range(3)]
+            centre = [sum(q[i] for q in p.pts) / len(p.pts) for i in range(3)]
+            inward = [centre[i] - mid[i] for i in range(3)]
+            li = mp.sqrt(dot(inward, inward))
+            target = [float(mid[i] + inward[i] / li * slim * p.S) / s for i in range(3)]
+            along = [common[1][i] - common[0][i] for i in range(3)]
+            # A direction across the edge: the sum of the two faces'
+            # normals turned about the edge by a quarter.
+            w = cross3(along, [n1[i] / mp.sqrt(dot(n1, n1)) + n2[i] / mp.sqrt(dot(n2, n2)) for i in range(3)])
+            d = unit([float(x) for x in w])
+            o = at(*(target[i] - 3.0 * d[i] for i in range(3)))
+            out.append(("edge", o, d))
+    return out
+
+
+# --------------------------------------------------------------------------
 # Rays
 # --------------------------------------------------------------------------
+
+
+def from_outside(at, rng, spread):
+    """A random ray from 3 sizes away towards a random point within
+    `spread` sizes of the middle (origin, direction), and a random unit
+    direction; `at` maps sizes to the world."""
+    u = [rng.gauss(0, 1) for _ in range(3)]
+    nu = sum(x * x for x in u) ** 0.5
+    o = at(*(3 * x / nu for x in u))
+    target = at(*(rng.uniform(-spread, spread) for _ in range(3)))
+    return o, unit([target[i] - o[i] for i in range(3)]), unit(u)
 
 
 def rays_for(p, n, rng):
@@ -799,15 +1080,12 @@ def rays_for(p, n, rng):
         return [c[i] + rel[i] * s for i in range(3)]
 
     for _ in range(n):
-        u = [rng.gauss(0, 1) for _ in range(3)]
-        nu = sum(x * x for x in u) ** 0.5
-        o = at(*(3 * x / nu for x in u))
-        target = at(*(rng.uniform(-0.3, 0.3) for _ in range(3)))
-        out.append(("random", o, unit([target[i] - o[i] for i in range(3)])))
+        o, d, u = from_outside(at, rng, 0.3)
+        out.append(("random", o, d))
         inner = at(*(rng.uniform(-0.05, 0.05) for _ in range(3)))
         if p.kind == "torus":
             inner = at(1.0, 0.0, rng.uniform(-0.05, 0.05))
-        out.append(("inside", inner, unit(u)))
+        out.append(("inside", inner, u))
     k = p.kind
     ulp = math.ulp(max(abs(x) for x in c) or 1.0)
     slim = 1 - max(SLIM, 8 * ulp / s)
@@ -905,7 +1183,7 @@ def main():
     failures = []
     direction = [1.0, 0.7, 0.3]
     with tempfile.TemporaryDirectory() as work:
-        kinds = ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS
+        kinds = ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS + CONVEXES
         if a.kinds:
             kinds = [k for k in kinds if k in a.kinds.split(",")]
         for kind in kinds:
@@ -913,9 +1191,9 @@ def main():
             for pose in poses:
                 for off in OFFSETS:
                     for size in SIZES:
-                        cls = Extruded if kind in EXTRUSIONS else Prim
+                        cls = Extruded if kind in EXTRUSIONS else Convexed if kind in CONVEXES else Prim
                         p = cls(kind, [off * x for x in direction], size, pose)
-                        maker = extrusion_rays if kind in EXTRUSIONS else rays_for
+                        maker = extrusion_rays if kind in EXTRUSIONS else convex_rays if kind in CONVEXES else rays_for
                         rays = [(case, *p.place(o, d)) for case, o, d in maker(p, a.rays, rng)]
                         got = run(a.csgrt, p, rays, work)
                         if a.same_as:

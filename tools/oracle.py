@@ -76,6 +76,7 @@ Exit status 1 when --check finds a scene that fails.
 """
 
 import argparse
+import itertools
 import hashlib
 import math
 import multiprocessing
@@ -226,9 +227,17 @@ def section_pieces(f, n):
         return circle_pieces(f[1], f[2], n)
     if f[0] == "op" and len(f) == 4 and f[3][0] == "drawing":
         return [g for loop in drawing_pieces(f, n) for g in loop]
+    if f[0] == "op" and f[1] == "hull":
+        loops = cross_section(f, n).to_polygons()
+        return [Line(np.array(l[i]), np.array(l[(i + 1) % len(l)])) for l in loops for i in range(len(l))]
     if f[0] == "op":
         return [g for k in f[2] for g in section_pieces(k, n)]
     return []
+
+
+def has_hull(f):
+    """Whether a 2-D tree holds a hull."""
+    return f[0] == "op" and (f[1] == "hull" or any(has_hull(k) for k in f[2]))
 
 
 def svg_loop_points(x, n):
@@ -292,6 +301,8 @@ def cross_section(f, n):
     kids = [cross_section(k, n) for k in f[2]]
     if f[1] == "union":
         return mf.CrossSection.batch_boolean(kids, mf.OpType.Add)
+    if f[1] == "hull":
+        return mf.CrossSection.batch_hull(kids)
     if f[1] == "xor":
         acc = kids[0]
         for k in kids[1:]:
@@ -337,7 +348,13 @@ def extrusion_mesh(leaf, n):
     p = leaf.params
     if leaf.kind == "linear_extrude" and reader.twisted(p):
         slices, m = twist_steps(leaf, n)
-        cs = cross_section(refined(p["flat"], m), n)
+        if has_hull(p["flat"]):
+            # A hull's tangent edges exist only once it is made: cut them
+            # (and every other edge) after.
+            loops = [np.array(l) for l in cross_section(p["flat"], n).to_polygons()]
+            cs = mf.CrossSection([l.tolist() for l in refined(("poly", loops), m)[1]], mf.FillRule.Positive)
+        else:
+            cs = cross_section(refined(p["flat"], m), n)
         # manifold turns counter-clockwise, OpenSCAD clockwise; both scale
         # after turning (S R p).
         mesh = mf.Manifold.extrude(cs, p["h"], slices - 1, -p["twist"], tuple(p["scale2"]))
@@ -399,9 +416,38 @@ def polyhedron_solid(leaf):
     return leaf._solid
 
 
+def convex_solid(m):
+    """Whether a mesh is convex: its volume is its hull's."""
+    hv = m.hull().volume()
+    return abs(hv - m.volume()) <= 1e-9 * max(hv, 1e-300)
+
+
 def leaf_mesh(leaf, n, big):
     p = leaf.params
     k = leaf.kind
+    if k == "hull":
+        return mf.Manifold.batch_hull([leaf_mesh(x, n, big) for x in p["parts"]]).as_original()
+    if k == "minkowski":
+        ops = [[leaf_mesh(x, n, big) for x in o] for o in p["operands"]]
+        if all(convex_solid(m) for o in ops for m in o):
+            # Convex operands: the sum distributes over each operand's
+            # union, and a sum of convex solids is the hull of its
+            # vertices' sums (robust where manifold's general sum leaves
+            # slivers at some resolutions).
+            pieces = []
+            for combo in itertools.product(*ops):
+                pts = combo[0].to_mesh().vert_properties[:, :3]
+                for m in combo[1:]:
+                    q = m.to_mesh().vert_properties[:, :3]
+                    pts = (pts[:, None, :] + q[None, :, :]).reshape(-1, 3)
+                    pts = mf.Manifold.hull_points(pts).to_mesh().vert_properties[:, :3]
+                pieces.append(mf.Manifold.hull_points(pts))
+            return mf.Manifold.batch_boolean(pieces, mf.OpType.Add).as_original()
+        joined = [mf.Manifold.batch_boolean(o, mf.OpType.Add) for o in ops]
+        acc = joined[0]
+        for o in joined[1:]:
+            acc = acc.minkowski_sum(o)
+        return acc.as_original()
     if k == "polyhedron":
         return polyhedron_solid(leaf).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k in reader.EXTRUSIONS:
@@ -690,7 +736,17 @@ def extrusion_curvature(leaf):
     return leaf._curvature
 
 
+def convex_parts(leaf):
+    """A hull's parts, or a Minkowski sum's operands' (lists of leaves)."""
+    return [leaf.params["parts"]] if leaf.kind == "hull" else leaf.params["operands"]
+
+
 def facet_distance(leaf, n):
+    if leaf.kind in ("hull", "minkowski"):
+        # A hull moves by no more than its parts (the Hausdorff distance of
+        # hulls is at most that of the sets), a sum by the sum of its
+        # operands'.
+        return sum(max(facet_distance(x, n) for x in ops) for ops in convex_parts(leaf))
     p, (smax, _) = leaf.params, svd(leaf)
     b = 1 - math.cos(math.pi / n)
     if leaf.kind in reader.EXTRUSIONS:
@@ -705,6 +761,11 @@ def facet_distance(leaf, n):
 
 
 def facet_angle(leaf, n):
+    if leaf.kind in ("hull", "minkowski"):
+        # A face of the meshed hull (or sum) spans facet vertices of its
+        # parts, each within its part's facet angle of the surface there:
+        # twice the largest (a sum's, of its operands' summed).
+        return 2 * sum(max(facet_angle(x, n) for x in ops) for ops in convex_parts(leaf))
     b = 1 - math.cos(math.pi / n)
     smax, smin = svd(leaf)
     kappa = smax / smin
@@ -720,6 +781,8 @@ def facet_angle(leaf, n):
 
 
 def largest_radius(leaf):
+    if leaf.kind in ("hull", "minkowski"):
+        return sum(max(largest_radius(x) for x in ops) for ops in convex_parts(leaf))
     p, (smax, _) = leaf.params, svd(leaf)
     r = {
         "sphere": lambda: p["r"],
@@ -739,6 +802,10 @@ def object_point(leaf, x):
 def curvature_radius(leaf, x):
     """The smallest object-space curvature radius near world point x."""
     p = leaf.params
+    if leaf.kind in ("hull", "minkowski"):
+        # No smaller than its parts' smallest (a hull's surface is theirs,
+        # or flat or ruled between them; a sum's radii add).
+        return min(curvature_radius(y, x) * svd(y)[1] ** 2 / svd(y)[0] for ops in convex_parts(leaf) for y in ops)
     if leaf.kind == "linear_extrude":
         return extrusion_curvature(leaf)
     if leaf.kind == "rotate_extrude":

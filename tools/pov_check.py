@@ -626,6 +626,7 @@ def flat_leaves(f):
 
 TWIST_ERROR = '#error "csgrt: a twisted or unevenly scaled linear_extrude has no POV-Ray equivalent"'
 SECTION_ERROR = '#error "csgrt: projection(cut = true) has no POV-Ray equivalent"'
+HULL_ERROR = '#error "csgrt: hull() and minkowski() have no POV-Ray equivalent"'
 SHADOW_ERROR = '#error "csgrt: projection(cut = false) has no POV-Ray equivalent"'
 XOR_ERROR = '#error "csgrt: a drawing\'s outlines combined even-odd have no POV-Ray equivalent"'
 
@@ -757,6 +758,10 @@ def check(path, binary):
             # with the reason, and only for a scene that twists.
             twists = [x for x in sc.leaves if x.kind == "linear_extrude" and reader.twisted(x.params)]
             return [] if twists else ["the export refuses a twisted prism the file does not have"]
+        if HULL_ERROR in text:
+            # POV-Ray has no convex hull nor Minkowski sum: the same.
+            hulls = [x for x in sc.leaves if x.kind in ("hull", "minkowski")]
+            return [] if hulls else ["the export refuses a hull the file does not have"]
         if SHADOW_ERROR in text:
             # Nor a shadow of triangles: the same, for projections' shadows.
             shadows = [x for x in sc.leaves if x.kind in reader.EXTRUSIONS and has_faces(x.params.get("flat"))]

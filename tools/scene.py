@@ -217,6 +217,8 @@ PARAMS = {
     "offset": ["r", "delta", "chamfer"],
     "projection": ["cut", "convexity"],
     "resize": ["newsize", "auto", "convexity"],
+    "hull": [],
+    "minkowski": ["convexity"],
     "import": ["file", "layer", "convexity", "origin", "scale", "width", "height", "filename", "layername", "center", "dpi", "id", "timestamp"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
     "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
@@ -259,6 +261,20 @@ class Leaf:
 class Op:
     def __init__(self, op, children):
         self.op, self.children = op, children
+
+
+def union_leaves(rd, s, node):
+    """The leaves of a 3-D tree of unions (for hull and minkowski); an
+    intersection or a difference is not in the oracle there."""
+    if node is None:
+        return []
+    if isinstance(node, Op):
+        if node.op != "union":
+            raise rd.err(s, f"{s.name} of a 3-D {node.op} is not in the oracle")
+        return [x for c in node.children for x in union_leaves(rd, s, c)]
+    if node.kind == "halfspace":
+        raise rd.err(s, f"{s.name} of a halfspace is not in the oracle")
+    return [node]
 
 
 class Scene:
@@ -419,6 +435,27 @@ class Reader:
                 raise self.err(s, "import takes no children")
             pts, faces = import_mesh(self, s, a)
             return self.leaf(s, "polyhedron", dict(points=pts, faces=faces), xf, mat)
+        kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
+        if name in ("hull", "minkowski") and not flat_stmt(s):
+            # Its children's leaves, read in place and kept out of the
+            # scene's: one leaf of its own, meshed by manifold's hull or
+            # Minkowski sum of theirs.
+            n0 = len(self.scene.leaves)
+            if name == "hull":
+                parts = union_leaves(self, s, self.union(kids(xf, mat)))
+                params = dict(parts=parts)
+            else:
+                live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+                # The sum moves once: the first operand under the whole
+                # transform, the others under its linear part.
+                lin = xf.copy()
+                lin[:3, 3] = 0.0
+                ops = [union_leaves(self, s, self.node(c, xf if i == 0 else lin, mat)) for i, c in enumerate(live)]
+                params = dict(operands=[o for o in ops if o])
+            del self.scene.leaves[n0:]
+            if not params.get("parts", params.get("operands")):
+                return None
+            return self.leaf(s, name, params, np.eye(4), mat)
         if name in SHAPES_2D or name in ("projection", "resize"):
             # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
             # centred on its plane, 1.1 when subtracted.
@@ -429,7 +466,6 @@ class Reader:
             return self.leaf(s, "linear_extrude", dict(flat=f[0], frame=f[1], h=h, z0=-h / 2, scale=1.0), xf, mat)
         if name in EXTRUSIONS:
             return self.extrusion(s, a, xf, mat)
-        kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
         if name in TRANSFORMS:
             return self.union(kids(xf @ self.transform(s, a), mat))
         if name in ("color", "material"):
@@ -612,7 +648,9 @@ class Reader:
             del self.scene.leaves[n0:]
             kind = "section" if a.get("cut", False) is True else "shadow"
             return None if node is None else (kind, node, m, s)
-        op = name if name in ("intersection", "difference") else "union"
+        if name == "minkowski":
+            raise self.err(s, "minkowski of 2-D shapes is not in the oracle")
+        op = name if name in ("intersection", "difference", "hull") else "union"
         return self.flat_kids(s, op, m)
 
     def resize(self, s, a, xf, mat):
@@ -730,7 +768,8 @@ class Reader:
         live = [p for p in parts if p is not None]
         if not live:
             return None
-        return live[0] if len(live) == 1 else ("op", op, live)
+        # (the hull of one shape is still its hull)
+        return live[0] if len(live) == 1 and op != "hull" else ("op", op, live)
 
     def shape_2d(self, s, a, m):
         if s.children:
@@ -996,6 +1035,12 @@ UNIT = (-np.ones(3), np.ones(3))
 
 def leaf_box(leaf):
     """The exact world box of a leaf."""
+    if leaf.kind == "hull":
+        return combine_boxes("union", [leaf_box(x) for x in leaf.params["parts"]])
+    if leaf.kind == "minkowski":
+        # Supports add: so do boxes.
+        bs = [combine_boxes("union", [leaf_box(x) for x in o]) for o in leaf.params["operands"]]
+        return sum(b[0] for b in bs), sum(b[1] for b in bs)
     if leaf.kind in EXTRUSIONS:
         return extrusion_box(leaf)
     m, p = leaf.matrix, leaf.params
@@ -2583,7 +2628,7 @@ def flat_x_range(f):
         h = math.hypot(f[1][0, 0], f[1][0, 1])
         return f[2][0] - h, f[2][0] + h
     rs = [flat_x_range(k) for k in f[2]]
-    if f[1] in ("union", "xor"):
+    if f[1] in ("union", "xor", "hull"):
         return min(r[0] for r in rs), max(r[1] for r in rs)
     if f[1] == "intersection":
         return max(r[0] for r in rs), min(r[1] for r in rs)
@@ -2591,7 +2636,7 @@ def flat_x_range(f):
 
 
 def combine_boxes(op, bs):
-    if op in ("union", "xor"):
+    if op in ("union", "xor", "hull"):
         return np.min([b[0] for b in bs], axis=0), np.max([b[1] for b in bs], axis=0)
     if op == "intersection":
         return np.max([b[0] for b in bs], axis=0), np.min([b[1] for b in bs], axis=0)

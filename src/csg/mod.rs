@@ -530,7 +530,7 @@ impl Csg {
             }
         }
         let (o, d) = p.xf.ray_to_object(&foot);
-        let n_obj = p.shape.normal(o + b.t * d, b.part());
+        let n_obj = p.shape.normal_on(o, d, b.t, b.part());
         let mut n = p.xf.normal_to_world(n_obj);
         for &k in &chain {
             n = self.sections[k as usize].normal(n);

@@ -39,7 +39,7 @@ pub struct Prism {
 
 impl Prism {
     /// The bottom's height.
-    fn z_lo(&self) -> f64 {
+    pub fn z_lo(&self) -> f64 {
         super::cone::bottom(self.centered)
     }
 

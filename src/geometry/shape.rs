@@ -3,7 +3,8 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{
-    Aabb, Cone, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Shadow, Sphere, Torus, Twisted,
+    Aabb, Cone, Convex, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Rounded, Shadow, Sphere,
+    Torus, Twisted,
 };
 use glam::{DAffine3, DVec3};
 
@@ -20,6 +21,8 @@ pub enum Shape {
     Twisted(Twisted),
     Mesh(Mesh),
     Shadow(Shadow),
+    Convex(Convex),
+    Rounded(Rounded),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -36,6 +39,8 @@ macro_rules! each {
             Shape::Twisted($s) => $e,
             Shape::Mesh($s) => $e,
             Shape::Shadow($s) => $e,
+            Shape::Convex($s) => $e,
+            Shape::Rounded($s) => $e,
         }
     };
 }
@@ -59,6 +64,11 @@ impl Shape {
     /// See [`Solid::normal`].
     pub fn normal(&self, p: DVec3, part: Part) -> DVec3 {
         each!(self, s => s.normal(p, part))
+    }
+
+    /// See [`Solid::normal_on`].
+    pub fn normal_on(&self, o: DVec3, d: DVec3, t: f64, part: Part) -> DVec3 {
+        each!(self, s => s.normal_on(o, d, t, part))
     }
 
     /// See [`Solid::contains`].

@@ -63,6 +63,13 @@ pub trait Solid {
     /// The outward (not unit) normal at object-space point `p` on `part`.
     fn normal(&self, p: DVec3, part: Part) -> DVec3;
 
+    /// The outward normal where the line o + t·d crosses `part` at t: the
+    /// normal at the point, for every solid that knows it from the point
+    /// alone (a convex set known by its support does not).
+    fn normal_on(&self, o: DVec3, d: DVec3, t: f64, part: Part) -> DVec3 {
+        self.normal(o + t * d, part)
+    }
+
     /// Whether object-space point `p` is inside (boundary counts as inside).
     fn contains(&self, p: DVec3) -> bool;
 

@@ -48,6 +48,8 @@ pub(crate) enum Flat {
     /// frame.
     Section(Box<Statement>, DAffine2),
     Op(Op, Vec<Flat>),
+    /// `hull()` of 2-D shapes: extruded, the hull of their extrusions.
+    Hull(Vec<Flat>),
 }
 
 impl Flat {
@@ -69,6 +71,13 @@ impl Flat {
             }
             // Not asked: a section is refused before (see `has_section`).
             Flat::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
+            // A hull reaches as far as its farthest shape.
+            Flat::Hull(kids) => kids
+                .iter()
+                .map(|k| k.range(axis))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                    (a.min(c), b.max(d))
+                }),
             Flat::Op(op, kids) => {
                 let rs = kids.iter().map(|k| k.range(axis));
                 match op {
@@ -87,6 +96,25 @@ impl Flat {
     }
 
     /// The disc of radius r about c.
+    /// Adds its circles and its polygons' corners (as discs of radius
+    /// zero) to `out`, the points its hull is the hull of; false for a
+    /// shape that has others (an ellipse, a curve, a projection), or
+    /// a combination other than a union.
+    pub(super) fn discs(&self, out: &mut Vec<(DVec2, f64)>) -> bool {
+        match self {
+            Flat::Ellipse(e) if is_circle(e.matrix2) => {
+                out.push((e.translation, e.matrix2.x_axis.length()));
+                true
+            }
+            Flat::Polygon(o) if !o.curved() => {
+                out.extend(o.loops.iter().flatten().map(|&p| (p, 0.0)));
+                true
+            }
+            Flat::Op(Op::Union, kids) | Flat::Hull(kids) => kids.iter().all(|k| k.discs(out)),
+            _ => false,
+        }
+    }
+
     pub(super) fn disc(c: DVec2, r: f64) -> Flat {
         Flat::Ellipse(DAffine2::from_scale_angle_translation(
             DVec2::splat(r),
@@ -102,6 +130,7 @@ impl Flat {
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
             Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
+            Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.moved(m)).collect()),
         }
     }
 
@@ -113,6 +142,7 @@ impl Flat {
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
             Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
+            Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.mirrored_x()).collect()),
         }
     }
 
@@ -120,7 +150,7 @@ impl Flat {
     pub(super) fn section(&self) -> Option<&Statement> {
         match self {
             Flat::Section(s, _) => Some(s),
-            Flat::Op(_, kids) => kids.iter().find_map(|k| k.section()),
+            Flat::Op(_, kids) | Flat::Hull(kids) => kids.iter().find_map(|k| k.section()),
             _ => None,
         }
     }
@@ -408,6 +438,43 @@ impl Resolver<'_> {
                 _ => Op::Union,
             };
             return self.flat_children(s, op, m, depth);
+        }
+        if name == "hull" {
+            Args::bind(self.src, s, &[])?;
+            let mut kids = Vec::new();
+            for c in s.children.iter().filter(|c| !super::skipped(c)) {
+                kids.extend(self.flat(c, m, depth + 1)?);
+            }
+            if kids.is_empty() {
+                return Ok(None);
+            }
+            // Circles and polygons: the polygon through the tangent points
+            // with the circles on it, exact and an ordinary 2-D tree.
+            let mut discs = Vec::new();
+            if kids.iter().all(|k| k.discs(&mut discs)) {
+                if let Some((poly, on)) = super::rounded::disc_hull(&discs) {
+                    let mut parts: Vec<Flat> = on
+                        .into_iter()
+                        .map(|i| Flat::disc(discs[i].0, discs[i].1))
+                        .collect();
+                    if poly.len() >= 3 {
+                        parts.push(Flat::Polygon(Outlines::polygons(vec![poly])));
+                    }
+                    return Ok(Some(if parts.len() == 1 {
+                        parts.pop().expect("one")
+                    } else {
+                        Flat::Op(Op::Union, parts)
+                    }));
+                }
+            }
+            return Ok(Some(Flat::Hull(kids)));
+        }
+        if name == "minkowski" {
+            return Err(self.src.error(
+                s.name_span,
+                "`minkowski` of 2-D shapes is not supported yet",
+                "csgrt sums solids",
+            ));
         }
         if super::solids::binder(name) == Some(None) {
             return Err(self.not_supported_yet(s));
@@ -866,6 +933,32 @@ impl Resolver<'_> {
                 }
                 Ok(self.op(*op, parts))
             }
+            // The hull of the shapes' extrusions: straight or tapered, a
+            // section of the extrusion of a convex region is that region
+            // scaled, so it is the extrusion of their hull.
+            Flat::Hull(kids) => {
+                if sweep.twist != 0.0 || !even {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "twisting or unevenly scaling a 2-D hull is not supported yet",
+                        "csgrt extrudes a hull straight or tapered",
+                    ));
+                }
+                let marks = (
+                    self.b.csg.prims.len(),
+                    self.b.csg.nodes.len(),
+                    self.b.csg.sections.len(),
+                );
+                // Extruded in the statement's own frame; the hull carries xf.
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.push(self.linear(s, k, DAffine3::IDENTITY, mat, h, sweep)?);
+                }
+                let Some(node) = self.op(Op::Union, parts) else {
+                    return Ok(None);
+                };
+                self.hull_of(s, node, marks, xf, mat)
+            }
         }
     }
 
@@ -1140,6 +1233,11 @@ impl Resolver<'_> {
                 self.leaf(s, shape, xf * local, mat)
             }
             Flat::Section(..) => unreachable!("refused by rotate_extrude"),
+            Flat::Hull(_) => Err(self.src.error(
+                s.name_span,
+                "turning a 2-D hull is not supported yet",
+                "csgrt extrudes a hull with linear_extrude",
+            )),
             Flat::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {

@@ -6,10 +6,12 @@
 //! `transforms`, `appearance` and `statements` (camera, lights).
 
 mod appearance;
+mod convex;
 mod facet_mesh;
 mod flat;
 mod offset;
 mod resize;
+mod rounded;
 mod shadow;
 mod solids;
 mod statements;

@@ -89,6 +89,7 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
         }
         Flat::Polygon(o) => polygon(o, join, d),
         Flat::Section(..) => Err("offsetting a projection is not supported yet".into()),
+        Flat::Hull(_) => Err("offsetting a 2-D hull is not supported yet".into()),
     }
 }
 

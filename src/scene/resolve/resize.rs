@@ -66,7 +66,8 @@ fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
     match f {
         Flat::Polygon(_) | Flat::Ellipse(_) => Ok(f.range(axis)),
         Flat::Section(..) => Err("the extent of a projection"),
-        Flat::Op(Op::Union, kids) => {
+        // A hull reaches exactly as far as its farthest part.
+        Flat::Op(Op::Union, kids) | Flat::Hull(kids) => {
             let mut r = (f64::INFINITY, f64::NEG_INFINITY);
             for k in kids {
                 let (a, b) = flat_extent(k, axis)?;
@@ -154,7 +155,7 @@ pub(super) fn is_flat(s: &Statement) -> bool {
     let passes = TRANSFORMS.contains(&name)
         || super::OPERATIONS.contains(&name)
         || super::APPEARANCE.contains(&name)
-        || name == "resize";
+        || ["resize", "hull", "minkowski"].contains(&name);
     passes
         && s.children
             .iter()

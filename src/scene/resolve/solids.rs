@@ -38,8 +38,8 @@ pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("surface", Some(surface)),
     ("projection", Some(slab)),
     ("offset", Some(slab)),
-    ("hull", None),
-    ("minkowski", None),
+    ("hull", Some(hull)),
+    ("minkowski", Some(minkowski)),
     ("resize", Some(resize)),
     ("polyhedron", Some(polyhedron)),
     ("roof", None),
@@ -53,6 +53,8 @@ pub(crate) const WITH_CHILDREN: &[&str] = &[
     "offset",
     "projection",
     "resize",
+    "hull",
+    "minkowski",
 ];
 
 /// The OpenSCAD solids csgrt does not render yet.
@@ -283,6 +285,26 @@ fn rotate_extrude(
     depth: usize,
 ) -> Result<Option<u32>> {
     res.rotate_extrude(s, xf, mat, depth)
+}
+
+fn hull(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    depth: usize,
+) -> Result<Option<u32>> {
+    res.hull(s, xf, mat, depth)
+}
+
+fn minkowski(
+    res: &mut Resolver,
+    s: &Statement,
+    xf: DAffine3,
+    mat: Material,
+    depth: usize,
+) -> Result<Option<u32>> {
+    res.minkowski(s, xf, mat, depth)
 }
 
 fn resize(

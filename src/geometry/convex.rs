@@ -1,0 +1,984 @@
+//! Convex solids known only by their support function: OpenSCAD's `hull()`
+//! and `minkowski()` of convex operands, in world space.
+//!
+//! A [`Convex`] is the Minkowski sum of hulls, each the convex hull of
+//! placed solids ([`Part`]): its support function h(d) = Σ max over a
+//! hull's parts of their support, a part's being its solid's own support
+//! carried by its transform, M·s(Mᵀd) + t. A line meets it in one span,
+//! found by van den Bergen's GJK ray cast ("Ray casting against general
+//! convex objects with application to continuous collision detection",
+//! 2004): from a point x on the line, the closest point of the set is
+//! approached by a simplex of support points; whenever the support point w
+//! shows a separating plane (v·(x − w) > 0), x moves along the line to
+//! that plane, until x is within the tolerance of the set. The normal there
+//! is the last separating direction. The entry is cast from where the line
+//! enters the set's box, the exit from where it leaves it, backwards.
+//! Converged to 10⁻¹² of the set's size and distance from the origin.
+
+use super::solid::{Param, Probe, RawSpan, Solid};
+use super::{Aabb, Part as SurfacePart, Shape};
+use glam::{DAffine3, DVec3};
+
+/// The entry (0) and exit (1) of a line.
+const ENTRY: SurfacePart = 0;
+const EXIT: SurfacePart = 1;
+
+/// The precision of a span's ends, relative to the set's size: GJK's
+/// distances converge to 10⁻¹², its plane bounds to rounding, but a flat
+/// face's plane is found from support points whose normal is tilted by
+/// GJK's last direction (about √ε).
+pub const PRECISION: f64 = 1e-9;
+
+/// The most GJK steps a cast takes.
+pub const MAX_ITERATIONS: u32 = 200;
+
+/// A solid placed in the world, by its support function.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Part {
+    pub shape: Shape,
+    pub to_world: DAffine3,
+}
+
+impl Part {
+    /// The point of the placed solid farthest along world direction `d`.
+    fn support(&self, d: DVec3) -> DVec3 {
+        let m = &self.to_world;
+        let s = self
+            .shape
+            .support(m.matrix3.transpose() * d)
+            .expect("a bounded solid");
+        m.transform_point3(s)
+    }
+}
+
+/// The Minkowski sum of the convex hulls of `hulls`' parts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Convex {
+    pub hulls: Vec<Vec<Part>>,
+    /// The box, from the support function along ±x, ±y, ±z.
+    bounds: Aabb,
+    /// The tolerance of a cast: 10⁻¹² of the box's size and distance.
+    tol: f64,
+}
+
+impl Convex {
+    /// The set of `hulls` (parts placed in the world), moved so that its
+    /// box is centred on the origin — its own coordinates then carry the
+    /// precision of its size, not of its distance from the world's origin
+    /// — and the translation that puts it back.
+    pub fn centred(mut hulls: Vec<Vec<Part>>) -> (Convex, DVec3) {
+        let c = Convex::new(hulls.clone()).bounds.center();
+        // A sum moves with any one of its terms: move the first.
+        if let Some(h) = hulls.first_mut() {
+            for p in h {
+                p.to_world = DAffine3::from_translation(-c) * p.to_world;
+            }
+        }
+        (Convex::new(hulls), c)
+    }
+
+    pub fn new(hulls: Vec<Vec<Part>>) -> Convex {
+        let mut c = Convex {
+            hulls,
+            bounds: Aabb::EMPTY,
+            tol: 0.0,
+        };
+        let axis = |i: usize| DVec3::AXES[i];
+        let (mut lo, mut hi) = (DVec3::ZERO, DVec3::ZERO);
+        for i in 0..3 {
+            hi[i] = c.support_point(axis(i))[i];
+            lo[i] = c.support_point(-axis(i))[i];
+        }
+        c.bounds = Aabb::new(lo, hi);
+        c.tol = 1e-12
+            * (hi - lo)
+                .max_element()
+                .max(lo.abs().max(hi.abs()).max_element());
+        c
+    }
+
+    /// The point of the set farthest along `d` (any of them where several).
+    pub fn support_point(&self, d: DVec3) -> DVec3 {
+        self.hulls
+            .iter()
+            .map(|parts| {
+                parts
+                    .iter()
+                    .map(|p| p.support(d))
+                    .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+                    .expect("a hull of something")
+            })
+            .sum()
+    }
+
+    /// GJK's ray cast from `s` along `r` up to λ = `lmax`: the first λ
+    /// where s + λr is in the set (0 when s is), with the separating
+    /// direction there (the outward normal; zero when s is inside), and the
+    /// steps taken.
+    pub fn cast(&self, s: DVec3, r: DVec3, lmax: f64) -> (Option<(f64, DVec3)>, u32) {
+        let mut lambda = 0.0;
+        let mut x = s;
+        let mut n = DVec3::ZERO;
+        let mut simplex = Simplex::default();
+        let p0 = self.support_point(-r);
+        simplex.add(p0);
+        let mut v = x - p0;
+        let tol2 = self.tol * self.tol;
+        let loose = LOOSE * (self.bounds.max - self.bounds.min).max_element();
+        let mut tried = false;
+        let mut it = 0;
+        while it < MAX_ITERATIONS {
+            it += 1;
+            if v.length_squared() <= tol2 {
+                break;
+            }
+            // Close: Newton's method from here, when its plane is proved
+            // to touch the set where it meets the line.
+            if !tried && n != DVec3::ZERO && v.length_squared() <= loose * loose {
+                tried = true;
+                let (hit, steps) = self.refine(s, r, lambda, n.normalize());
+                it += steps;
+                if let Some(hit) = hit {
+                    return (Some(hit), it);
+                }
+            }
+            let p = self.support_point(v);
+            let w = x - p;
+            let vw = v.dot(w);
+            let before = v.length_squared();
+            let moved = vw > 0.0;
+            if moved {
+                let vr = v.dot(r);
+                if vr >= 0.0 {
+                    return (None, it);
+                }
+                lambda -= vw / vr;
+                if lambda > lmax {
+                    return (None, it);
+                }
+                x = s + r * lambda;
+                n = v;
+            }
+            simplex.add(p);
+            match simplex.closest(x) {
+                Some(c) => v = -c,
+                // x in the simplex's hull: inside the set (on its surface
+                // when the cast has moved).
+                None => {
+                    return match n.try_normalize() {
+                        Some(unit) if !tried => match self.refine(s, r, lambda, unit) {
+                            (Some(hit), steps) => (Some(hit), it + steps),
+                            (None, steps) => (Some((lambda, n)), it + steps),
+                        },
+                        _ => (Some((lambda, n)), it),
+                    }
+                }
+            }
+            // The floating point allows no closer approach.
+            if !moved && v.length_squared() >= before * (1.0 - 1e-12) {
+                break;
+            }
+        }
+        let (hit, probes) = self.polish(s, r, lambda, n, v, &simplex);
+        (hit.filter(|h| h.0 <= lmax), it + probes)
+    }
+
+    /// The best of the lower bounds on the entry that supporting planes
+    /// give, once GJK has come as close as the floating point lets it:
+    /// GJK's own, the plane of the last direction v (right to second order
+    /// on a curved surface), and the planes through three of the simplex's
+    /// points and of the support points of directions tilted from v by
+    /// 10⁻⁶ (a flat face's own plane, where v is tilted by rounding and
+    /// its support jumps between the face's corners). Each plane holds the
+    /// set on one side, so the line enters the set no earlier than the
+    /// plane: the largest such λ is still a lower bound, and exact when the
+    /// plane touches the set at the hit. A plane the line's point lies
+    /// beyond while the line runs parallel or away shows a miss.
+    fn polish(
+        &self,
+        s: DVec3,
+        r: DVec3,
+        lambda: f64,
+        n: DVec3,
+        v: DVec3,
+        simplex: &Simplex,
+    ) -> (Option<(f64, DVec3)>, u32) {
+        let Some(vh) = v.try_normalize() else {
+            return (Some((lambda, n)), 0);
+        };
+        let mut pts: smallvec::SmallVec<[DVec3; 8]> = simplex.pts.iter().copied().collect();
+        let u1 = if pts.len() >= 2 {
+            (pts[1] - pts[0]).reject_from(vh).try_normalize()
+        } else {
+            None
+        }
+        .unwrap_or_else(|| vh.any_orthonormal_vector());
+        let u2 = vh.cross(u1);
+        for u in [u1, -u1, u2, -u2] {
+            let p = self.support_point(vh + u * 1e-6);
+            if !pts.contains(&p) {
+                pts.push(p);
+            }
+        }
+        let mut normals: smallvec::SmallVec<[DVec3; 24]> = smallvec::smallvec![vh];
+        for i in 0..pts.len() {
+            for j in i + 1..pts.len() {
+                for k in j + 1..pts.len() {
+                    let c = (pts[j] - pts[i]).cross(pts[k] - pts[i]);
+                    if let Some(c) = c.try_normalize() {
+                        normals.push(if c.dot(vh) < 0.0 { -c } else { c });
+                    }
+                }
+            }
+        }
+        let (mut best, mut best_n) = (lambda, n);
+        let x = s + r * lambda;
+        let mut probes = 4;
+        for m in normals {
+            probes += 1;
+            let h = m.dot(self.support_point(m));
+            let mr = m.dot(r);
+            if mr < 0.0 {
+                let l = (h - m.dot(s)) / mr;
+                if l > best {
+                    best = l;
+                    best_n = m;
+                }
+            } else if m.dot(x) > h + self.tol {
+                return (None, probes);
+            }
+        }
+        let Some(unit) = best_n.try_normalize() else {
+            return (Some((best, best_n)), probes);
+        };
+        match self.refine(s, r, best, unit) {
+            (Some(hit), steps) => (Some(hit), probes + steps),
+            (None, steps) => (Some((best, best_n)), probes + steps),
+        }
+    }
+
+    /// The point of the set closest to `q` (GJK's distance query), and the
+    /// steps taken; q itself when inside.
+    pub fn closest(&self, q: DVec3) -> (DVec3, u32) {
+        let mut simplex = Simplex::default();
+        let p0 = self.support_point(q - self.bounds.center());
+        simplex.add(p0);
+        let mut v = q - p0;
+        for it in 1..=MAX_ITERATIONS {
+            let p = self.support_point(v);
+            let vw = v.dot(q - p);
+            // v is the shortest, to the rounding: q's closest point is q − v.
+            if v.length_squared() - vw <= 1e-28 * v.length_squared() {
+                return (q - v, it);
+            }
+            simplex.add(p);
+            match simplex.closest(q) {
+                Some(c) => {
+                    let before = v.length_squared();
+                    v = -c;
+                    if v.length_squared() >= before * (1.0 - 1e-14) {
+                        return (q - v, it);
+                    }
+                }
+                None => return (q, it),
+            }
+        }
+        (q - v, MAX_ITERATIONS)
+    }
+
+    /// The line o + t·d inside the box, as a range of t.
+    fn clip(&self, o: DVec3, d: DVec3) -> Option<(f64, f64)> {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for i in 0..3 {
+            let (a, b) = (self.bounds.min[i], self.bounds.max[i]);
+            if d[i] == 0.0 {
+                if o[i] < a || o[i] > b {
+                    return None;
+                }
+                continue;
+            }
+            let (t0, t1) = ((a - o[i]) / d[i], (b - o[i]) / d[i]);
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+        // Widened a little, so that the casts start outside.
+        let pad = 1e-9 * (hi - lo).abs().max(1.0);
+        (lo <= hi).then_some((lo - pad, hi + pad))
+    }
+
+    /// The span of the line, and the steps both casts took.
+    fn span(&self, o: DVec3, d: DVec3) -> (Option<(f64, DVec3, f64, DVec3)>, u32) {
+        let Some((a, b)) = self.clip(o, d) else {
+            return (None, 0);
+        };
+        let (fwd, i0) = self.cast(o + d * a, d, b - a);
+        let Some((l0, n0)) = fwd else {
+            return (None, i0);
+        };
+        let (back, i1) = self.cast(o + d * b, -d, b - a);
+        let Some((l1, n1)) = back else {
+            return (None, i0 + i1);
+        };
+        let (t0, t1) = (a + l0, b - l1);
+        ((t0 < t1).then_some((t0, n0, t1, n1)), i0 + i1)
+    }
+}
+
+impl Solid for Convex {
+    const NAME: &'static str = "hull";
+
+    /// A span that ends within the set's precision (10⁻⁹ of its size)
+    /// after the query's start is a ray leaving the surface it starts on
+    /// (a shadow or reflected ray), not a surface ahead of it: dropped. One
+    /// that starts within it is a ray going in from its surface (out of a
+    /// difference's cut): it starts at the query's start.
+    fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
+        let (span, steps) = self.span(q.o, q.d);
+        q.st.convex_steps += steps as u64;
+        if let Some((mut t0, _, t1, _)) = span {
+            if q.tmin.is_finite() {
+                let size = (self.bounds.max - self.bounds.min).max_element();
+                let near = q.tmin + PRECISION * size / q.d.length();
+                if t1 <= near {
+                    return;
+                }
+                if t0 <= near {
+                    t0 = t0.min(q.tmin);
+                }
+            }
+            emit((t0, ENTRY, t1, EXIT));
+        }
+    }
+
+    /// Not known from the point alone: see [`Solid::normal_on`].
+    fn normal(&self, p: DVec3, _part: SurfacePart) -> DVec3 {
+        // Away from the set's middle: right for a ball, and a direction
+        // outwards for any convex set.
+        p - self.bounds.center()
+    }
+
+    /// The last separating direction of the cast that found the point.
+    fn normal_on(&self, o: DVec3, d: DVec3, _t: f64, part: SurfacePart) -> DVec3 {
+        // Only the cast from the end the point is on.
+        let cast = self.clip(o, d).and_then(|(a, b)| {
+            if part == EXIT {
+                self.cast(o + d * b, -d, b - a).0
+            } else {
+                self.cast(o + d * a, d, b - a).0
+            }
+        });
+        match cast {
+            Some((_, n)) if n != DVec3::ZERO => n,
+            _ => self.normal(o, part),
+        }
+    }
+
+    fn contains(&self, p: DVec3) -> bool {
+        matches!(self.cast(p, DVec3::X, 0.0).0, Some((l, _)) if l == 0.0)
+    }
+
+    fn object_bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// The exact box: the support points along the world's axes, carried
+    /// carried by `m` (world direction d is Mᵀd in object space).
+    fn world_bounds(&self, m: &DAffine3) -> Aabb {
+        let t = m.matrix3.transpose();
+        let (mut lo, mut hi) = (DVec3::ZERO, DVec3::ZERO);
+        for i in 0..3 {
+            let e = DVec3::AXES[i];
+            hi[i] = m.transform_point3(self.support_point(t * e))[i];
+            lo[i] = m.transform_point3(self.support_point(-(t * e)))[i];
+        }
+        Aabb::new(lo, hi)
+    }
+
+    fn support(&self, d: DVec3) -> Option<DVec3> {
+        Some(self.support_point(d))
+    }
+
+    fn params(&self) -> Vec<(&'static str, Param)> {
+        vec![
+            ("sum_of", Param::Num(self.hulls.len() as f64)),
+            (
+                "parts",
+                Param::Num(self.hulls.iter().map(|h| h.len()).sum::<usize>() as f64),
+            ),
+        ]
+    }
+
+    /// POV-Ray has no hull: the export stops POV-Ray with the reason.
+    fn pov(&self) -> String {
+        "#error \"csgrt: hull() and minkowski() have no POV-Ray equivalent\"\nsphere { <0, 0, 0>, 0"
+            .to_string()
+    }
+}
+
+/// A piece of a part whose support moves smoothly with the direction, or
+/// not at all: the unknowns of [`Convex::refine`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Atom {
+    /// A vertex of a polytope part (a cube, a mesh, a polygon's prism).
+    Point(DVec3),
+    /// A ball part (an ellipsoid once placed): hull, part.
+    Ball(usize, usize),
+    /// An end circle of a cylinder or cone part: hull, part, whether the top.
+    Rim(usize, usize, bool),
+}
+
+/// How far the directions that find the active atoms are tilted from the
+/// cast's last one (radians): well beyond GJK's √ε error in it.
+const ACTIVE_TILT: f64 = 1e-5;
+
+/// The step of the Jacobian's central differences (radians).
+const NEWTON_STEP: f64 = 1e-6;
+
+/// How close (relative to the set's size) GJK brings the line's point
+/// before Newton's method is tried.
+const LOOSE: f64 = 1e-6;
+
+/// The most changes of the active atoms a refinement makes.
+const ACTIVE_ROUNDS: usize = 4;
+
+/// The most Newton steps a round of refinement takes.
+const NEWTON_ITERATIONS: u32 = 12;
+
+/// The last Newton step (radians) that counts as converged: the one after
+/// it is below the rounding.
+const NEWTON_CONVERGED: f64 = 1e-10;
+
+/// The most unknowns: the normal's two angles, the ray's t, and two
+/// weights (a point on a face spanned by three atoms).
+const MAX_UNKNOWNS: usize = 5;
+
+impl Convex {
+    /// The atom of hull `j` that gives its support along `d`; `None` for a
+    /// part with neither (a torus, a curved outline) or along a flat end
+    /// circle's axis.
+    fn atom(&self, j: usize, d: DVec3) -> Option<Atom> {
+        let parts = &self.hulls[j];
+        let (i, p) = parts
+            .iter()
+            .map(|p| p.support(d))
+            .enumerate()
+            .max_by(|a, b| a.1.dot(d).total_cmp(&b.1.dot(d)))?;
+        let part = &parts[i];
+        match &part.shape {
+            Shape::Sphere(_) => Some(Atom::Ball(j, i)),
+            Shape::Cuboid(_) | Shape::Mesh(_) => Some(Atom::Point(p)),
+            Shape::Prism(q) if !q.region.curved() => Some(Atom::Point(p)),
+            Shape::Cone(c) => {
+                let local = part.to_world.matrix3.transpose() * d;
+                if local.truncate() == glam::DVec2::ZERO {
+                    return None;
+                }
+                let top = rim(c, true, local).dot(local) > rim(c, false, local).dot(local);
+                if (if top { c.r1 } else { c.r0 }) == 0.0 {
+                    Some(Atom::Point(p))
+                } else {
+                    Some(Atom::Rim(j, i, top))
+                }
+            }
+            _ => None,
+        }
+    }
+
+    /// An atom's support point along `d`.
+    fn atom_support(&self, a: Atom, d: DVec3) -> DVec3 {
+        match a {
+            Atom::Point(p) => p,
+            Atom::Ball(j, i) => self.hulls[j][i].support(d),
+            Atom::Rim(j, i, top) => {
+                let part = &self.hulls[j][i];
+                let Shape::Cone(c) = &part.shape else {
+                    unreachable!("a rim of a cone")
+                };
+                let local = part.to_world.matrix3.transpose() * d;
+                part.to_world.transform_point3(rim(c, top, local))
+            }
+        }
+    }
+
+    /// The atoms of each hull that support the set along `m` or along
+    /// directions tilted from it by [`ACTIVE_TILT`]: the pieces the
+    /// surface is made of near the point `m` supports. `None` when a part
+    /// has no atoms, or when they span more than a face (more unknowns
+    /// than [`MAX_UNKNOWNS`]).
+    fn active(&self, m: DVec3) -> Option<Vec<Atoms>> {
+        let u1 = m.any_orthonormal_vector();
+        let u2 = m.cross(u1);
+        let mut out: Vec<Atoms> = vec![smallvec::SmallVec::new(); self.hulls.len()];
+        for d in [
+            m,
+            m + u1 * ACTIVE_TILT,
+            m - u1 * ACTIVE_TILT,
+            m + u2 * ACTIVE_TILT,
+            m - u2 * ACTIVE_TILT,
+        ] {
+            for (j, atoms) in out.iter_mut().enumerate() {
+                let a = self.atom(j, d)?;
+                if !atoms.contains(&a) {
+                    if atoms.len() == 3 {
+                        return None;
+                    }
+                    atoms.push(a);
+                }
+            }
+        }
+        let unknowns = 3 + out.iter().map(|a| a.len() - 1).sum::<usize>();
+        (unknowns <= MAX_UNKNOWNS).then_some(out)
+    }
+
+    /// The exact supporting plane where the line s + λr enters, from a
+    /// normal `m` near it: Newton's method on the conditions that a point
+    /// of the face the plane touches — a weighted sum of the active atoms'
+    /// support points, each hull's weights summing to one — lies on the
+    /// line, and that each hull's active atoms touch the plane together.
+    /// Smooth atoms make these smooth in the normal's two angles, so it
+    /// converges to the rounding: the normal and the entry of a point on a
+    /// ball, on the bridge a hull spans between parts, on an edge rounded by
+    /// a sum, on a face. An atom whose weight falls below zero is dropped,
+    /// and one that sticks out of the plane is added, until the answer is
+    /// proved: the point, a convex combination of support points, is in
+    /// the set; the plane through it holds the whole set (the full support
+    /// function's value there); and the line crosses the plane inwards —
+    /// so the line enters there and nowhere before. `None` when no proof
+    /// is found. Returns the entry and normal, and the steps taken.
+    fn refine(&self, s: DVec3, r: DVec3, lambda: f64, m: DVec3) -> (Option<(f64, DVec3)>, u32) {
+        if crate::mutant::active("hull_gjk_normals") {
+            return (None, 0);
+        }
+        let Some(mut act) = self.active(m) else {
+            return (None, 0);
+        };
+        let mut steps = 0;
+        let (mut start, mut t) = (m, lambda);
+        for _ in 0..ACTIVE_ROUNDS {
+            let (outcome, k) = self.newton(s, r, t, start, &act);
+            steps += k;
+            match outcome {
+                Newton::Plane(t, d) => return (Some((t, d)), steps),
+                Newton::Change(next, d, at) => {
+                    act = next;
+                    start = d;
+                    t = at;
+                }
+                Newton::Failed => break,
+            }
+        }
+        (None, steps)
+    }
+
+    /// One round of [`Convex::refine`] with the atoms `act`, and the
+    /// steps taken.
+    fn newton(&self, s: DVec3, r: DVec3, lambda: f64, m: DVec3, act: &[Atoms]) -> (Newton, u32) {
+        let u1 = m.any_orthonormal_vector();
+        let u2 = m.cross(u1);
+        let n = 3 + act.iter().map(|a| a.len() - 1).sum::<usize>();
+        let normal = |z: &[f64; MAX_UNKNOWNS]| (m + u1 * z[0] + u2 * z[1]).normalize();
+        // The residual: the face's point minus the line's, then the ties.
+        let residual = |z: &[f64; MAX_UNKNOWNS]| {
+            let d = normal(z);
+            let mut f = [0.0; MAX_UNKNOWNS];
+            let mut p = -(s + r * z[2]);
+            let mut k = 3;
+            for atoms in act {
+                let w0 = self.atom_support(atoms[0], d);
+                p += w0;
+                for &a in &atoms[1..] {
+                    let w = self.atom_support(a, d) - w0;
+                    p += w * z[k];
+                    f[k] = d.dot(w);
+                    k += 1;
+                }
+            }
+            f[0] = p.x;
+            f[1] = p.y;
+            f[2] = p.z;
+            f
+        };
+        let mut z = [0.0; MAX_UNKNOWNS];
+        z[2] = lambda;
+        let mut k = 3;
+        for atoms in act {
+            for _ in 1..atoms.len() {
+                z[k] = 1.0 / atoms.len() as f64;
+                k += 1;
+            }
+        }
+        let mut steps = 0;
+        let mut last = f64::INFINITY;
+        for _ in 0..NEWTON_ITERATIONS {
+            steps += 1;
+            let f = residual(&z);
+            let mut jac = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
+            for c in 0..2 {
+                let (mut hi, mut lo) = (z, z);
+                hi[c] += NEWTON_STEP;
+                lo[c] -= NEWTON_STEP;
+                let (fh, fl) = (residual(&hi), residual(&lo));
+                for row in 0..n {
+                    jac[row][c] = (fh[row] - fl[row]) / (2.0 * NEWTON_STEP);
+                }
+            }
+            for row in 0..3 {
+                jac[row][2] = -r[row];
+            }
+            let d = normal(&z);
+            let mut c = 3;
+            for atoms in act {
+                let w0 = self.atom_support(atoms[0], d);
+                for &a in &atoms[1..] {
+                    let w = self.atom_support(a, d) - w0;
+                    for row in 0..3 {
+                        jac[row][c] = w[row];
+                    }
+                    c += 1;
+                }
+            }
+            let Some(delta) = solve(jac, f, n) else {
+                return (Newton::Failed, steps);
+            };
+            for i in 0..n {
+                z[i] -= delta[i];
+            }
+            last = delta[0].abs().max(delta[1].abs());
+            if last < 1e-15 {
+                break;
+            }
+        }
+        // Not converged: no proof (the line's point is ill-conditioned
+        // near a tangent, where a small residual is not a small error).
+        if last.is_nan() || last > NEWTON_CONVERGED {
+            return (Newton::Failed, steps);
+        }
+        // Each hull's weights: the first atom's is what the others leave.
+        let d = normal(&z);
+        let mut k = 3;
+        let mut next = Vec::with_capacity(act.len());
+        let mut changed = false;
+        for (j, atoms) in act.iter().enumerate() {
+            let rest = &z[k..k + atoms.len() - 1];
+            k += atoms.len() - 1;
+            let first = 1.0 - rest.iter().sum::<f64>();
+            let mut kept: Atoms = std::iter::once(first)
+                .chain(rest.iter().copied())
+                .zip(atoms)
+                .filter(|(w, _)| *w >= 0.0)
+                .map(|(_, &a)| a)
+                .collect();
+            changed |= kept.len() < atoms.len();
+            // An atom of this hull that reaches beyond the plane.
+            let Some(top) = self.atom(j, d) else {
+                return (Newton::Failed, steps);
+            };
+            let h = d.dot(self.atom_support(top, d));
+            let here = d.dot(self.atom_support(atoms[0], d));
+            if !kept.contains(&top) && h > here + self.tol {
+                if kept.len() == 3 {
+                    return (Newton::Failed, steps);
+                }
+                kept.push(top);
+                changed = true;
+            }
+            next.push(kept);
+        }
+        if changed {
+            let unknowns = 3 + next.iter().map(|a| a.len() - 1).sum::<usize>();
+            if unknowns > MAX_UNKNOWNS || next.iter().any(|a| a.is_empty()) {
+                return (Newton::Failed, steps);
+            }
+            return (Newton::Change(next, d, z[2]), steps);
+        }
+        let dr = d.dot(r);
+        let f = residual(&z);
+        let off = f[..3].iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if dr >= 0.0 || dr.is_nan() || off.is_nan() || off > self.tol {
+            return (Newton::Failed, steps);
+        }
+        let x = s + r * z[2];
+        let h = d.dot(self.support_point(d));
+        if d.dot(x) < h - self.tol {
+            return (Newton::Failed, steps);
+        }
+        (Newton::Plane((h - d.dot(s)) / dr, d), steps)
+    }
+}
+
+/// The active atoms of one hull.
+type Atoms = smallvec::SmallVec<[Atom; 3]>;
+
+/// How a round of refinement ended.
+enum Newton {
+    /// The proved entry and its normal.
+    Plane(f64, DVec3),
+    /// The atoms to try next (some dropped, some added), and the normal
+    /// and the line's parameter to start from.
+    Change(Vec<Atoms>, DVec3, f64),
+    /// No proof.
+    Failed,
+}
+
+/// A cone's end circle's support point along object-space `d`.
+fn rim(c: &super::Cone, top: bool, d: DVec3) -> DVec3 {
+    let z0 = super::cone::bottom(c.centered);
+    let dir = d.truncate().normalize_or_zero();
+    if top {
+        (dir * c.r1).extend(z0 + 1.0)
+    } else {
+        (dir * c.r0).extend(z0)
+    }
+}
+
+/// The solution x of J x = f for the first `n` unknowns (Gaussian
+/// elimination, partial pivoting); `None` when J is singular.
+fn solve(
+    mut a: [[f64; MAX_UNKNOWNS]; MAX_UNKNOWNS],
+    mut f: [f64; MAX_UNKNOWNS],
+    n: usize,
+) -> Option<[f64; MAX_UNKNOWNS]> {
+    for c in 0..n {
+        let p = (c..n).max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))?;
+        if a[p][c] == 0.0 || a[p][c].is_nan() {
+            return None;
+        }
+        a.swap(c, p);
+        f.swap(c, p);
+        let pivot = a[c];
+        for row in c + 1..n {
+            let k = a[row][c] / pivot[c];
+            for (x, &y) in a[row][c..n].iter_mut().zip(&pivot[c..n]) {
+                *x -= k * y;
+            }
+            f[row] -= k * f[c];
+        }
+    }
+    let mut x = [0.0; MAX_UNKNOWNS];
+    for c in (0..n).rev() {
+        let mut v = f[c];
+        for col in c + 1..n {
+            v -= a[c][col] * x[col];
+        }
+        x[c] = v / a[c][c];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+/// Up to four support points; the closest point of their hull to a point
+/// (Ericson's Voronoi-region tests), keeping only the points it lies on.
+#[derive(Default, Debug)]
+struct Simplex {
+    pts: smallvec::SmallVec<[DVec3; 4]>,
+}
+
+impl Simplex {
+    fn add(&mut self, p: DVec3) {
+        if !self.pts.contains(&p) {
+            self.pts.push(p);
+        }
+    }
+
+    /// The vector from `x` to the closest point of the hull, the simplex
+    /// cut to the points that span that point; `None` when x is inside a
+    /// tetrahedron. Computed from the points' offsets from x, each exact
+    /// to its own size (a difference rounds relative to its result), so
+    /// the answer's rounding shrinks with the simplex's distance from x.
+    fn closest(&mut self, x: DVec3) -> Option<DVec3> {
+        let q: smallvec::SmallVec<[DVec3; 4]> = self.pts.iter().map(|&p| p - x).collect();
+        let (c, keep) = match q.len() {
+            1 => (q[0], smallvec::smallvec![0]),
+            2 => segment(q[0], q[1]),
+            3 => triangle(q[0], q[1], q[2], [0, 1, 2]),
+            _ => tetrahedron(q[0], q[1], q[2], q[3])?,
+        };
+        self.pts = keep.iter().map(|&i| self.pts[i]).collect();
+        Some(c)
+    }
+}
+
+/// The closest point to the origin, and which of the points span it.
+type Closest = (DVec3, smallvec::SmallVec<[usize; 4]>);
+
+fn segment(a: DVec3, b: DVec3) -> Closest {
+    let ab = b - a;
+    let t = -a.dot(ab);
+    if t <= 0.0 {
+        return (a, smallvec::smallvec![0]);
+    }
+    let den = ab.length_squared();
+    if t >= den {
+        return (b, smallvec::smallvec![1]);
+    }
+    (a + ab * (t / den), smallvec::smallvec![0, 1])
+}
+
+/// Ericson's closest point of triangle abc to the origin; `ids` name the
+/// three points in the caller's simplex.
+fn triangle(a: DVec3, b: DVec3, c: DVec3, ids: [usize; 3]) -> Closest {
+    let [ia, ib, ic] = ids;
+    let (ab, ac, ap) = (b - a, c - a, -a);
+    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return (a, smallvec::smallvec![ia]);
+    }
+    let bp = -b;
+    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return (b, smallvec::smallvec![ib]);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return (a + ab * v, smallvec::smallvec![ia, ib]);
+    }
+    let cp = -c;
+    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return (c, smallvec::smallvec![ic]);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return (a + ac * w, smallvec::smallvec![ia, ic]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return (b + (c - b) * w, smallvec::smallvec![ib, ic]);
+    }
+    if va + vb + vc == 0.0 {
+        // A degenerate triangle: its longest edge's closest point.
+        return [(a, b, ia, ib), (b, c, ib, ic), (a, c, ia, ic)]
+            .into_iter()
+            .map(|(p, q, i, j)| {
+                let (c, k) = segment(p, q);
+                (c, k.iter().map(|&x| [i, j][x]).collect())
+            })
+            .min_by(|x: &Closest, y: &Closest| {
+                x.0.length_squared().total_cmp(&y.0.length_squared())
+            })
+            .expect("three edges");
+    }
+    // Inside the face: the origin's foot on its plane, along the plane's
+    // normal (a cross product, its direction exact to a few ulps), not from
+    // barycentric sums whose rounding is of the points' size.
+    let n = ab.cross(ac);
+    (
+        n * (a.dot(n) / n.length_squared()),
+        smallvec::smallvec![ia, ib, ic],
+    )
+}
+
+/// Whether the origin and d lie on opposite sides of the plane through
+/// a, b, c.
+fn outside_plane(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
+    let n = (b - a).cross(c - a);
+    let (so, sd) = (-a.dot(n), (d - a).dot(n));
+    so * sd < 0.0
+}
+
+/// The closest point of tetrahedron abcd to the origin: of the faces the
+/// origin lies outside, the nearest; `None` when inside.
+fn tetrahedron(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<Closest> {
+    let p = [a, b, c, d];
+    let mut best: Option<(f64, Closest)> = None;
+    for [x, y, z, w] in [[0, 1, 2, 3], [0, 2, 3, 1], [0, 3, 1, 2], [1, 3, 2, 0]] {
+        if outside_plane(p[x], p[y], p[z], p[w]) {
+            let r = triangle(p[x], p[y], p[z], [x, y, z]);
+            let dist = r.0.length_squared();
+            if best.as_ref().map_or(true, |(b, _)| dist < *b) {
+                best = Some((dist, r));
+            }
+        }
+    }
+    best.map(|(_, r)| r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Cuboid, Sphere};
+
+    fn ball(c: DVec3, r: f64) -> Part {
+        Part {
+            shape: Shape::Sphere(Sphere),
+            to_world: DAffine3::from_scale_rotation_translation(
+                DVec3::splat(r),
+                glam::DQuat::IDENTITY,
+                c,
+            ),
+        }
+    }
+
+    #[test]
+    fn the_hull_of_two_balls_is_met_on_their_common_tangent() {
+        // Balls of radius 1 at x = 0 and x = 10: a capsule.
+        let h = Convex::new(vec![vec![
+            ball(DVec3::ZERO, 1.0),
+            ball(DVec3::X * 10.0, 1.0),
+        ]]);
+        let (s, _) = h.span(DVec3::new(5.0, -5.0, 0.5), DVec3::Y);
+        let (t0, n0, t1, n1) = s.unwrap();
+        let want = 0.75f64.sqrt();
+        assert!((t0 - (5.0 - want)).abs() < 1e-10, "{t0}");
+        assert!((t1 - (5.0 + want)).abs() < 1e-10, "{t1}");
+        assert!(
+            (n0.normalize() - DVec3::new(0.0, -want, 0.5)).length() < 1e-6,
+            "{n0}"
+        );
+        assert!(
+            (n1.normalize() - DVec3::new(0.0, want, 0.5)).length() < 1e-6,
+            "{n1}"
+        );
+        // Past the end cap: the ball's own chord.
+        let (s, _) = h.span(DVec3::new(10.5, -5.0, 0.0), DVec3::Y);
+        let (t0, _, t1, _) = s.unwrap();
+        assert!(
+            (t0 - (5.0 - 0.75f64.sqrt())).abs() < 1e-10
+                && (t1 - (5.0 + 0.75f64.sqrt())).abs() < 1e-10
+        );
+        assert!(h.span(DVec3::new(5.0, -5.0, 1.01), DVec3::Y).0.is_none());
+        assert!(h.contains(DVec3::new(3.0, 0.5, 0.5)));
+        assert!(!h.contains(DVec3::new(3.0, 1.5, 0.0)));
+    }
+
+    #[test]
+    fn a_cube_plus_a_ball_is_a_rounded_box() {
+        let cube = Part {
+            shape: Shape::Cuboid(Cuboid { centered: false }),
+            to_world: DAffine3::from_scale(DVec3::splat(2.0)),
+        };
+        let m = Convex::new(vec![vec![cube], vec![ball(DVec3::ZERO, 0.5)]]);
+        // Across a face: the face pushed out by 0.5.
+        let (s, _) = m.span(DVec3::new(1.0, 1.0, -5.0), DVec3::Z);
+        let (t0, _, t1, _) = s.unwrap();
+        assert!(
+            (t0 - 4.5).abs() < 1e-10 && (t1 - 7.5).abs() < 1e-10,
+            "{t0} {t1}"
+        );
+        // Along an edge's rounding: x = 2 + 0.3, the quarter circle.
+        let (s, _) = m.span(DVec3::new(2.3, 1.0, -5.0), DVec3::Z);
+        let (t0, _, _, _) = s.unwrap();
+        let z = -(0.25f64 - 0.09).sqrt();
+        assert!((t0 - (5.0 + z)).abs() < 1e-10, "{t0}");
+        let b = m.object_bounds();
+        assert_eq!((b.min, b.max), (DVec3::splat(-0.5), DVec3::splat(2.5)));
+    }
+
+    #[test]
+    fn a_centred_sum_is_the_same_set_moved() {
+        // Two terms away from the origin: moving each by the centre would
+        // move the sum twice.
+        let far = vec![
+            vec![ball(DVec3::new(18.0, 0.0, 1.0), 1.0)],
+            vec![ball(DVec3::new(0.0, 5.0, 0.0), 2.0)],
+        ];
+        let (c, centre) = Convex::centred(far.clone());
+        let whole = Convex::new(far);
+        for d in [DVec3::X, -DVec3::Y, DVec3::new(1.0, 2.0, -3.0)] {
+            let moved = c.support_point(d) + centre;
+            assert!((moved - whole.support_point(d)).length() < 1e-12, "{moved}");
+        }
+    }
+}

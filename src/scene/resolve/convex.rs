@@ -1,0 +1,314 @@
+//! `hull()` and `minkowski()`: convex solids known by their support
+//! function ([`crate::geometry::convex`]).
+//!
+//! The hull of the children's union is the hull of its leaves: its support
+//! is the largest of theirs, whatever their shape (a torus, a mesh: the
+//! support of a solid is that of its hull). The Minkowski sum of convex
+//! operands adds their supports; an operand that is a union of convex
+//! parts distributes, A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C). Children whose
+//! hull or sum this cannot make exact — an intersection or a difference
+//! inside a hull, a non-convex solid in a sum, an unbounded one — are "not
+//! supported yet" at the statement. The children are read once, to be
+//! measured, and dropped; the solid takes the statement's colour (OpenSCAD
+//! shows a hull in one colour). A 2-D hull extruded straight or tapered is
+//! the hull of its children's extrusions: a section of the extrusion of a
+//! convex region is the region scaled, so both are the same convex solid.
+
+use super::Resolver;
+use crate::csg::spans::Op;
+use crate::csg::NodeKind;
+use crate::error::Result;
+use crate::geometry::convex::{Convex, Part};
+use crate::geometry::solid::Solid;
+use crate::geometry::{Rounded, Shape};
+use crate::scene::Material;
+use crate::syntax::ast::Statement;
+use glam::{DAffine3, DVec3};
+
+/// The most parts a hull, or a Minkowski sum's alternatives, may have.
+pub const MAX_PARTS: usize = 10_000;
+
+/// A sum of hulls.
+type Sum = Vec<Vec<Part>>;
+
+impl Resolver<'_> {
+    /// The marks to cut the scene's tree back to once read children have
+    /// been measured.
+    fn marks(&self) -> (usize, usize, usize) {
+        let c = &self.b.csg;
+        (c.prims.len(), c.nodes.len(), c.sections.len())
+    }
+
+    fn cut_back(&mut self, marks: (usize, usize, usize)) {
+        let c = &mut self.b.csg;
+        c.prims.truncate(marks.0);
+        c.nodes.truncate(marks.1);
+        c.sections.truncate(marks.2);
+    }
+
+    /// The error for what a hull or sum cannot be made of.
+    fn not_convex(&self, s: &Statement, what: &str) -> crate::error::Error {
+        self.src.error(
+            s.name_span,
+            format!("`{}` of {what} is not supported yet", s.name),
+            "csgrt takes the hull of bounded solids and their unions, and the Minkowski sum of convex ones",
+        )
+    }
+
+    /// The primitives under `node`'s unions, or what stands in the way.
+    fn union_leaves(&self, node: u32, out: &mut Vec<u32>) -> std::result::Result<(), String> {
+        match &self.b.csg.nodes[node as usize].kind {
+            NodeKind::Op(Op::Union, ch) => ch.iter().try_for_each(|&c| self.union_leaves(c, out)),
+            NodeKind::Leaf(i) => {
+                out.push(*i);
+                Ok(())
+            }
+            NodeKind::Op(op, _) => Err(format!("a 3-D {}", op.name())),
+            NodeKind::Section(..) => Err("a projection".to_string()),
+        }
+    }
+
+    /// The leaves of `node`'s unions as parts placed in the world (a
+    /// nested hull's own parts), or what stands in the way.
+    fn parts_of(&self, node: u32, out: &mut Vec<Part>) -> std::result::Result<(), String> {
+        let mut leaves = Vec::new();
+        self.union_leaves(node, &mut leaves)?;
+        for i in leaves {
+            let prim = &self.b.csg.prims[i as usize];
+            if prim.shape.support(DVec3::X).is_none() {
+                return Err(format!(
+                    "a `{}` (unbounded, or with no support point)",
+                    prim.shape.name()
+                ));
+            }
+            match hulls_of(&prim.shape) {
+                Some([one]) => out.extend(placed(one, prim.xf.to_world)),
+                _ => out.push(Part {
+                    shape: prim.shape.clone(),
+                    to_world: prim.xf.to_world,
+                }),
+            }
+            if out.len() > MAX_PARTS {
+                return Err(format!("more than {MAX_PARTS} parts"));
+            }
+        }
+        Ok(())
+    }
+
+    /// The alternatives (a union of them) a Minkowski operand is: each a
+    /// sum of hulls.
+    fn sums_of(&self, node: u32, out: &mut Vec<Sum>) -> std::result::Result<(), String> {
+        let mut leaves = Vec::new();
+        self.union_leaves(node, &mut leaves)?;
+        for i in leaves {
+            let prim = &self.b.csg.prims[i as usize];
+            let m = prim.xf.to_world;
+            match hulls_of(&prim.shape) {
+                Some(hulls) => out.push(hulls.iter().map(|h| placed(h, m).collect()).collect()),
+                None if is_convex(&prim.shape) => out.push(vec![vec![Part {
+                    shape: prim.shape.clone(),
+                    to_world: m,
+                }]]),
+                None => return Err(format!("a non-convex `{}`", prim.shape.name())),
+            }
+        }
+        Ok(())
+    }
+
+    /// One convex leaf of the sum of `hulls` (read in the statement's own
+    /// frame), placed by `frame`. Far from that frame's origin — its
+    /// centre farther out than its size — the set is moved to be centred
+    /// there, so that its own coordinates carry the precision of its size;
+    /// otherwise the parts keep the file's own placement, and the leaf the
+    /// statement's transform, rounded no more than any primitive's.
+    fn convex_leaf(
+        &mut self,
+        s: &Statement,
+        hulls: Sum,
+        frame: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        // A polytope rounded by a ball: written out as exact primitives.
+        let rounded = super::rounded::as_rounded(&hulls)
+            .and_then(|(pts, r)| super::rounded::pieces(&pts, r))
+            .or_else(|| super::rounded::as_cylinders(&hulls));
+        if let Some(pieces) = rounded.filter(|_| !crate::mutant::active("hull_gjk_normals")) {
+            let shape = Rounded::new(pieces.parts, hulls).map_err(|_| {
+                self.src.error(
+                    s.name_span,
+                    format!("this `{}` is out of range or flattened", s.name),
+                    "expected parts of a size within 1e-15 to 1e15 of their distances",
+                )
+            })?;
+            return self.leaf(s, Shape::Rounded(shape), frame, mat);
+        }
+        let c = Convex::new(hulls);
+        let b = c.object_bounds();
+        let centre = b.center();
+        let (c, world) = if centre.abs().max_element() > (b.max - b.min).max_element() {
+            let (c, centre) = Convex::centred(c.hulls);
+            (c, frame * DAffine3::from_translation(centre))
+        } else {
+            (c, frame)
+        };
+        self.leaf(s, Shape::Convex(c), world, mat)
+    }
+
+    /// The hull of the leaves already read into `node` (then dropped), in
+    /// the frame that `frame` places.
+    pub(super) fn hull_of(
+        &mut self,
+        s: &Statement,
+        node: u32,
+        marks: (usize, usize, usize),
+        frame: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let mut parts = Vec::new();
+        let found = self.parts_of(node, &mut parts);
+        self.cut_back(marks);
+        found.map_err(|why| self.not_convex(s, &why))?;
+        self.convex_leaf(s, vec![parts], frame, mat)
+    }
+
+    /// 3-D `hull()` of its children.
+    pub(super) fn hull(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        if super::resize::is_flat(s) {
+            return self.slab(s, xf, mat);
+        }
+        crate::scene::args::Args::bind(self.src, s, &[])?;
+        // The children in the statement's own frame: the leaf carries xf.
+        let marks = self.marks();
+        let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
+        let Some(node) = self.union(ids) else {
+            return Ok(None);
+        };
+        self.hull_of(s, node, marks, xf, mat)
+    }
+
+    /// 3-D `minkowski(convexity)` of its children.
+    pub(super) fn minkowski(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        if super::resize::is_flat(s) {
+            return Err(self.src.error(
+                s.name_span,
+                "`minkowski` of 2-D shapes is not supported yet",
+                "csgrt sums solids",
+            ));
+        }
+        crate::scene::args::Args::bind(self.src, s, &["convexity"])?;
+        // Each operand's alternatives, then every choice of one from each.
+        // The operands in the statement's own frame (the sum moves once,
+        // with the leaf's transform).
+        let mut operands: Vec<Vec<Sum>> = Vec::new();
+        for c in s.children.iter().filter(|c| !super::skipped(c)) {
+            let marks = self.marks();
+            // The fault: each later operand moved by the statement's
+            // translation too.
+            let at = if crate::mutant::active("minkowski_moved_twice") && !operands.is_empty() {
+                DAffine3::from_translation(xf.translation)
+            } else {
+                DAffine3::IDENTITY
+            };
+            let Some(node) = self.statement(c, at, mat, depth + 1)? else {
+                continue;
+            };
+            let mut alts = Vec::new();
+            let found = self.sums_of(node, &mut alts);
+            self.cut_back(marks);
+            found.map_err(|why| self.not_convex(s, &why))?;
+            operands.push(alts);
+        }
+        let mut combos: Vec<Sum> = vec![Vec::new()];
+        for alts in operands {
+            let mut next = Vec::new();
+            for c in &combos {
+                for a in &alts {
+                    let mut sum = c.clone();
+                    sum.extend(a.iter().cloned());
+                    next.push(sum);
+                }
+            }
+            if next.len() > MAX_PARTS {
+                return Err(self.not_convex(s, &format!("more than {MAX_PARTS} convex pieces")));
+            }
+            combos = next;
+        }
+        let mut leaves = Vec::new();
+        for sum in combos.into_iter().filter(|c| !c.is_empty()) {
+            leaves.push(self.convex_leaf(s, sum, xf, mat)?);
+        }
+        Ok(self.op(Op::Union, leaves))
+    }
+}
+
+/// The hulls a hull or sum already made is the sum of.
+fn hulls_of(shape: &Shape) -> Option<&[Vec<Part>]> {
+    match shape {
+        Shape::Convex(Convex { hulls, .. }) | Shape::Rounded(Rounded { hulls, .. }) => Some(hulls),
+        _ => None,
+    }
+}
+
+/// Parts placed once more, by `m`.
+fn placed(parts: &[Part], m: DAffine3) -> impl Iterator<Item = Part> + '_ {
+    parts.iter().map(move |p| Part {
+        shape: p.shape.clone(),
+        to_world: m * p.to_world,
+    })
+}
+
+/// Whether a solid is convex (so that Minkowski sums with it add supports).
+fn is_convex(shape: &Shape) -> bool {
+    match shape {
+        Shape::Sphere(_)
+        | Shape::Cuboid(_)
+        | Shape::Cone(_)
+        | Shape::Convex(_)
+        | Shape::Rounded(_) => true,
+        Shape::Prism(p) => {
+            let o = &p.region.outlines;
+            o.loops.len() == 1 && !o.curved() && convex_polygon(&o.loops[0])
+        }
+        Shape::Mesh(m) => {
+            let d = &m.data;
+            d.verts.len() * d.tris.len() <= 10_000_000
+                && d.tris.iter().all(|t| {
+                    let [a, b, c] = t.map(|i| d.verts[i as usize]);
+                    let n = (b - a).cross(c - a);
+                    let side = |p: DVec3| n.dot(p - a);
+                    let scale = n.length() * (b - a).length().max((c - a).length()) * 1e-12;
+                    let (lo, hi) = d.verts.iter().fold((0.0f64, 0.0f64), |(l, h), &p| {
+                        let v = side(p);
+                        (l.min(v), h.max(v))
+                    });
+                    lo >= -scale || hi <= scale
+                })
+        }
+        _ => false,
+    }
+}
+
+/// Whether a simple loop turns one way only.
+fn convex_polygon(l: &[glam::DVec2]) -> bool {
+    let n = l.len();
+    let (mut pos, mut neg) = (false, false);
+    for i in 0..n {
+        let (a, b, c) = (l[i], l[(i + 1) % n], l[(i + 2) % n]);
+        let x = (b - a).perp_dot(c - b);
+        pos |= x > 0.0;
+        neg |= x < 0.0;
+    }
+    !(pos && neg)
+}

@@ -1,0 +1,571 @@
+//! A polytope rounded by a ball, P ⊕ B(r), written out as the union of
+//! exact primitives: the commonest `minkowski()` (a box plus a ball) and
+//! `hull()` (balls of one radius: capsules, rounded plates) become what
+//! one would write by hand, and render at the speed of those primitives
+//! rather than of support-function casts.
+//!
+//! The set of points within r of a convex polytope P is P itself, each
+//! face pushed out by r (the prism over the face along its normal), each
+//! edge's cylinder of radius r and each vertex's ball: a point within r of
+//! P has its nearest point of P in a face's interior, an edge's or at a
+//! vertex. P and the pushed faces are one closed mesh — the pushed faces
+//! and, along each edge, the two walls that meet there — and the edges and
+//! vertices are cylinders and spheres. A flat P (points in a plane) is the
+//! slab |n·x| ≤ r over its polygon with the rounded rim; a segment, a
+//! cylinder and two balls; a point, a ball.
+
+use glam::{DAffine3, DMat3, DVec2, DVec3};
+
+use crate::geometry::convex::Part;
+use crate::geometry::mesh::{Mesh, MeshData};
+use crate::geometry::{Cone, Shape, Sphere};
+
+/// The most points whose hull is found (by every triple: n⁴ tests).
+pub const MAX_POINTS: usize = 48;
+
+/// The pieces of a rounded polytope, in the frame of its parts.
+pub struct Pieces {
+    pub parts: Vec<(Shape, DAffine3)>,
+}
+
+/// The points and radius when `hulls` (a Minkowski sum of hulls) is a
+/// polytope plus a ball: a hull of polytopes (cubes, meshes, polygons'
+/// prisms) summed with one ball, or one hull of balls of a single radius.
+pub fn as_rounded(hulls: &[Vec<Part>]) -> Option<(Vec<DVec3>, f64)> {
+    match hulls {
+        [a, b] => {
+            let (poly, ball) = match (ball_of(a), ball_of(b)) {
+                (_, Some(ball)) => (a, ball),
+                (Some(ball), None) => (b, ball),
+                _ => return None,
+            };
+            let mut pts = Vec::new();
+            for p in poly {
+                vertices(p, &mut pts)?;
+                if pts.len() > 8 * MAX_POINTS {
+                    return None;
+                }
+            }
+            Some((pts.into_iter().map(|p| p + ball.0).collect(), ball.1))
+        }
+        [a] if a.len() >= 2 => {
+            let balls: Vec<(DVec3, f64)> = a
+                .iter()
+                .map(|p| ball_of(std::slice::from_ref(p)))
+                .collect::<Option<_>>()?;
+            let r = balls[0].1;
+            balls
+                .iter()
+                .all(|b| (b.1 - r).abs() <= 1e-12 * r)
+                .then(|| (balls.iter().map(|b| b.0).collect(), r))
+        }
+        _ => None,
+    }
+}
+
+/// A hull that is one ball (a sphere under a uniform scale): its centre
+/// and radius.
+fn ball_of(hull: &[Part]) -> Option<(DVec3, f64)> {
+    let [p] = hull else { return None };
+    if !matches!(p.shape, Shape::Sphere(_)) {
+        return None;
+    }
+    let m = p.to_world.matrix3;
+    let g = m.transpose() * m;
+    let r2 = (g.x_axis.x + g.y_axis.y + g.z_axis.z) / 3.0;
+    let off = (g - DMat3::from_diagonal(DVec3::splat(r2))).to_cols_array();
+    off.iter()
+        .all(|x| x.abs() <= 1e-12 * r2)
+        .then(|| (p.to_world.translation, r2.sqrt()))
+}
+
+/// The placed vertices of a polytope part; `None` for a curved one.
+fn vertices(p: &Part, out: &mut Vec<DVec3>) -> Option<()> {
+    let m = &p.to_world;
+    match &p.shape {
+        Shape::Cuboid(c) => {
+            let lo = crate::geometry::cuboid::low(c.centered);
+            for i in 0..8 {
+                let pick = |b: usize| if i & b != 0 { 1.0 } else { lo };
+                out.push(m.transform_point3(DVec3::new(pick(1), pick(2), pick(4))));
+            }
+        }
+        Shape::Mesh(mesh) => {
+            if mesh.data.verts.len() > 8 * MAX_POINTS {
+                return None;
+            }
+            out.extend(mesh.data.verts.iter().map(|&v| m.transform_point3(v)));
+        }
+        Shape::Prism(q) if !q.region.curved() => {
+            let z = q.z_lo();
+            for l in &q.region.outlines.loops {
+                for &v in l {
+                    out.push(m.transform_point3(v.extend(z)));
+                    out.push(m.transform_point3((v * q.top).extend(z + 1.0)));
+                }
+            }
+        }
+        _ => return None,
+    }
+    Some(())
+}
+
+/// P ⊕ B(r) for the hull P of `pts`, as pieces; `None` past
+/// [`MAX_POINTS`] distinct points.
+pub fn pieces(pts: &[DVec3], r: f64) -> Option<Pieces> {
+    let mut pts: Vec<DVec3> = pts.to_vec();
+    pts.sort_by(|a, b| {
+        a.to_array()
+            .partial_cmp(&b.to_array())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    pts.dedup();
+    if pts.len() > MAX_POINTS || pts.is_empty() {
+        return None;
+    }
+    let scale = pts
+        .iter()
+        .fold(0.0f64, |s, p| s.max((*p - pts[0]).abs().max_element()));
+    let tol = 1e-12 * scale.max(pts.iter().fold(0.0f64, |s, p| s.max(p.abs().max_element())));
+    let mut out = Pieces { parts: Vec::new() };
+    let far = |from: &dyn Fn(DVec3) -> f64| {
+        pts.iter()
+            .copied()
+            .max_by(|a, b| from(*a).total_cmp(&from(*b)))
+            .expect("points")
+    };
+    let p0 = pts[0];
+    let p1 = far(&|p| (p - p0).length());
+    if (p1 - p0).length() <= tol {
+        out.ball(p0, r);
+        return Some(out);
+    }
+    let dir = (p1 - p0).normalize();
+    let p2 = far(&|p| (p - p0).reject_from_normalized(dir).length());
+    if (p2 - p0).reject_from_normalized(dir).length() <= tol {
+        // A segment: its two extremes.
+        let along = |p: DVec3| (p - p0).dot(dir);
+        let a = pts
+            .iter()
+            .copied()
+            .min_by(|x, y| along(*x).total_cmp(&along(*y)))
+            .expect("points");
+        let b = far(&|p| along(p));
+        out.capsule(a, b, r);
+        return Some(out);
+    }
+    let n = (p1 - p0).cross(p2 - p0).normalize();
+    let p3 = far(&|p| (p - p0).dot(n).abs());
+    if (p3 - p0).dot(n).abs() <= tol {
+        let poly = plane_hull(&pts, p0, n, tol);
+        out.slab(&poly, n, r);
+        return Some(out);
+    }
+    out.solid(&pts, r, tol);
+    Some(out)
+}
+
+impl Pieces {
+    fn ball(&mut self, c: DVec3, r: f64) {
+        let m =
+            DAffine3::from_scale_rotation_translation(DVec3::splat(r), glam::DQuat::IDENTITY, c);
+        self.parts.push((Shape::Sphere(Sphere), m));
+    }
+
+    /// The cylinder of radius r about segment ab, without its ends' balls.
+    fn cylinder(&mut self, a: DVec3, b: DVec3, r: f64) {
+        let z = (b - a).normalize();
+        let helper = if z.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+        let x = helper.cross(z).normalize();
+        let y = z.cross(x);
+        let m = DAffine3::from_mat3_translation(DMat3::from_cols(x * r, y * r, b - a), a);
+        let cone = Cone {
+            r0: 1.0,
+            r1: 1.0,
+            centered: false,
+        };
+        self.parts.push((Shape::Cone(cone), m));
+    }
+
+    fn capsule(&mut self, a: DVec3, b: DVec3, r: f64) {
+        self.cylinder(a, b, r);
+        self.ball(a, r);
+        self.ball(b, r);
+    }
+
+    fn mesh(&mut self, verts: Vec<DVec3>, tris: Vec<[u32; 3]>) {
+        let data = std::sync::Arc::new(MeshData::new(verts, tris));
+        self.parts
+            .push((Shape::Mesh(Mesh { data }), DAffine3::IDENTITY));
+    }
+
+    /// A flat convex polygon (in order) with normal n: the slab |n·x| ≤ r
+    /// over it and its rim's capsules.
+    fn slab(&mut self, poly: &[DVec3], n: DVec3, r: f64) {
+        let k = poly.len() as u32;
+        let mut verts: Vec<DVec3> = poly.iter().map(|&p| p + n * r).collect();
+        verts.extend(poly.iter().map(|&p| p - n * r));
+        let mut tris = Vec::new();
+        for i in 1..k - 1 {
+            tris.push([0, i, i + 1]);
+            tris.push([k, k + i + 1, k + i]);
+        }
+        for i in 0..k {
+            let j = (i + 1) % k;
+            tris.push([i, k + i, k + j]);
+            tris.push([i, k + j, j]);
+        }
+        self.mesh(verts, tris);
+        for i in 0..poly.len() {
+            self.capsule_rim(poly[i], poly[(i + 1) % poly.len()], r);
+        }
+    }
+
+    /// An edge of a rim: its cylinder and its first end's ball (each
+    /// vertex is the first end of one edge).
+    fn capsule_rim(&mut self, a: DVec3, b: DVec3, r: f64) {
+        self.cylinder(a, b, r);
+        self.ball(a, r);
+    }
+
+    /// A solid hull: its faces (each triple of points with every point on
+    /// one side of its plane, the points on that plane making the face),
+    /// the mesh of P with each face pushed out by r, and the edges' and
+    /// vertices' cylinders and balls.
+    fn solid(&mut self, pts: &[DVec3], r: f64, tol: f64) {
+        let mut faces: Vec<(DVec3, Vec<usize>)> = Vec::new();
+        let m = pts.len();
+        for i in 0..m {
+            for j in i + 1..m {
+                for k in j + 1..m {
+                    let c = (pts[j] - pts[i]).cross(pts[k] - pts[i]);
+                    let Some(n) = c.try_normalize() else { continue };
+                    if c.length()
+                        <= tol * (pts[j] - pts[i]).length().max((pts[k] - pts[i]).length())
+                    {
+                        continue;
+                    }
+                    let side = |p: DVec3| (p - pts[i]).dot(n);
+                    let (lo, hi) = pts.iter().fold((0.0f64, 0.0f64), |(l, h), &p| {
+                        (l.min(side(p)), h.max(side(p)))
+                    });
+                    let n = if hi <= tol {
+                        n
+                    } else if lo >= -tol {
+                        -n
+                    } else {
+                        continue;
+                    };
+                    let on: Vec<usize> = (0..m)
+                        .filter(|&q| (pts[q] - pts[i]).dot(n).abs() <= tol)
+                        .collect();
+                    if !faces.iter().any(|f| f.1 == on) {
+                        faces.push((n, on));
+                    }
+                }
+            }
+        }
+        let mut verts: Vec<DVec3> = pts.to_vec();
+        let mut tris: Vec<[u32; 3]> = Vec::new();
+        let mut edges: Vec<(usize, usize)> = Vec::new();
+        let mut corners: Vec<usize> = Vec::new();
+        for (n, on) in &faces {
+            let local: Vec<DVec3> = on.iter().map(|&q| pts[q]).collect();
+            let ring = plane_hull_indices(&local, local[0], *n, tol);
+            let ids: Vec<usize> = ring.iter().map(|&q| on[q]).collect();
+            let base = verts.len() as u32;
+            verts.extend(ids.iter().map(|&q| pts[q] + *n * r));
+            let k = ids.len() as u32;
+            for i in 1..k - 1 {
+                tris.push([base, base + i, base + i + 1]);
+            }
+            for i in 0..k {
+                let j = (i + 1) % k;
+                let (a, b) = (ids[i as usize] as u32, ids[j as usize] as u32);
+                tris.push([a, b, base + j]);
+                tris.push([a, base + j, base + i]);
+                let e = (a.min(b) as usize, a.max(b) as usize);
+                if !edges.contains(&e) {
+                    edges.push(e);
+                }
+                if !corners.contains(&(a as usize)) {
+                    corners.push(a as usize);
+                }
+            }
+        }
+        // Only the hull's own points are the mesh's: the others are left
+        // unused and dropped by the mesh's renumbering.
+        self.mesh(verts, tris);
+        for (a, b) in edges {
+            self.cylinder(pts[a], pts[b], r);
+        }
+        for c in corners {
+            self.ball(pts[c], r);
+        }
+    }
+}
+
+/// The convex polygon (counter-clockwise about n) of points in the plane
+/// through `o` with normal `n`.
+fn plane_hull(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<DVec3> {
+    plane_hull_indices(pts, o, n, tol)
+        .into_iter()
+        .map(|i| pts[i])
+        .collect()
+}
+
+/// Andrew's monotone chain in the plane's coordinates; points on an edge
+/// (within `tol`) are left out.
+fn plane_hull_indices(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<usize> {
+    let u = n.any_orthonormal_vector();
+    let v = n.cross(u);
+    let q: Vec<DVec2> = pts
+        .iter()
+        .map(|&p| DVec2::new((p - o).dot(u), (p - o).dot(v)))
+        .collect();
+    let mut order: Vec<usize> = (0..pts.len()).collect();
+    order.sort_by(|&a, &b| q[a].x.total_cmp(&q[b].x).then(q[a].y.total_cmp(&q[b].y)));
+    order.dedup_by(|a, b| q[*a] == q[*b]);
+    let turn = |a: usize, b: usize, c: usize| {
+        let (e, f) = (q[b] - q[a], q[c] - q[a]);
+        e.perp_dot(f) > tol * e.length().max(f.length())
+    };
+    let mut hull: Vec<usize> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let iter: Box<dyn Iterator<Item = &usize>> = if pass == 0 {
+            Box::new(order.iter())
+        } else {
+            Box::new(order.iter().rev())
+        };
+        for &i in iter {
+            while hull.len() >= start + 2 && !turn(hull[hull.len() - 2], hull[hull.len() - 1], i) {
+                hull.pop();
+            }
+            hull.push(i);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+/// The convex hull of discs (radius zero: points) in the plane: its
+/// polygon through the tangent points, counter-clockwise, and the discs on
+/// its boundary — the hull is that polygon with those discs. `None` for a
+/// hull with no area (points on a line), or past [`MAX_POINTS`] discs.
+pub fn disc_hull(discs: &[(DVec2, f64)]) -> Option<(Vec<DVec2>, Vec<usize>)> {
+    if discs.len() > 8 * MAX_POINTS {
+        return None;
+    }
+    // Discs inside others add nothing.
+    let keep: Vec<usize> = (0..discs.len())
+        .filter(|&i| {
+            !(0..discs.len()).any(|j| {
+                let (ci, ri) = discs[i];
+                let (cj, rj) = discs[j];
+                j != i
+                    && (ci - cj).length() + ri <= rj
+                    && (ri < rj || (ri == rj && ci == cj && j < i))
+            })
+        })
+        .collect();
+    if keep.len() > MAX_POINTS {
+        return None;
+    }
+    if let [one] = keep[..] {
+        return (discs[one].1 > 0.0).then(|| (Vec::new(), vec![one]));
+    }
+    let scale = keep.iter().fold(0.0f64, |a, &i| {
+        a.max(discs[i].0.abs().max_element() + discs[i].1)
+    });
+    let tol = 1e-12 * scale;
+    // Each outer common tangent with every disc on its inner side: an edge
+    // from disc i to disc j, the outward normal n at angle φ past the
+    // right of i → j with sin φ = (rᵢ − rⱼ)/|cⱼ − cᵢ|.
+    let mut edges: Vec<(f64, usize, usize, DVec2)> = Vec::new();
+    for &i in &keep {
+        for &j in &keep {
+            let ((ci, ri), (cj, rj)) = (discs[i], discs[j]);
+            let d = cj - ci;
+            let l = d.length();
+            if i == j || l == 0.0 {
+                continue;
+            }
+            let sin = (ri - rj) / l;
+            if sin.abs() >= 1.0 {
+                continue;
+            }
+            let (along, right) = (d / l, DVec2::new(d.y, -d.x) / l);
+            let n = right * (1.0 - sin * sin).sqrt() + along * sin;
+            let h = n.dot(ci) + ri;
+            if keep
+                .iter()
+                .all(|&k| n.dot(discs[k].0) + discs[k].1 <= h + tol)
+            {
+                edges.push((n.y.atan2(n.x), i, j, n));
+            }
+        }
+    }
+    edges.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut poly: Vec<DVec2> = Vec::new();
+    let mut on: Vec<usize> = Vec::new();
+    for &(_, i, j, n) in &edges {
+        for k in [i, j] {
+            let p = discs[k].0 + n * discs[k].1;
+            if poly.last().map_or(true, |q| (*q - p).length() > tol) {
+                poly.push(p);
+            }
+            if discs[k].1 > 0.0 && !on.contains(&k) {
+                on.push(k);
+            }
+        }
+    }
+    while poly.len() > 1 && (poly[0] - poly[poly.len() - 1]).length() <= tol {
+        poly.pop();
+    }
+    // Points where the boundary runs straight on are not corners.
+    let mut corners = Vec::new();
+    for k in 0..poly.len() {
+        let (a, b, c) = (
+            poly[(k + poly.len() - 1) % poly.len()],
+            poly[k],
+            poly[(k + 1) % poly.len()],
+        );
+        if (b - a).perp_dot(c - b) > tol * (b - a).length().max((c - b).length()) {
+            corners.push(b);
+        }
+    }
+    if corners.len() < 3 && on.is_empty() {
+        return None;
+    }
+    if corners.len() < 3 {
+        corners.clear();
+    }
+    Some((corners, on))
+}
+
+/// A hull of straight cylinders with parallel axes over one range along
+/// them, circular across (a slot, a plate rounded at its corners): the
+/// prism of the hull of their circles, as the prism of its polygon and
+/// the cylinders on its boundary.
+pub fn as_cylinders(hulls: &[Vec<Part>]) -> Option<Pieces> {
+    let [parts] = hulls else { return None };
+    let mut axis: Option<DVec3> = None;
+    let mut range: Option<(f64, f64)> = None;
+    let mut discs = Vec::new();
+    for p in parts {
+        let Shape::Cone(c) = &p.shape else {
+            return None;
+        };
+        if c.r0 != c.r1 || c.r0 <= 0.0 {
+            return None;
+        }
+        let m = p.to_world.matrix3;
+        let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
+        let (lx, lz) = (x.length(), z.length());
+        let tight = |v: f64, of: f64| v.abs() <= 1e-12 * of;
+        if !(tight(x.dot(y), lx * lx)
+            && tight(y.length() - lx, lx)
+            && tight(x.dot(z), lx * lz)
+            && tight(y.dot(z), lx * lz))
+        {
+            return None;
+        }
+        let a = *axis.get_or_insert(z / lz);
+        if z.cross(a).length() > 1e-12 * lz {
+            return None;
+        }
+        let z0 = crate::geometry::cone::bottom(c.centered);
+        let (b, t) = (
+            p.to_world.transform_point3(DVec3::Z * z0),
+            p.to_world.transform_point3(DVec3::Z * (z0 + 1.0)),
+        );
+        let (lo, hi) = (b.dot(a).min(t.dot(a)), b.dot(a).max(t.dot(a)));
+        let (rlo, rhi) = *range.get_or_insert((lo, hi));
+        let tol = 1e-12 * (rlo.abs().max(rhi.abs()) + (rhi - rlo));
+        if (lo - rlo).abs() > tol || (hi - rhi).abs() > tol {
+            return None;
+        }
+        discs.push((b, lx * c.r0));
+    }
+    let (a, (lo, hi)) = (axis?, range?);
+    let u = a.any_orthonormal_vector();
+    let v = a.cross(u);
+    let flat: Vec<(DVec2, f64)> = discs
+        .iter()
+        .map(|&(b, r)| (DVec2::new(b.dot(u), b.dot(v)), r))
+        .collect();
+    let (poly, on) = disc_hull(&flat)?;
+    let at = |p: DVec2, s: f64| u * p.x + v * p.y + a * s;
+    let mut out = Pieces { parts: Vec::new() };
+    if poly.len() >= 3 {
+        let k = poly.len() as u32;
+        let mut verts: Vec<DVec3> = poly.iter().map(|&p| at(p, lo)).collect();
+        verts.extend(poly.iter().map(|&p| at(p, hi)));
+        let mut tris = Vec::new();
+        for i in 1..k - 1 {
+            tris.push([0, i + 1, i]);
+            tris.push([k, k + i, k + i + 1]);
+        }
+        for i in 0..k {
+            let j = (i + 1) % k;
+            tris.push([i, j, k + j]);
+            tris.push([i, k + j, k + i]);
+        }
+        out.mesh(verts, tris);
+    }
+    for i in on {
+        let (c, r) = flat[i];
+        let m = DAffine3::from_mat3_translation(
+            DMat3::from_cols(u * r, v * r, a * (hi - lo)),
+            at(c, lo),
+        );
+        let cone = Cone {
+            r0: 1.0,
+            r1: 1.0,
+            centered: false,
+        };
+        out.parts.push((Shape::Cone(cone), m));
+    }
+    Some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_cube_rounded_is_a_mesh_twelve_cylinders_and_eight_balls() {
+        let mut pts = Vec::new();
+        for i in 0..8 {
+            pts.push(
+                DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64) * 2.0,
+            );
+        }
+        let p = pieces(&pts, 0.5).unwrap();
+        let count = |name: &str| p.parts.iter().filter(|(s, _)| s.name() == name).count();
+        assert_eq!(
+            (count("polyhedron"), count("cylinder"), count("sphere")),
+            (1, 12, 8)
+        );
+    }
+
+    #[test]
+    fn balls_in_a_plane_make_a_slab_and_its_rim() {
+        let pts = [
+            DVec3::ZERO,
+            DVec3::X * 4.0,
+            DVec3::new(4.0, 3.0, 0.0),
+            DVec3::Y * 3.0,
+            DVec3::new(2.0, 1.0, 0.0),
+        ];
+        let p = pieces(&pts, 1.0).unwrap();
+        let count = |name: &str| p.parts.iter().filter(|(s, _)| s.name() == name).count();
+        assert_eq!(
+            (count("polyhedron"), count("cylinder"), count("sphere")),
+            (1, 4, 4)
+        );
+        let two = pieces(&[DVec3::ZERO, DVec3::Z * 5.0, DVec3::Z * 2.0], 1.0).unwrap();
+        assert_eq!(two.parts.len(), 3);
+    }
+}

@@ -1,1 +1,0 @@
-hull() { cube(2); translate([5, 0, 0]) sphere(1); }

@@ -1,1 +1,0 @@
-minkowski() { cube(4); sphere(1); }
