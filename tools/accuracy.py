@@ -30,6 +30,7 @@ Usage: accuracy.py [--csgrt BIN] [--rays N] [--check] [--report FILE]
 
 import argparse
 import math
+import multiprocessing
 import os
 import random
 import subprocess
@@ -1168,6 +1169,28 @@ def check_ray(p, case, o, d, c, worst, worst_angle, failures):
         failures.append(f"{where}: normal {angle:.3g} rad from the exact one (bound {bound:.3g})")
 
 
+def case_solid(kind, off, size, pose):
+    cls = Extruded if kind in EXTRUSIONS else Convexed if kind in CONVEXES else Prim
+    return cls(kind, [off * x for x in [1.0, 0.7, 0.3]], size, pose)
+
+
+def check_case(job):
+    """(worst, worst angle, failures) of one placed solid's rays."""
+    binary, same_as, kind, off, size, pose, rays = job
+    p = case_solid(kind, off, size, pose)
+    worst, worst_angle, failures = {}, {}, []
+    with tempfile.TemporaryDirectory() as work:
+        got = run(binary, p, rays, work)
+        if same_as:
+            if got != run(same_as, p, rays, work):
+                failures.append(f"{kind} ({pose}) size {size:g} at offset {off:g}: not the same as {same_as}")
+            worst[(kind, pose, "same")] = (0.0, "")
+            return worst, worst_angle, failures
+        for (case, o, d), c in zip(rays, got):
+            check_ray(p, case, o, d, c, worst, worst_angle, failures)
+    return worst, worst_angle, failures
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--csgrt", default="target/release/csgrt")
@@ -1181,28 +1204,30 @@ def main():
     worst = {}  # (kind, pose, case) -> (error, description)
     worst_angle = {}  # (kind, pose, case) -> (angle / bound, angle)
     failures = []
-    direction = [1.0, 0.7, 0.3]
-    with tempfile.TemporaryDirectory() as work:
-        kinds = ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS + CONVEXES
-        if a.kinds:
-            kinds = [k for k in kinds if k in a.kinds.split(",")]
-        for kind in kinds:
-            poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic", "turned_cubic") else POSES
-            for pose in poses:
-                for off in OFFSETS:
-                    for size in SIZES:
-                        cls = Extruded if kind in EXTRUSIONS else Convexed if kind in CONVEXES else Prim
-                        p = cls(kind, [off * x for x in direction], size, pose)
-                        maker = extrusion_rays if kind in EXTRUSIONS else convex_rays if kind in CONVEXES else rays_for
-                        rays = [(case, *p.place(o, d)) for case, o, d in maker(p, a.rays, rng)]
-                        got = run(a.csgrt, p, rays, work)
-                        if a.same_as:
-                            if got != run(a.same_as, p, rays, work):
-                                failures.append(f"{kind} ({pose}) size {size:g} at offset {off:g}: not the same as {a.same_as}")
-                            worst[(kind, pose, "same")] = (0.0, "")
-                            continue
-                        for (case, o, d), c in zip(rays, got):
-                            check_ray(p, case, o, d, c, worst, worst_angle, failures)
+    kinds = ["sphere", "cube", "cylinder", "cone", "frustum", "torus"] + EXTRUSIONS + CONVEXES
+    if a.kinds:
+        kinds = [k for k in kinds if k in a.kinds.split(",")]
+    # The rays drawn here, in order, from one seed; the cases checked two
+    # (or as many as there are cores) at once, their worst merged in order.
+    jobs = []
+    for kind in kinds:
+        poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic", "turned_cubic") else POSES
+        for pose in poses:
+            for off in OFFSETS:
+                for size in SIZES:
+                    p = case_solid(kind, off, size, pose)
+                    maker = extrusion_rays if kind in EXTRUSIONS else convex_rays if kind in CONVEXES else rays_for
+                    rays = [(case, *p.place(o, d)) for case, o, d in maker(p, a.rays, rng)]
+                    jobs.append((a.csgrt, a.same_as, kind, off, size, pose, rays))
+    with multiprocessing.Pool(os.cpu_count() or 1) as pool:
+        for w, wa, fs in pool.imap(check_case, jobs):
+            for key, v in w.items():
+                if v[0] == float("inf") or v[0] > worst.get(key, (-1.0, ""))[0]:
+                    worst[key] = v
+            for key, v in wa.items():
+                if v[0] > worst_angle.get(key, (-1.0, 0.0))[0]:
+                    worst_angle[key] = v
+            failures += fs
     lines = [
         "# Accuracy against exact arithmetic",
         "",

@@ -19,6 +19,7 @@ Exit status 1 unless every mutant is caught.
 """
 
 import argparse
+import multiprocessing
 import os
 import subprocess
 import sys
@@ -91,6 +92,29 @@ def pov_fails(binary, scene, fault):
     return failed, lines[0] if lines else ""
 
 
+def check_fault(job):
+    """(table rows, what escaped) for one fault."""
+    binary, fault = job
+    rows, escaped = [], []
+    scenes, acc = MUTANTS[fault]
+    for scene in scenes:
+        bad = oracle_problems(binary, scene, fault)
+        rows.append(f"| {fault} | oracle {scene} | {bad[0] if bad else 'NOT CAUGHT'} |")
+        if not bad:
+            escaped.append(f"{fault} passes the oracle on {scene}")
+    if fault in POV:
+        failed, first = pov_fails(binary, POV[fault], fault)
+        rows.append(f"| {fault} | pov_check.py {POV[fault]} | {first if failed else 'NOT CAUGHT'} |")
+        if not failed:
+            escaped.append(f"{fault} passes tools/pov_check.py")
+    if acc:
+        failed, last = accuracy_fails(binary, fault, acc)
+        rows.append(f"| {fault} | accuracy.py | {last if failed else 'NOT CAUGHT'} |")
+        if not failed:
+            escaped.append(f"{fault} passes tools/accuracy.py")
+    return rows, escaped
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--csgrt", default=os.path.join(ROOT, "target/mutants/release/csgrt"))
@@ -114,27 +138,14 @@ def main():
         bad = oracle.same_outputs(os.path.join(ROOT, scene), [binary], [a.real], *SIZE, RAYS, env=dict(os.environ, CSGRT_MUTANT=""))
         if bad:
             escaped.append(f"the mutant build with no fault answers otherwise than the real one on {scene}: {bad[0]}")
-    for fault in faults:
-        scenes, acc = MUTANTS[fault]
-        for scene in scenes:
-            bad = oracle_problems(binary, scene, fault)
-            what = bad[0] if bad else "NOT CAUGHT"
-            lines.append(f"| {fault} | oracle {scene} | {what} |")
-            print(lines[-1], flush=True)
-            if not bad:
-                escaped.append(f"{fault} passes the oracle on {scene}")
-        if fault in POV:
-            failed, first = pov_fails(binary, POV[fault], fault)
-            lines.append(f"| {fault} | pov_check.py {POV[fault]} | {first if failed else 'NOT CAUGHT'} |")
-            print(lines[-1], flush=True)
-            if not failed:
-                escaped.append(f"{fault} passes tools/pov_check.py")
-        if acc:
-            failed, last = accuracy_fails(binary, fault, acc)
-            lines.append(f"| {fault} | accuracy.py | {last if failed else 'NOT CAUGHT'} |")
-            print(lines[-1], flush=True)
-            if not failed:
-                escaped.append(f"{fault} passes tools/accuracy.py")
+    # The faults checked two (or as many as there are cores) at once, each
+    # worker keeping the oracle's side of the scenes it has met.
+    with multiprocessing.Pool(os.cpu_count() or 1) as pool:
+        for rows, missed in pool.imap(check_fault, [(binary, f) for f in faults]):
+            for r in rows:
+                lines.append(r)
+                print(r, flush=True)
+            escaped += missed
     if a.report:
         head = [
             "# Deliberately wrong builds, and what catches each",

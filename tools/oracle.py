@@ -236,8 +236,10 @@ def section_pieces(f, n):
 
 
 def has_hull(f):
-    """Whether a 2-D tree holds a hull."""
-    return f[0] == "op" and (f[1] == "hull" or any(has_hull(k) for k in f[2]))
+    """Whether a 2-D tree holds a hull or an offset (whose edges exist only
+    once manifold has made it)."""
+    offset = len(f) == 4 and f[3][0] in ("round", "miter", "square", "sum")
+    return f[0] == "op" and (f[1] == "hull" or offset or any(has_hull(k) for k in f[2]))
 
 
 def svg_loop_points(x, n):
@@ -292,6 +294,17 @@ def cross_section(f, n):
         # (inscribed), and its circles, filled even-odd.
         loops = [np.array([g.first for g in path]) for path in drawing_pieces(f, n)]
         return mf.CrossSection([l.tolist() for l in loops if len(l) >= 3], mf.FillRule.EvenOdd)
+    if len(f) == 4 and f[3][0] == "sum":
+        # A polygon plus a convex polygon: the union of the hulls of its
+        # triangles' (manifold's triangulation) corners plus B's, moved.
+        _, b, child, m = f[3]
+        polys = [np.asarray(l, dtype=float) for l in cross_section(child, n).to_polygons()]
+        pts = np.concatenate(polys)
+        tris = [pts[t] for t in np.asarray(mf.triangulate([p.tolist() for p in polys]))]
+        cs = mf.CrossSection.batch_boolean(
+            [mf.CrossSection.hull_points((t[:, None, :] + b[None, :, :]).reshape(-1, 2).tolist()) for t in tris], mf.OpType.Add
+        )
+        return cs.transform([[m[0, 0], m[0, 1], m[0, 2]], [m[1, 0], m[1, 1], m[1, 2]]])
     if len(f) == 4:
         # An offset: manifold's own (Clipper2's) of the child, then moved.
         join, d, child, m = f[3]
@@ -349,8 +362,8 @@ def extrusion_mesh(leaf, n):
     if leaf.kind == "linear_extrude" and reader.twisted(p):
         slices, m = twist_steps(leaf, n)
         if has_hull(p["flat"]):
-            # A hull's tangent edges exist only once it is made: cut them
-            # (and every other edge) after.
+            # A hull's tangent edges (an offset's edges) exist only once it
+            # is made: cut them (and every other edge) after.
             loops = [np.array(l) for l in cross_section(p["flat"], n).to_polygons()]
             cs = mf.CrossSection([l.tolist() for l in refined(("poly", loops), m)[1]], mf.FillRule.Positive)
         else:
@@ -1465,7 +1478,10 @@ def main():
     lines = list(TABLE_HEAD)
     failed = []
     jobs = [(s, a.csgrt.split(), w, h, segs, a.rays, a.out) for s in a.scenes]
-    with multiprocessing.Pool(max(1, a.jobs)) as pool:
+    # A fresh worker for each scene: what one scene's meshes leave in a
+    # worker's heap is not carried into the next (a long-lived worker grew
+    # past 14 GB on CI).
+    with multiprocessing.Pool(max(1, a.jobs), maxtasksperchild=1) as pool:
         for scene, (rows, bad) in zip(a.scenes, pool.imap(one, jobs)):
             name = os.path.splitext(os.path.basename(scene))[0]
             for r in rows:
