@@ -456,7 +456,7 @@ class Reader:
             if not params.get("parts", params.get("operands")):
                 return None
             return self.leaf(s, name, params, np.eye(4), mat)
-        if name in SHAPES_2D or name in ("projection", "resize"):
+        if name in SHAPES_2D or name in ("projection", "resize", "hull", "minkowski", "offset"):
             # OpenSCAD's preview of a 2-D shape among solids: a slab 1 thick
             # centred on its plane, 1.1 when subtracted.
             f = self.sections_out(s, self.flat(s, np.eye(3)))
@@ -649,7 +649,15 @@ class Reader:
             kind = "section" if a.get("cut", False) is True else "shadow"
             return None if node is None else (kind, node, m, s)
         if name == "minkowski":
-            raise self.err(s, "minkowski of 2-D shapes is not in the oracle")
+            # Summed in its own frame, then placed (the sum moves once).
+            live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+            kids = [k for k in (self.flat(c, np.eye(3)) for c in live) if k is not None]
+            if not kids:
+                return None
+            try:
+                return minkowski_flat(kids, m)
+            except ValueError as e:
+                raise self.err(s, str(e))
         op = name if name in ("intersection", "difference", "hull") else "union"
         return self.flat_kids(s, op, m)
 
@@ -1334,6 +1342,144 @@ def offset_pieces(f, join, d):
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
 
 
+def convex_hull_2d(pts):
+    """Andrew's monotone chain: the hull's corners, counter-clockwise."""
+    pts = sorted(set(map(tuple, np.asarray(pts, dtype=float).tolist())))
+    if len(pts) < 3:
+        return np.array(pts)
+    cross = lambda o, a, b: (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    lower, upper = [], []
+    for p in pts:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(pts):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return np.array(lower[:-1] + upper[:-1])
+
+
+def convex_poly(f):
+    """The corners of a 2-D leaf that is one convex polygon, else None."""
+    if f[0] != "poly" or len(f[1]) != 1:
+        return None
+    loop = np.asarray(f[1][0], dtype=float)
+    h = convex_hull_2d(loop)
+    area = lambda l: 0.5 * abs(np.sum(l[:, 0] * np.roll(l[:, 1], -1) - np.roll(l[:, 0], -1) * l[:, 1]))
+    if len(h) < 3 or abs(area(h) - area(loop)) > 1e-12 * area(h):
+        return None
+    return h
+
+
+def convex_parts(f):
+    """[(corners, radius)] of a union of convex polygons and circles (a
+    circle its centre and radius), else None: csgrt's convex pieces."""
+    if f[0] == "ellipse":
+        A = f[1]
+        r = float(np.linalg.norm(A[:, 0]))
+        if abs(A[:, 0] @ A[:, 1]) <= 1e-12 * r * r and abs(np.linalg.norm(A[:, 1]) - r) <= 1e-12 * r:
+            return [(np.asarray(f[2], dtype=float)[None, :], r)]
+        return None
+    if f[0] == "poly":
+        h = convex_poly(f)
+        return None if h is None else [(h, 0.0)]
+    if f[0] == "op" and f[1] == "union" and len(f) == 3:
+        parts = [convex_parts(k) for k in f[2]]
+        return None if any(p is None for p in parts) else [x for p in parts for x in p]
+    return None
+
+
+def grown_convex(pts, r, m):
+    """The convex polygon of corners pts (counter-clockwise) grown by a
+    disc of radius r, as csgrt writes it: each edge pushed out by r as one
+    polygon, a disc on each corner; manifold's own offset of the polygon
+    in the oracle's mesh."""
+    n = len(pts)
+    parts = [("ellipse", np.eye(2) * r, p.copy()) for p in pts] if r > 0 else []
+    if n >= 3 and r > 0:
+        out = []
+        for i in range(n):
+            a, b = pts[i], pts[(i + 1) % n]
+            e = (b - a) / np.linalg.norm(b - a)
+            o = np.array([e[1], -e[0]]) * r
+            out += [a + o, b + o]
+        parts.append(("poly", [np.array(out)]))
+    elif n == 2 and r > 0:
+        e = (pts[1] - pts[0]) / np.linalg.norm(pts[1] - pts[0])
+        o = np.array([e[1], -e[0]]) * r
+        parts.append(("poly", [np.array([pts[0] + o, pts[1] + o, pts[1] - o, pts[0] - o])]))
+    elif n >= 3:
+        parts.append(("poly", [pts.copy()]))
+    if not parts:
+        return None
+    if len(parts) == 1:
+        return flat_moved(parts[0], m)
+    moved = [flat_moved(k, m) for k in parts]
+    if n >= 3:
+        return ("op", "union", moved, ("round", r, ("poly", [pts.copy()]), m))
+    return ("op", "union", moved)
+
+
+def minkowski_flat(kids, m):
+    """2-D minkowski() of flat trees read in its own frame, moved by m, as
+    csgrt sums them: the circles' sum (centre c, radius r) grows the rest;
+    unions of convex polygons and circles sum piece by piece (the hull of
+    the corners' sums, grown by the radii's); one other shape grows by r as
+    offset(r) does (the same pieces; manifold's own offset in the oracle's
+    mesh). Any other sum is not in the oracle."""
+    circles, rest = [], []
+    for k in kids:
+        c = convex_parts(k) if k[0] == "ellipse" else None
+        (circles if c else rest).append(c[0] if c else k)
+    c = sum((x[0][0] for x in circles), np.zeros(2))
+    r = sum(x[1] for x in circles)
+    pieces = [convex_parts(k) for k in rest]
+    whole = [k for k, p in zip(rest, pieces) if p is None]
+    pieces = [p for p in pieces if p is not None]
+    if len(whole) == 1 and not pieces:
+        child = flat_moved(whole[0], np.array([[1.0, 0.0, c[0]], [0.0, 1.0, c[1]], [0.0, 0.0, 1.0]]))
+        if r == 0:
+            return flat_moved(child, m)
+        if has_section(child):
+            raise ValueError("a minkowski sum with a projection is not in the oracle")
+        grown = offset_pieces(child, "round", r)
+        if grown is None or grown[0] != "op":
+            return None if grown is None else flat_moved(grown, m)
+        return ("op", grown[1], [flat_moved(k, m) for k in grown[2]], ("round", r, child, m))
+    if len(whole) == 1 and r == 0 and whole[0][0] == "poly" and all(rr == 0 for op in pieces for _, rr in op):
+        # A + B = (A + b) u (edges of A + B) for a convex B (b a point of B):
+        # A moved by B's first corner, and each edge's hull with B; in the
+        # oracle's mesh, manifold's union of A's triangles' hulls with B.
+        combos = [np.zeros((1, 2))]
+        for op in pieces:
+            combos = [convex_hull_2d((a[:, None, :] + b[None, :, :]).reshape(-1, 2)) for a in combos for b, _ in op]
+        parts = []
+        for b in combos:
+            shifted = flat_moved(whole[0], np.array([[1.0, 0.0, b[0][0]], [0.0, 1.0, b[0][1]], [0.0, 0.0, 1.0]]))
+            kids = [flat_moved(shifted, m)]
+            for l in whole[0][1]:
+                for i in range(len(l)):
+                    h = convex_hull_2d(np.concatenate([b + l[i], b + l[(i + 1) % len(l)]]))
+                    if len(h) >= 3:
+                        kids.append(flat_moved(("poly", [h]), m))
+            parts.append(("op", "union", kids, ("sum", b, whole[0], m)))
+        return parts[0] if len(parts) == 1 else ("op", "union", parts)
+    if whole:
+        raise ValueError("minkowski of 2-D shapes that are not convex, other than one with circles or one polygon with convex polygons, is not in the oracle")
+    if not pieces:
+        return flat_moved(("ellipse", np.eye(2) * r, c), m) if r > 0 else None
+    combos = [(c[None, :], r)]
+    for op in pieces:
+        combos = [
+            (convex_hull_2d((a[:, None, :] + b[None, :, :]).reshape(-1, 2)), ra + rb) for a, ra in combos for b, rb in op
+        ]
+    parts = [g for g in (grown_convex(p, rr, m) for p, rr in combos) if g is not None]
+    if not parts:
+        return None
+    return parts[0] if len(parts) == 1 else ("op", "union", parts)
+
+
 def has_section(f):
     return f is not None and (f[0] in ("section", "shadow") or f[0] == "op" and any(has_section(k) for k in f[2]))
 
@@ -1346,7 +1492,7 @@ def flat_stmt(s):
     if s.name == "import":
         f = next((v for k, v in s.args if k in ("file", None) and isinstance(v, str)), "")
         return f.lower().endswith((".dxf", ".svg"))
-    if s.name in TRANSFORMS or s.name in ("union", "intersection", "difference", "group", "render", "color", "material", "resize"):
+    if s.name in TRANSFORMS or s.name in ("union", "intersection", "difference", "group", "render", "color", "material", "resize", "hull", "minkowski"):
         live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
         return bool(live) and flat_stmt(live[0])
     return False
@@ -1377,7 +1523,7 @@ def flat_extent_exact(rd, s, f, i):
     if f[0] == "section":
         raise rd.err(s, "a resized projection is not in the oracle")
     rs = [flat_extent_exact(rd, s, k, i) for k in f[2]]
-    if f[1] == "union":
+    if f[1] in ("union", "hull"):
         return min(r[0] for r in rs), max(r[1] for r in rs)
     if f[1] == "difference" and all(r[0] > rs[0][0] and r[1] < rs[0][1] for r in rs[1:]):
         return rs[0]

@@ -7,6 +7,7 @@
 //! and its pieces' spans are merged in its own units, not within the
 //! coincidence bound of world coordinates that a CSG union applies.
 
+use super::bvh::Bvh;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, Ray, Shape, Transform};
 use crate::geometry::convex::Part as HullPart;
@@ -22,13 +23,19 @@ pub struct Piece {
 }
 
 /// The union of `pieces`: the convex set `hulls` describes (kept for a
-/// hull or sum that takes this one in).
+/// hull or sum that takes this one in; empty for a set that is not
+/// convex, a mesh rounded by a ball).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rounded {
     pub pieces: Vec<Piece>,
     pub hulls: Vec<Vec<HullPart>>,
     bounds: Aabb,
+    /// Over the pieces, when there are many.
+    bvh: Option<Box<Bvh>>,
 }
+
+/// The most pieces tested one by one, without a hierarchy.
+const FLAT_PIECES: usize = 12;
 
 /// How far apart (relative to the line's and the set's scale, in t) a
 /// span's end and the next one's start still overlap: the rounding of
@@ -53,10 +60,19 @@ impl Rounded {
                 bounds: b,
             });
         }
+        let bvh = (pieces.len() > FLAT_PIECES).then(|| {
+            let items: Vec<(u32, Aabb)> = pieces
+                .iter()
+                .enumerate()
+                .map(|(i, p)| (i as u32, p.bounds))
+                .collect();
+            Box::new(Bvh::build(&items, 2))
+        });
         Ok(Rounded {
             pieces,
             hulls,
             bounds,
+            bvh,
         })
     }
 
@@ -73,7 +89,14 @@ impl Solid for Rounded {
         let line = Ray::new(q.o, q.d);
         let n = self.pieces.len() as Part;
         let mut all: smallvec::SmallVec<[RawSpan; 16]> = smallvec::SmallVec::new();
-        for (i, p) in self.pieces.iter().enumerate() {
+        let mut near: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
+        match &self.bvh {
+            Some(b) => b.visit(&line, q.tmin, q.tmax, q.st, |i| near.push(i)),
+            None => near.extend(0..self.pieces.len() as u32),
+        }
+        // The hierarchy's order is fixed; the spans are sorted below.
+        for i in near {
+            let p = &self.pieces[i as usize];
             if !p.bounds.hit(&line, q.tmin, q.tmax) {
                 continue;
             }
@@ -87,7 +110,6 @@ impl Solid for Rounded {
                 st: &mut *q.st,
                 need: super::Need::Spans,
             };
-            let i = i as Part;
             // Through `dyn`: a piece's spans are not generic in this
             // closure's type (a shape holding shapes would recurse).
             let mut push = |(a, pa, b, pb): RawSpan| all.push((a, pa * n + i, b, pb * n + i));

@@ -20,7 +20,7 @@ use crate::csg::NodeKind;
 use crate::error::Result;
 use crate::geometry::convex::{Convex, Part};
 use crate::geometry::solid::Solid;
-use crate::geometry::{Rounded, Shape};
+use crate::geometry::{Mesh, Rounded, Shape};
 use crate::scene::Material;
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DVec3};
@@ -51,7 +51,7 @@ impl Resolver<'_> {
         self.src.error(
             s.name_span,
             format!("`{}` of {what} is not supported yet", s.name),
-            "csgrt takes the hull of bounded solids and their unions, and the Minkowski sum of convex ones",
+            "csgrt takes the hull of bounded solids and their unions, and the Minkowski sum of convex ones or of one mesh with convex ones",
         )
     }
 
@@ -201,37 +201,135 @@ impl Resolver<'_> {
         depth: usize,
     ) -> Result<Option<u32>> {
         if super::resize::is_flat(s) {
-            return Err(self.src.error(
-                s.name_span,
-                "`minkowski` of 2-D shapes is not supported yet",
-                "csgrt sums solids",
-            ));
+            return self.slab(s, xf, mat);
         }
         crate::scene::args::Args::bind(self.src, s, &["convexity"])?;
-        // Each operand's alternatives, then every choice of one from each.
         // The operands in the statement's own frame (the sum moves once,
-        // with the leaf's transform).
-        let mut operands: Vec<Vec<Sum>> = Vec::new();
+        // with the leaf's transform), each a union of primitives.
+        let marks = self.marks();
+        let mut nodes = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
-            let marks = self.marks();
             // The fault: each later operand moved by the statement's
             // translation too.
-            let at = if crate::mutant::active("minkowski_moved_twice") && !operands.is_empty() {
+            let at = if crate::mutant::active("minkowski_moved_twice") && !nodes.is_empty() {
                 DAffine3::from_translation(xf.translation)
             } else {
                 DAffine3::IDENTITY
             };
-            let Some(node) = self.statement(c, at, mat, depth + 1)? else {
-                continue;
+            nodes.extend(self.statement(c, at, mat, depth + 1)?);
+        }
+        let read = self.sum_of(&nodes);
+        self.cut_back(marks);
+        match read.map_err(|why| self.not_convex(s, &why))? {
+            Summed::Mesh(mesh, to, r) => {
+                let pieces = super::rounded::mesh_rounded(&mesh, to, r);
+                let limit = super::rounded::MAX_ROUNDED_TRIANGLES;
+                self.pieces_leaf(
+                    s,
+                    pieces,
+                    &format!("a mesh of more than {limit} triangles"),
+                    xf,
+                    mat,
+                )
+            }
+            Summed::MeshPlus(mesh, to, rest) => {
+                let pieces = super::rounded::mesh_plus(&mesh, to, &rest);
+                let limit = super::rounded::MAX_SUMMED_TRIANGLES;
+                let what = format!(
+                    "a mesh of more than {limit} triangles plus a convex solid other than a ball"
+                );
+                self.pieces_leaf(s, pieces, &what, xf, mat)
+            }
+            Summed::Convex(combos) => {
+                let mut leaves = Vec::new();
+                for sum in combos.into_iter().filter(|c| !c.is_empty()) {
+                    leaves.push(self.convex_leaf(s, sum, xf, mat)?);
+                }
+                Ok(self.op(Op::Union, leaves))
+            }
+        }
+    }
+
+    /// One leaf of a sum written out as pieces; `None` (too many) refused
+    /// as `what`.
+    fn pieces_leaf(
+        &mut self,
+        s: &Statement,
+        pieces: Option<super::rounded::Pieces>,
+        what: &str,
+        xf: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let Some(pieces) = pieces else {
+            return Err(self.not_convex(s, what));
+        };
+        let shape = Rounded::new(pieces.parts, Vec::new()).map_err(|_| {
+            self.src.error(
+                s.name_span,
+                format!("this `{}` is out of range or flattened", s.name),
+                "expected parts of a size within 1e-15 to 1e15 of their distances",
+            )
+        })?;
+        self.leaf(s, Shape::Rounded(shape), xf, mat)
+    }
+
+    /// What the operands `nodes` sum to: one mesh that is not convex and
+    /// balls (the mesh rounded by their sum), or else every choice of one
+    /// convex piece from each operand's union, or what stands in the way.
+    fn sum_of(&self, nodes: &[u32]) -> std::result::Result<Summed, String> {
+        let (mut mesh, mut centre, mut r, mut others) = (None, DVec3::ZERO, 0.0, false);
+        for &node in nodes {
+            let mut leaves = Vec::new();
+            self.union_leaves(node, &mut leaves)?;
+            let prim = &self.b.csg.prims[leaves[0] as usize];
+            let part = Part {
+                shape: prim.shape.clone(),
+                to_world: prim.xf.to_world,
             };
-            let mut alts = Vec::new();
-            let found = self.sums_of(node, &mut alts);
-            self.cut_back(marks);
-            found.map_err(|why| self.not_convex(s, &why))?;
-            operands.push(alts);
+            match (&part.shape, super::rounded::ball(&part)) {
+                (_, Some((c, radius))) if leaves.len() == 1 => {
+                    centre += c;
+                    r += radius;
+                }
+                (Shape::Mesh(m), None)
+                    if leaves.len() == 1 && mesh.is_none() && !is_convex(&part.shape) =>
+                {
+                    mesh = Some((m.clone(), part.to_world));
+                }
+                _ => others = true,
+            }
+        }
+        if let (Some((m, to)), false, true) = (&mesh, others, r > 0.0) {
+            return Ok(Summed::Mesh(
+                m.clone(),
+                DAffine3::from_translation(centre) * *to,
+                r,
+            ));
+        }
+        if let (Some((m, to)), true) = (&mesh, others) {
+            // The mesh plus one convex set: every other operand must be one.
+            let mut rest: Sum = Vec::new();
+            for &node in nodes {
+                let mut leaves = Vec::new();
+                self.union_leaves(node, &mut leaves)?;
+                if leaves.len() == 1
+                    && matches!(&self.b.csg.prims[leaves[0] as usize].shape, Shape::Mesh(x) if x == m)
+                {
+                    continue;
+                }
+                let mut alts = Vec::new();
+                self.sums_of(node, &mut alts)?;
+                if alts.len() != 1 {
+                    return Err("a mesh that is not convex plus a union".into());
+                }
+                rest.extend(alts.pop().expect("one"));
+            }
+            return Ok(Summed::MeshPlus(m.clone(), *to, rest));
         }
         let mut combos: Vec<Sum> = vec![Vec::new()];
-        for alts in operands {
+        for &node in nodes {
+            let mut alts = Vec::new();
+            self.sums_of(node, &mut alts)?;
             let mut next = Vec::new();
             for c in &combos {
                 for a in &alts {
@@ -241,22 +339,29 @@ impl Resolver<'_> {
                 }
             }
             if next.len() > MAX_PARTS {
-                return Err(self.not_convex(s, &format!("more than {MAX_PARTS} convex pieces")));
+                return Err(format!("more than {MAX_PARTS} convex pieces"));
             }
             combos = next;
         }
-        let mut leaves = Vec::new();
-        for sum in combos.into_iter().filter(|c| !c.is_empty()) {
-            leaves.push(self.convex_leaf(s, sum, xf, mat)?);
-        }
-        Ok(self.op(Op::Union, leaves))
+        Ok(Summed::Convex(combos))
     }
+}
+
+/// What a `minkowski()` sums to.
+enum Summed {
+    /// A mesh (placed) rounded by a ball of this radius.
+    Mesh(Mesh, DAffine3, f64),
+    /// A mesh (placed) plus a convex set (a sum of hulls).
+    MeshPlus(Mesh, DAffine3, Sum),
+    /// The union of these convex sums.
+    Convex(Vec<Sum>),
 }
 
 /// The hulls a hull or sum already made is the sum of.
 fn hulls_of(shape: &Shape) -> Option<&[Vec<Part>]> {
     match shape {
-        Shape::Convex(Convex { hulls, .. }) | Shape::Rounded(Rounded { hulls, .. }) => Some(hulls),
+        Shape::Convex(Convex { hulls, .. }) => Some(hulls),
+        Shape::Rounded(Rounded { hulls, .. }) if !hulls.is_empty() => Some(hulls),
         _ => None,
     }
 }
@@ -272,11 +377,8 @@ fn placed(parts: &[Part], m: DAffine3) -> impl Iterator<Item = Part> + '_ {
 /// Whether a solid is convex (so that Minkowski sums with it add supports).
 fn is_convex(shape: &Shape) -> bool {
     match shape {
-        Shape::Sphere(_)
-        | Shape::Cuboid(_)
-        | Shape::Cone(_)
-        | Shape::Convex(_)
-        | Shape::Rounded(_) => true,
+        Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cone(_) | Shape::Convex(_) => true,
+        Shape::Rounded(r) => !r.hulls.is_empty(),
         Shape::Prism(p) => {
             let o = &p.region.outlines;
             o.loops.len() == 1 && !o.curved() && convex_polygon(&o.loops[0])
@@ -301,7 +403,7 @@ fn is_convex(shape: &Shape) -> bool {
 }
 
 /// Whether a simple loop turns one way only.
-fn convex_polygon(l: &[glam::DVec2]) -> bool {
+pub(super) fn convex_polygon(l: &[glam::DVec2]) -> bool {
     let n = l.len();
     let (mut pos, mut neg) = (false, false);
     for i in 0..n {

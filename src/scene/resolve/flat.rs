@@ -470,11 +470,30 @@ impl Resolver<'_> {
             return Ok(Some(Flat::Hull(kids)));
         }
         if name == "minkowski" {
-            return Err(self.src.error(
-                s.name_span,
-                "`minkowski` of 2-D shapes is not supported yet",
-                "csgrt sums solids",
-            ));
+            // Summed in its own frame, then placed: m(A ⊕ B) is m's image
+            // of the sum (the sum moves once).
+            Args::bind(self.src, s, &["convexity"])?;
+            let mut ops = Vec::new();
+            for c in s.children.iter().filter(|c| !super::skipped(c)) {
+                ops.extend(self.flat(c, DAffine2::IDENTITY, depth + 1)?);
+            }
+            if ops.is_empty() {
+                return Ok(None);
+            }
+            let circles = ops
+                .iter()
+                .any(|f| matches!(f, Flat::Ellipse(e) if is_circle(e.matrix2)));
+            if circles {
+                self.openscad_facets_unsupported(s, "minkowski() with a circle")?;
+            }
+            return match minkowski2(ops) {
+                Ok(f) => Ok(f.map(|f| f.moved(m))),
+                Err(why) => Err(self.src.error(
+                    s.name_span,
+                    why,
+                    "csgrt sums convex 2-D shapes and their unions, any shape with circles (its offset), and a polygon with convex ones",
+                )),
+            };
         }
         if super::solids::binder(name) == Some(None) {
             return Err(self.not_supported_yet(s));
@@ -1262,4 +1281,224 @@ fn no_file(a: &Args, s: &Statement) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The most convex pieces a 2-D Minkowski sum is the union of, and the
+/// most corners of one.
+const MAX_SUM_PIECES: usize = 10_000;
+
+/// A convex piece of an operand: the hull of its points, grown by a disc
+/// of its radius (a polygon's corners with radius zero, a circle's centre
+/// with its own).
+type Piece2 = (Vec<DVec2>, f64);
+
+/// OpenSCAD's 2-D `minkowski()` of `ops` (in their own frame), exactly.
+/// Circles sum to one circle, which grows the rest by its radius: the
+/// offset of any one other shape (a rounded outline), or, for convex
+/// pieces, the disc about their sum. Convex operands sum by the hull of
+/// their corners' sums, and a union distributes over its pieces,
+/// A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C).
+fn minkowski2(ops: Vec<Flat>) -> Result<Option<Flat>, String> {
+    let (mut c, mut r) = (DVec2::ZERO, 0.0);
+    let mut rest = Vec::new();
+    for f in ops {
+        match &f {
+            Flat::Ellipse(e) if is_circle(e.matrix2) => {
+                c += e.translation;
+                r += e.matrix2.x_axis.length();
+            }
+            _ => rest.push(f),
+        }
+    }
+    let mut pieces: Vec<Vec<Piece2>> = Vec::new();
+    let mut whole = Vec::new();
+    for f in rest {
+        let mut p = Vec::new();
+        if convex_pieces(&f, &mut p) {
+            pieces.push(p);
+        } else {
+            whole.push(f);
+        }
+    }
+    let to_centre = DAffine2::from_translation(c);
+    match (whole.len(), pieces.is_empty()) {
+        (0, _) => {}
+        (1, false) if r == 0.0 => return polygon_plus(&whole[0], &pieces),
+        (1, true) => {
+            let f = whole.pop().expect("one");
+            let grown = if r > 0.0 {
+                super::offset::offset(f, Join::Round, r)?
+            } else {
+                Some(f)
+            };
+            return Ok(grown.map(|g| g.moved(to_centre)));
+        }
+        _ => return Err(NOT_SUMMED.into()),
+    }
+    if pieces.is_empty() {
+        return Ok((r > 0.0).then(|| Flat::disc(c, r)));
+    }
+    let mut combos: Vec<Piece2> = vec![(vec![c], r)];
+    for op in &pieces {
+        let mut next = Vec::with_capacity(combos.len() * op.len());
+        for (acc, ra) in &combos {
+            for (pts, rb) in op {
+                let sum: Vec<DVec2> = acc
+                    .iter()
+                    .flat_map(|&a| pts.iter().map(move |&b| a + b))
+                    .collect();
+                next.push((hull2(sum), ra + rb));
+            }
+        }
+        if next.len() > MAX_SUM_PIECES {
+            return Err(format!(
+                "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
+            ));
+        }
+        combos = next;
+    }
+    let parts: Vec<Option<Flat>> = combos
+        .into_iter()
+        .map(|(pts, r)| grown_polygon(&pts, r))
+        .collect();
+    Ok(combine(Op::Union, parts, Flat::Op))
+}
+
+/// A polygon A that is not convex plus a union of convex polygons: for
+/// each choice B of one piece from each operand (B the hull of their
+/// corners' sums), A moved by B's first corner b, and each edge of A plus
+/// B (the hull of its ends' sums with B's corners) — A ⊕ B = (A + b) ∪
+/// (∂A ⊕ B) for a convex B: on the segment from b to any other point of B,
+/// a point of the sum leaves A + b only across A's boundary.
+fn polygon_plus(a: &Flat, pieces: &[Vec<Piece2>]) -> Result<Option<Flat>, String> {
+    let loops = match a {
+        Flat::Polygon(o) if !o.curved() => &o.loops,
+        _ => return Err(NOT_SUMMED.into()),
+    };
+    let mut combos: Vec<Vec<DVec2>> = vec![vec![DVec2::ZERO]];
+    for op in pieces {
+        let mut next = Vec::with_capacity(combos.len() * op.len());
+        for acc in &combos {
+            for (pts, rb) in op {
+                if *rb != 0.0 {
+                    return Err(NOT_SUMMED.into());
+                }
+                next.push(hull2(
+                    acc.iter()
+                        .flat_map(|&x| pts.iter().map(move |&y| x + y))
+                        .collect(),
+                ));
+            }
+        }
+        combos = next;
+    }
+    let edges: usize = loops.iter().map(|l| l.len()).sum();
+    if combos.len() * (edges + 1) > MAX_SUM_PIECES {
+        return Err(format!(
+            "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
+        ));
+    }
+    let mut parts = Vec::new();
+    for b in &combos {
+        parts.push(Some(a.clone().moved(DAffine2::from_translation(b[0]))));
+        for l in loops {
+            for i in 0..l.len() {
+                let (p, q) = (l[i], l[(i + 1) % l.len()]);
+                let hull = hull2(b.iter().flat_map(|&x| [p + x, q + x]).collect());
+                if hull.len() >= 3 {
+                    parts.push(Some(Flat::Polygon(Outlines::polygons(vec![hull]))));
+                }
+            }
+        }
+    }
+    Ok(combine(Op::Union, parts, Flat::Op))
+}
+
+const NOT_SUMMED: &str =
+    "`minkowski` of 2-D shapes that are not convex, other than one shape with circles or one polygon with convex polygons, is not supported yet";
+
+/// The convex pieces of a union of convex polygons and circles; false for
+/// anything else.
+fn convex_pieces(f: &Flat, out: &mut Vec<Piece2>) -> bool {
+    match f {
+        Flat::Ellipse(e) if is_circle(e.matrix2) => {
+            out.push((vec![e.translation], e.matrix2.x_axis.length()));
+            true
+        }
+        Flat::Polygon(o)
+            if !o.curved() && o.loops.len() == 1 && super::convex::convex_polygon(&o.loops[0]) =>
+        {
+            out.push((hull2(o.loops[0].clone()), 0.0));
+            true
+        }
+        Flat::Op(Op::Union, kids) => kids.iter().all(|k| convex_pieces(k, out)),
+        _ => false,
+    }
+}
+
+/// The corners of the convex hull of points, counter-clockwise (Andrew's
+/// monotone chain; points on an edge left out).
+fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
+    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    pts.dedup();
+    if pts.len() < 3 {
+        return pts;
+    }
+    let mut hull: Vec<DVec2> = Vec::with_capacity(pts.len() + 1);
+    for pass in 0..2 {
+        let start = hull.len();
+        for k in 0..pts.len() {
+            let p = if pass == 0 {
+                pts[k]
+            } else {
+                pts[pts.len() - 1 - k]
+            };
+            while hull.len() >= start + 2 {
+                let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+                if (b - a).perp_dot(p - b) > 0.0 {
+                    break;
+                }
+                hull.pop();
+            }
+            hull.push(p);
+        }
+        hull.pop();
+    }
+    hull
+}
+
+/// The convex polygon of `corners` (counter-clockwise) grown by a disc of
+/// radius r: each edge moved out by r, with a disc on each corner.
+fn grown_polygon(corners: &[DVec2], r: f64) -> Option<Flat> {
+    let mut parts: Vec<Option<Flat>> = Vec::new();
+    if r > 0.0 {
+        parts.extend(corners.iter().map(|&p| Some(Flat::disc(p, r))));
+    }
+    let n = corners.len();
+    let poly = if n >= 3 && r > 0.0 {
+        let mut out = Vec::with_capacity(2 * n);
+        for i in 0..n {
+            let (a, b) = (corners[i], corners[(i + 1) % n]);
+            let e = (b - a).normalize();
+            let out_n = DVec2::new(e.y, -e.x) * r;
+            out.push(a + out_n);
+            out.push(b + out_n);
+        }
+        Some(out)
+    } else if n == 2 && r > 0.0 {
+        let e = (corners[1] - corners[0]).normalize();
+        let side = DVec2::new(e.y, -e.x) * r;
+        Some(vec![
+            corners[0] + side,
+            corners[1] + side,
+            corners[1] - side,
+            corners[0] - side,
+        ])
+    } else if n >= 3 {
+        Some(corners.to_vec())
+    } else {
+        None
+    };
+    parts.extend(poly.map(|p| Some(Flat::Polygon(Outlines::polygons(vec![p])))));
+    combine(Op::Union, parts, Flat::Op)
 }

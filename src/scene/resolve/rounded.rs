@@ -18,7 +18,7 @@ use glam::{DAffine3, DMat3, DVec2, DVec3};
 
 use crate::geometry::convex::Part;
 use crate::geometry::mesh::{Mesh, MeshData};
-use crate::geometry::{Cone, Shape, Sphere};
+use crate::geometry::{Cone, Convex, Cuboid, Shape, Sphere};
 
 /// The most points whose hull is found (by every triple: n⁴ tests).
 pub const MAX_POINTS: usize = 48;
@@ -67,6 +67,11 @@ pub fn as_rounded(hulls: &[Vec<Part>]) -> Option<(Vec<DVec3>, f64)> {
 /// and radius.
 fn ball_of(hull: &[Part]) -> Option<(DVec3, f64)> {
     let [p] = hull else { return None };
+    ball(p)
+}
+
+/// A part that is a ball: its centre and radius.
+pub fn ball(p: &Part) -> Option<(DVec3, f64)> {
     if !matches!(p.shape, Shape::Sphere(_)) {
         return None;
     }
@@ -526,6 +531,103 @@ pub fn as_cylinders(hulls: &[Vec<Part>]) -> Option<Pieces> {
             centered: false,
         };
         out.parts.push((Shape::Cone(cone), m));
+    }
+    Some(out)
+}
+
+/// The most triangles of a mesh rounded by a ball (three pieces each).
+pub const MAX_ROUNDED_TRIANGLES: usize = 20_000;
+
+/// A mesh of any shape (placed by `m`) plus a ball of radius r about the
+/// origin: the mesh itself, each triangle's slab |n·x| ≤ r over it, each
+/// edge's cylinder and each vertex's ball — A ⊕ B = A ∪ (∂A ⊕ B) for a
+/// solid A and a convex B (a point of the sum whose ball misses A's
+/// boundary has its ball, hence its centre, in A), and a triangle plus a
+/// ball is its slab with its rim's capsules. `None` past
+/// [`MAX_ROUNDED_TRIANGLES`].
+pub fn mesh_rounded(mesh: &Mesh, m: DAffine3, r: f64) -> Option<Pieces> {
+    let d = &mesh.data;
+    if d.tris.len() > MAX_ROUNDED_TRIANGLES {
+        return None;
+    }
+    let v: Vec<DVec3> = d.verts.iter().map(|&p| m.transform_point3(p)).collect();
+    let mut out = Pieces { parts: Vec::new() };
+    out.parts.push((Shape::Mesh(mesh.clone()), m));
+    let mut edges = std::collections::BTreeSet::new();
+    let mut used = std::collections::BTreeSet::new();
+    for t in &d.tris {
+        let [a, b, c] = t.map(|i| v[i as usize]);
+        for (x, y) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            edges.insert((x.min(y), x.max(y)));
+        }
+        used.extend(t.iter().copied());
+        let Some(n) = (b - a).cross(c - a).try_normalize() else {
+            continue;
+        };
+        let verts = vec![
+            a + n * r,
+            b + n * r,
+            c + n * r,
+            a - n * r,
+            b - n * r,
+            c - n * r,
+        ];
+        let tris = vec![
+            [0, 1, 2],
+            [3, 5, 4],
+            [0, 3, 4],
+            [0, 4, 1],
+            [1, 4, 5],
+            [1, 5, 2],
+            [2, 5, 3],
+            [2, 3, 0],
+        ];
+        out.mesh(verts, tris);
+    }
+    for (x, y) in edges {
+        if v[x as usize] != v[y as usize] {
+            out.cylinder(v[x as usize], v[y as usize], r);
+        }
+    }
+    for i in used {
+        out.ball(v[i as usize], r);
+    }
+    Some(out)
+}
+
+/// The most triangles of a mesh summed with a convex set other than a
+/// ball (one support-function piece each).
+pub const MAX_SUMMED_TRIANGLES: usize = 5_000;
+
+/// A mesh (placed by `m`) that is not convex plus the convex set `rest` (a
+/// sum of hulls), as pieces: the mesh moved by one point b of the set, and
+/// each triangle plus the set (convex, known by its support function) — A
+/// ⊕ B = (A + b) ∪ (∂A ⊕ B) for a convex B (on the segment from b to any
+/// other point of B, a point of the sum leaves A + b only across A's
+/// boundary). `None` past [`MAX_SUMMED_TRIANGLES`].
+pub fn mesh_plus(mesh: &Mesh, m: DAffine3, rest: &[Vec<Part>]) -> Option<Pieces> {
+    let d = &mesh.data;
+    if d.tris.len() > MAX_SUMMED_TRIANGLES {
+        return None;
+    }
+    let b = Convex::new(rest.to_vec()).support_point(DVec3::X);
+    let mut out = Pieces { parts: Vec::new() };
+    out.parts
+        .push((Shape::Mesh(mesh.clone()), DAffine3::from_translation(b) * m));
+    let v: Vec<DVec3> = d.verts.iter().map(|&p| m.transform_point3(p)).collect();
+    for t in &d.tris {
+        let point = |p: DVec3| Part {
+            shape: Shape::Cuboid(Cuboid { centered: false }),
+            to_world: DAffine3 {
+                matrix3: DMat3::ZERO,
+                translation: p,
+            },
+        };
+        let mut hulls = vec![t.iter().map(|&i| point(v[i as usize])).collect()];
+        hulls.extend(rest.iter().cloned());
+        let (c, centre) = Convex::centred(hulls);
+        out.parts
+            .push((Shape::Convex(c), DAffine3::from_translation(centre)));
     }
     Some(out)
 }
