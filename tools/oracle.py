@@ -938,7 +938,9 @@ def extrusion_face(leaf, q):
     f, flip = reader.revolve_setup(p)
     # Points off the axis are nearest the same piece of a polygon whether
     # or not it was cut to x >= 0 first.
-    fts = seg_arrays(features(f))
+    if not hasattr(leaf, "_features"):
+        leaf._features = seg_arrays(features(f))
+    fts = leaf._features
     q2 = np.array([math.hypot(q[0], q[1]), q[2]])
     cuts = [math.inf, math.inf]
     if p["angle"] != 360:
@@ -949,17 +951,45 @@ def extrusion_face(leaf, q):
 
 def seg_arrays(fts):
     """Features, with their segments' ends as arrays when all are straight
-    (so that feature_distances takes them at once)."""
+    (so that feature_distances takes them at once); else with the curved
+    pieces grouped by degree — their indices, control points and
+    QUAD_SAMPLES points — so that feature_distances takes each group at
+    once (the same arithmetic as feature_distance, element by element)."""
     if fts and all(ft[0] == "seg" for ft in fts):
         return (fts, np.array([ft[1] for ft in fts], float), np.array([ft[2] for ft in fts], float))
-    return (fts, None, None)
+    groups = {}
+    for i, ft in enumerate(fts):
+        if ft[0] == "quad":
+            groups.setdefault(len(ft[1]), []).append(i)
+    quads = []
+    for idx in groups.values():
+        P = np.array([fts[i][1] for i in idx], float)
+        S = np.array([reader.bezier_eval(fts[i][1], QUAD_SAMPLES[:, 0]) for i in idx])
+        quads.append((idx, P, S))
+    return (fts, None, quads)
+
+
+def bezier_eval_rows(P, u):
+    """reader.bezier_eval of each row: control points P (m, k + 1, 2) at
+    parameters u (m, s)."""
+    u = u[..., None]
+    k = P.shape[1] - 1
+    return sum(math.comb(k, i) * (1 - u) ** (k - i) * u**i * P[:, None, i, :] for i in range(k + 1))
 
 
 def feature_distances(fts, q):
     """feature_distance for each feature of seg_arrays' answer."""
     fts, a, b = fts
     if a is None:
-        return [feature_distance(ft, q) for ft in fts]
+        out = [None if ft[0] == "quad" else feature_distance(ft, q) for ft in fts]
+        for idx, P, S in b:
+            j = np.argmin(np.linalg.norm(S - q, axis=2), axis=1)
+            lo, hi = QUAD_SAMPLES[np.maximum(j - 1, 0), 0], QUAD_SAMPLES[np.minimum(j + 1, 256), 0]
+            u = np.linspace(lo, hi, 65, axis=1)
+            d = np.linalg.norm(bezier_eval_rows(P, u) - q, axis=2).min(axis=1)
+            for k, i in enumerate(idx):
+                out[i] = float(d[k])
+        return out
     e = b - a
     ee = np.einsum("ij,ij->i", e, e)
     with np.errstate(divide="ignore", invalid="ignore"):
