@@ -456,11 +456,24 @@ def leaf_mesh(leaf, n, big):
                     pts = mf.Manifold.hull_points(pts).to_mesh().vert_properties[:, :3]
                 pieces.append(mf.Manifold.hull_points(pts))
             return mf.Manifold.batch_boolean(pieces, mf.OpType.Add).as_original()
-        joined = [mf.Manifold.batch_boolean(o, mf.OpType.Add) for o in ops]
-        acc = joined[0]
-        for o in joined[1:]:
-            acc = acc.minkowski_sum(o)
-        return acc.as_original()
+        # The sum distributes over each operand's union: each choice of
+        # one leaf from each operand summed (convex leaves by the hull of
+        # their vertices' sums, the others by manifold), then united.
+        pieces = []
+        for combo in itertools.product(*ops):
+            convex = [m for m in combo if convex_solid(m)]
+            acc = None
+            if convex:
+                pts = convex[0].to_mesh().vert_properties[:, :3]
+                for m in convex[1:]:
+                    q = m.to_mesh().vert_properties[:, :3]
+                    pts = mf.Manifold.hull_points((pts[:, None, :] + q[None, :, :]).reshape(-1, 3)).to_mesh().vert_properties[:, :3]
+                acc = mf.Manifold.hull_points(pts)
+            for m in [m for m in combo if not convex_solid(m)]:
+                # (the mesh that is not convex first, as manifold is fast)
+                acc = m if acc is None else m.minkowski_sum(acc)
+            pieces.append(acc)
+        return mf.Manifold.batch_boolean(pieces, mf.OpType.Add).as_original()
     if k == "polyhedron":
         return polyhedron_solid(leaf).transform(leaf.matrix[:3, :].tolist()).as_original()
     if k in reader.EXTRUSIONS:

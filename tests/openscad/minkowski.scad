@@ -50,3 +50,11 @@ translate([-4, 30, 0]) minkowski() {
   ell();
   rotate([0, 90, 0]) cylinder(h = 1, r1 = 1, r2 = 0.4);
 }
+// The L plus a union: the sum distributed, (L + B1) u (L + B2).
+translate([12, 30, 0]) minkowski() {
+  ell();
+  union() {
+    cube([1, 1, 1]);
+    translate([3, 0, 0]) cube([1, 0.5, 0.5]);
+  }
+}

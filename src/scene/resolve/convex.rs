@@ -278,6 +278,7 @@ impl Resolver<'_> {
     /// convex piece from each operand's union, or what stands in the way.
     fn sum_of(&self, nodes: &[u32]) -> std::result::Result<Summed, String> {
         let (mut mesh, mut centre, mut r, mut others) = (None, DVec3::ZERO, 0.0, false);
+        let mut mesh_node = None;
         for &node in nodes {
             let mut leaves = Vec::new();
             self.union_leaves(node, &mut leaves)?;
@@ -295,6 +296,7 @@ impl Resolver<'_> {
                     if leaves.len() == 1 && mesh.is_none() && !is_convex(&part.shape) =>
                 {
                     mesh = Some((m.clone(), part.to_world));
+                    mesh_node = Some(node);
                 }
                 _ => others = true,
             }
@@ -307,25 +309,20 @@ impl Resolver<'_> {
             ));
         }
         if let (Some((m, to)), true) = (&mesh, others) {
-            // The mesh plus one convex set: every other operand must be one.
-            let mut rest: Sum = Vec::new();
-            for &node in nodes {
-                let mut leaves = Vec::new();
-                self.union_leaves(node, &mut leaves)?;
-                if leaves.len() == 1
-                    && matches!(&self.b.csg.prims[leaves[0] as usize].shape, Shape::Mesh(x) if x == m)
-                {
-                    continue;
-                }
-                let mut alts = Vec::new();
-                self.sums_of(node, &mut alts)?;
-                if alts.len() != 1 {
-                    return Err("a mesh that is not convex plus a union".into());
-                }
-                rest.extend(alts.pop().expect("one"));
-            }
-            return Ok(Summed::MeshPlus(m.clone(), *to, rest));
+            // The mesh plus the sum of the others, distributed over their
+            // unions: one convex set for each choice of a piece of each.
+            let others: Vec<u32> = nodes
+                .iter()
+                .copied()
+                .filter(|&n| Some(n) != mesh_node)
+                .collect();
+            return Ok(Summed::MeshPlus(m.clone(), *to, self.choices(&others)?));
         }
+        Ok(Summed::Convex(self.choices(nodes)?))
+    }
+
+    /// Every choice of one convex piece from each operand's union, summed.
+    fn choices(&self, nodes: &[u32]) -> std::result::Result<Vec<Sum>, String> {
         let mut combos: Vec<Sum> = vec![Vec::new()];
         for &node in nodes {
             let mut alts = Vec::new();
@@ -343,7 +340,7 @@ impl Resolver<'_> {
             }
             combos = next;
         }
-        Ok(Summed::Convex(combos))
+        Ok(combos)
     }
 }
 
@@ -351,8 +348,8 @@ impl Resolver<'_> {
 enum Summed {
     /// A mesh (placed) rounded by a ball of this radius.
     Mesh(Mesh, DAffine3, f64),
-    /// A mesh (placed) plus a convex set (a sum of hulls).
-    MeshPlus(Mesh, DAffine3, Sum),
+    /// A mesh (placed) plus the union of these convex sets (sums of hulls).
+    MeshPlus(Mesh, DAffine3, Vec<Sum>),
     /// The union of these convex sums.
     Convex(Vec<Sum>),
 }

@@ -599,35 +599,42 @@ pub fn mesh_rounded(mesh: &Mesh, m: DAffine3, r: f64) -> Option<Pieces> {
 /// ball (one support-function piece each).
 pub const MAX_SUMMED_TRIANGLES: usize = 5_000;
 
-/// A mesh (placed by `m`) that is not convex plus the convex set `rest` (a
-/// sum of hulls), as pieces: the mesh moved by one point b of the set, and
-/// each triangle plus the set (convex, known by its support function) — A
-/// ⊕ B = (A + b) ∪ (∂A ⊕ B) for a convex B (on the segment from b to any
-/// other point of B, a point of the sum leaves A + b only across A's
-/// boundary). `None` past [`MAX_SUMMED_TRIANGLES`].
-pub fn mesh_plus(mesh: &Mesh, m: DAffine3, rest: &[Vec<Part>]) -> Option<Pieces> {
-    let d = &mesh.data;
-    if d.tris.len() > MAX_SUMMED_TRIANGLES {
+/// A mesh (placed by `m`) that is not convex plus the union of the convex
+/// sets `sets` (each a sum of hulls), as pieces: for each set B, the mesh
+/// moved by one point b of B, and each triangle plus B (convex, known by
+/// its support function) — A ⊕ B = (A + b) ∪ (∂A ⊕ B) for a convex B (on
+/// the segment from b to any other point of B, a point of the sum leaves
+/// A + b only across A's boundary). `None` past [`MAX_SUMMED_TRIANGLES`]
+/// triangles in all.
+pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<Part>>]) -> Option<Pieces> {
+    if mesh.data.tris.len() * sets.len() > MAX_SUMMED_TRIANGLES {
         return None;
     }
-    let b = Convex::new(rest.to_vec()).support_point(DVec3::X);
+    let v: Vec<DVec3> = mesh
+        .data
+        .verts
+        .iter()
+        .map(|&p| m.transform_point3(p))
+        .collect();
     let mut out = Pieces { parts: Vec::new() };
-    out.parts
-        .push((Shape::Mesh(mesh.clone()), DAffine3::from_translation(b) * m));
-    let v: Vec<DVec3> = d.verts.iter().map(|&p| m.transform_point3(p)).collect();
-    for t in &d.tris {
-        let point = |p: DVec3| Part {
-            shape: Shape::Cuboid(Cuboid { centered: false }),
-            to_world: DAffine3 {
-                matrix3: DMat3::ZERO,
-                translation: p,
-            },
-        };
-        let mut hulls = vec![t.iter().map(|&i| point(v[i as usize])).collect()];
-        hulls.extend(rest.iter().cloned());
-        let (c, centre) = Convex::centred(hulls);
+    for rest in sets.iter().filter(|r| !r.is_empty()) {
+        let b = Convex::new(rest.to_vec()).support_point(DVec3::X);
         out.parts
-            .push((Shape::Convex(c), DAffine3::from_translation(centre)));
+            .push((Shape::Mesh(mesh.clone()), DAffine3::from_translation(b) * m));
+        for t in &mesh.data.tris {
+            let point = |p: DVec3| Part {
+                shape: Shape::Cuboid(Cuboid { centered: false }),
+                to_world: DAffine3 {
+                    matrix3: DMat3::ZERO,
+                    translation: p,
+                },
+            };
+            let mut hulls = vec![t.iter().map(|&i| point(v[i as usize])).collect()];
+            hulls.extend(rest.iter().cloned());
+            let (c, centre) = Convex::centred(hulls);
+            out.parts
+                .push((Shape::Convex(c), DAffine3::from_translation(centre)));
+        }
     }
     Some(out)
 }
