@@ -441,27 +441,15 @@ def leaf_mesh(leaf, n, big):
     if k == "hull":
         return mf.Manifold.batch_hull([leaf_mesh(x, n, big) for x in p["parts"]]).as_original()
     if k == "minkowski":
-        ops = [[leaf_mesh(x, n, big) for x in o] for o in p["operands"]]
-        if all(convex_solid(m) for o in ops for m in o):
-            # Convex operands: the sum distributes over each operand's
-            # union, and a sum of convex solids is the hull of its
-            # vertices' sums (robust where manifold's general sum leaves
-            # slivers at some resolutions).
-            pieces = []
-            for combo in itertools.product(*ops):
-                pts = combo[0].to_mesh().vert_properties[:, :3]
-                for m in combo[1:]:
-                    q = m.to_mesh().vert_properties[:, :3]
-                    pts = (pts[:, None, :] + q[None, :, :]).reshape(-1, 3)
-                    pts = mf.Manifold.hull_points(pts).to_mesh().vert_properties[:, :3]
-                pieces.append(mf.Manifold.hull_points(pts))
-            return mf.Manifold.batch_boolean(pieces, mf.OpType.Add).as_original()
+        ops = [[(m, convex_solid(m)) for m in (leaf_mesh(x, n, big) for x in o)] for o in p["operands"]]
         # The sum distributes over each operand's union: each choice of
-        # one leaf from each operand summed (convex leaves by the hull of
-        # their vertices' sums, the others by manifold), then united.
+        # one leaf from each operand summed, then united. Convex leaves sum
+        # to the hull of their vertices' sums (robust where manifold's
+        # general sum leaves slivers at some resolutions); the others by
+        # manifold's minkowski_sum.
         pieces = []
         for combo in itertools.product(*ops):
-            convex = [m for m in combo if convex_solid(m)]
+            convex = [m for m, c in combo if c]
             acc = None
             if convex:
                 pts = convex[0].to_mesh().vert_properties[:, :3]
@@ -469,7 +457,7 @@ def leaf_mesh(leaf, n, big):
                     q = m.to_mesh().vert_properties[:, :3]
                     pts = mf.Manifold.hull_points((pts[:, None, :] + q[None, :, :]).reshape(-1, 3)).to_mesh().vert_properties[:, :3]
                 acc = mf.Manifold.hull_points(pts)
-            for m in [m for m in combo if not convex_solid(m)]:
+            for m in [m for m, c in combo if not c]:
                 # (the mesh that is not convex first, as manifold is fast)
                 acc = m if acc is None else m.minkowski_sum(acc)
             pieces.append(acc)

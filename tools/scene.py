@@ -1421,6 +1421,19 @@ def grown_convex(pts, r, m):
     return ("op", "union", moved)
 
 
+def translation_2d(v):
+    return np.array([[1.0, 0.0, v[0]], [0.0, 1.0, v[1]], [0.0, 0.0, 1.0]])
+
+
+def sum_choices(start, pieces):
+    """Every choice of one (corners, radius) from each of pieces, summed onto
+    start: the hull of the corners' sums, with the radii's sum."""
+    combos = [start]
+    for op in pieces:
+        combos = [(convex_hull_2d((a[:, None, :] + b[None, :, :]).reshape(-1, 2)), ra + rb) for a, ra in combos for b, rb in op]
+    return combos
+
+
 def minkowski_flat(kids, m):
     """2-D minkowski() of flat trees read in its own frame, moved by m, as
     csgrt sums them: the circles' sum (centre c, radius r) grows the rest;
@@ -1438,7 +1451,7 @@ def minkowski_flat(kids, m):
     whole = [k for k, p in zip(rest, pieces) if p is None]
     pieces = [p for p in pieces if p is not None]
     if len(whole) == 1 and not pieces:
-        child = flat_moved(whole[0], np.array([[1.0, 0.0, c[0]], [0.0, 1.0, c[1]], [0.0, 0.0, 1.0]]))
+        child = flat_moved(whole[0], translation_2d(c))
         if r == 0:
             return flat_moved(child, m)
         if has_section(child):
@@ -1451,12 +1464,9 @@ def minkowski_flat(kids, m):
         # A + B = (A + b) u (edges of A + B) for a convex B (b a point of B):
         # A moved by B's first corner, and each edge's hull with B; in the
         # oracle's mesh, manifold's union of A's triangles' hulls with B.
-        combos = [np.zeros((1, 2))]
-        for op in pieces:
-            combos = [convex_hull_2d((a[:, None, :] + b[None, :, :]).reshape(-1, 2)) for a in combos for b, _ in op]
         parts = []
-        for b in combos:
-            shifted = flat_moved(whole[0], np.array([[1.0, 0.0, b[0][0]], [0.0, 1.0, b[0][1]], [0.0, 0.0, 1.0]]))
+        for b, _ in sum_choices((np.zeros((1, 2)), 0.0), pieces):
+            shifted = flat_moved(whole[0], translation_2d(b[0]))
             kids = [flat_moved(shifted, m)]
             for l in whole[0][1]:
                 for i in range(len(l)):
@@ -1469,12 +1479,7 @@ def minkowski_flat(kids, m):
         raise ValueError("minkowski of 2-D shapes that are not convex, other than one with circles or one polygon with convex polygons, is not in the oracle")
     if not pieces:
         return flat_moved(("ellipse", np.eye(2) * r, c), m) if r > 0 else None
-    combos = [(c[None, :], r)]
-    for op in pieces:
-        combos = [
-            (convex_hull_2d((a[:, None, :] + b[None, :, :]).reshape(-1, 2)), ra + rb) for a, ra in combos for b, rb in op
-        ]
-    parts = [g for g in (grown_convex(p, rr, m) for p, rr in combos) if g is not None]
+    parts = [g for g in (grown_convex(p, rr, m) for p, rr in sum_choices((c[None, :], r), pieces)) if g is not None]
     if not parts:
         return None
     return parts[0] if len(parts) == 1 else ("op", "union", parts)

@@ -1338,26 +1338,7 @@ fn minkowski2(ops: Vec<Flat>) -> Result<Option<Flat>, String> {
     if pieces.is_empty() {
         return Ok((r > 0.0).then(|| Flat::disc(c, r)));
     }
-    let mut combos: Vec<Piece2> = vec![(vec![c], r)];
-    for op in &pieces {
-        let mut next = Vec::with_capacity(combos.len() * op.len());
-        for (acc, ra) in &combos {
-            for (pts, rb) in op {
-                let sum: Vec<DVec2> = acc
-                    .iter()
-                    .flat_map(|&a| pts.iter().map(move |&b| a + b))
-                    .collect();
-                next.push((hull2(sum), ra + rb));
-            }
-        }
-        if next.len() > MAX_SUM_PIECES {
-            return Err(format!(
-                "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
-            ));
-        }
-        combos = next;
-    }
-    let parts: Vec<Option<Flat>> = combos
+    let parts: Vec<Option<Flat>> = choices((vec![c], r), &pieces)?
         .into_iter()
         .map(|(pts, r)| grown_polygon(&pts, r))
         .collect();
@@ -1375,22 +1356,9 @@ fn polygon_plus(a: &Flat, pieces: &[Vec<Piece2>]) -> Result<Option<Flat>, String
         Flat::Polygon(o) if !o.curved() => &o.loops,
         _ => return Err(NOT_SUMMED.into()),
     };
-    let mut combos: Vec<Vec<DVec2>> = vec![vec![DVec2::ZERO]];
-    for op in pieces {
-        let mut next = Vec::with_capacity(combos.len() * op.len());
-        for acc in &combos {
-            for (pts, rb) in op {
-                if *rb != 0.0 {
-                    return Err(NOT_SUMMED.into());
-                }
-                next.push(hull2(
-                    acc.iter()
-                        .flat_map(|&x| pts.iter().map(move |&y| x + y))
-                        .collect(),
-                ));
-            }
-        }
-        combos = next;
+    let combos = choices((vec![DVec2::ZERO], 0.0), pieces)?;
+    if combos.iter().any(|(_, r)| *r != 0.0) {
+        return Err(NOT_SUMMED.into());
     }
     let edges: usize = loops.iter().map(|l| l.len()).sum();
     if combos.len() * (edges + 1) > MAX_SUM_PIECES {
@@ -1399,7 +1367,7 @@ fn polygon_plus(a: &Flat, pieces: &[Vec<Piece2>]) -> Result<Option<Flat>, String
         ));
     }
     let mut parts = Vec::new();
-    for b in &combos {
+    for (b, _) in &combos {
         parts.push(Some(a.clone().moved(DAffine2::from_translation(b[0]))));
         for l in loops {
             for i in 0..l.len() {
@@ -1412,6 +1380,31 @@ fn polygon_plus(a: &Flat, pieces: &[Vec<Piece2>]) -> Result<Option<Flat>, String
         }
     }
     Ok(combine(Op::Union, parts, Flat::Op))
+}
+
+/// Every choice of one convex piece from each of `pieces`, summed onto
+/// `start`: the hull of the corners' sums, with the radii's sum.
+fn choices(start: Piece2, pieces: &[Vec<Piece2>]) -> Result<Vec<Piece2>, String> {
+    let mut combos = vec![start];
+    for op in pieces {
+        let mut next = Vec::with_capacity(combos.len() * op.len());
+        for (acc, ra) in &combos {
+            for (pts, rb) in op {
+                let sum: Vec<DVec2> = acc
+                    .iter()
+                    .flat_map(|&a| pts.iter().map(move |&b| a + b))
+                    .collect();
+                next.push((hull2(sum), ra + rb));
+            }
+        }
+        if next.len() > MAX_SUM_PIECES {
+            return Err(format!(
+                "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
+            ));
+        }
+        combos = next;
+    }
+    Ok(combos)
 }
 
 const NOT_SUMMED: &str =
@@ -1436,35 +1429,13 @@ fn convex_pieces(f: &Flat, out: &mut Vec<Piece2>) -> bool {
     }
 }
 
-/// The corners of the convex hull of points, counter-clockwise (Andrew's
-/// monotone chain; points on an edge left out).
-fn hull2(mut pts: Vec<DVec2>) -> Vec<DVec2> {
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    pts.dedup();
-    if pts.len() < 3 {
-        return pts;
-    }
-    let mut hull: Vec<DVec2> = Vec::with_capacity(pts.len() + 1);
-    for pass in 0..2 {
-        let start = hull.len();
-        for k in 0..pts.len() {
-            let p = if pass == 0 {
-                pts[k]
-            } else {
-                pts[pts.len() - 1 - k]
-            };
-            while hull.len() >= start + 2 {
-                let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
-                if (b - a).perp_dot(p - b) > 0.0 {
-                    break;
-                }
-                hull.pop();
-            }
-            hull.push(p);
-        }
-        hull.pop();
-    }
-    hull
+/// The corners of the convex hull of points, counter-clockwise (points on
+/// an edge left out).
+fn hull2(pts: Vec<DVec2>) -> Vec<DVec2> {
+    super::rounded::hull_indices_2d(&pts, 0.0)
+        .into_iter()
+        .map(|i| pts[i])
+        .collect()
 }
 
 /// The convex polygon of `corners` (counter-clockwise) grown by a disc of

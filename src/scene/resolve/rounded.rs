@@ -328,7 +328,14 @@ fn plane_hull_indices(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<usize>
         .iter()
         .map(|&p| DVec2::new((p - o).dot(u), (p - o).dot(v)))
         .collect();
-    let mut order: Vec<usize> = (0..pts.len()).collect();
+    hull_indices_2d(&q, tol)
+}
+
+/// The indices of the corners of the convex hull of `q`, counter-clockwise
+/// (Andrew's monotone chain from the lowest x, then y); points on an edge
+/// (within `tol` of its length) and repeats are left out.
+pub(super) fn hull_indices_2d(q: &[DVec2], tol: f64) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..q.len()).collect();
     order.sort_by(|&a, &b| q[a].x.total_cmp(&q[b].x).then(q[a].y.total_cmp(&q[b].y)));
     order.dedup_by(|a, b| q[*a] == q[*b]);
     let turn = |a: usize, b: usize, c: usize| {
@@ -616,19 +623,20 @@ pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<Part>>]) -> Option<Pi
         .iter()
         .map(|&p| m.transform_point3(p))
         .collect();
+    // A vertex as a part: a box shrunk to the point.
+    let point = |p: DVec3| Part {
+        shape: Shape::Cuboid(Cuboid { centered: false }),
+        to_world: DAffine3 {
+            matrix3: DMat3::ZERO,
+            translation: p,
+        },
+    };
     let mut out = Pieces { parts: Vec::new() };
     for rest in sets.iter().filter(|r| !r.is_empty()) {
         let b = Convex::new(rest.to_vec()).support_point(DVec3::X);
         out.parts
             .push((Shape::Mesh(mesh.clone()), DAffine3::from_translation(b) * m));
         for t in &mesh.data.tris {
-            let point = |p: DVec3| Part {
-                shape: Shape::Cuboid(Cuboid { centered: false }),
-                to_world: DAffine3 {
-                    matrix3: DMat3::ZERO,
-                    translation: p,
-                },
-            };
             let mut hulls = vec![t.iter().map(|&i| point(v[i as usize])).collect()];
             hulls.extend(rest.iter().cloned());
             let (c, centre) = Convex::centred(hulls);
