@@ -28,6 +28,7 @@ pub const NAMES: &[&str] = &[
     "svg_arcs_as_chords",
     "hull_gjk_normals",
     "minkowski_moved_twice",
+    "offset_one_side",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -258,7 +258,7 @@ class Prim:
 
 L_SHAPE = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.0), (0.0, 0.0), (0.0, 0.5), (-0.5, 0.5)]
 PROFILE = [(0.25, -0.5), (0.5, -0.5), (0.5, 0.0), (0.375, 0.25), (0.25, 0.5)]
-EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "cubic", "lathe", "turned_cubic"]
+EXTRUSIONS = ["prism", "tapered", "twisted", "twisted_ellipse", "glyph", "cubic", "lathe", "turned_cubic", "offset_glyph"]
 # The turned cubic profile: a vase's half section in the file (x, y), read
 # as (r, z) = (x, -y) (no page size), times the size over 60.
 VASE = [((5, 30),), ((20, 30), (32, 10), (8, -10)), ((18, -30),), ((15, -30), (4, -12), (28, 10)), ((5, 26),)]
@@ -692,6 +692,190 @@ class Extruded(Prim):
         return [x / ln for x in w], rho
 
 
+# The offset glyph: the glyph's outline grown by this much of its size.
+OFFSET_R = 0.04
+
+
+class OffsetGlyph(Extruded):
+    """The glyph's prism grown by OFFSET_R of its size (`offset(r)` of the
+    text): the points within r of the region. Its boundary lies on the
+    curves the edges' points trace at distance r along their normals and
+    on the circles of radius r about their ends; along a line, the places
+    it meets those (offset points B(u) + s r nu(u) on the line: u a root of
+    (d x (B - o))^2 |B'|^2 - r^2 (d . B')^2, at 50 digits) are candidates,
+    and the boundary is where the side changes between them (inside the
+    region, or within r of an edge: the nearest point by the roots of
+    (B - q) . B' = 0)."""
+
+    def __init__(self, kind, c, s, pose="plain"):
+        super().__init__("glyph", c, s, pose)
+        self.kind = kind
+        self.r_f = OFFSET_R * s
+        self.r = M(self.r_f)
+        # Each edge's control box grown by a little more than r (floats:
+        # a filter only).
+        self.boxes = []
+        for e in self.edges:
+            xs, ys = [float(q[0]) for q in e], [float(q[1]) for q in e]
+            g = self.r_f * 1.01 + 1e-9 * s
+            self.boxes.append((min(xs) - g, min(ys) - g, max(xs) + g, max(ys) + g))
+
+    def body(self):
+        if getattr(self, "r_f", None) is None:
+            return super().body()
+        s = self.s
+        return f"linear_extrude(height = {s!r}, center = true) offset(r = {self.r_f!r}) text(\"e\", size = {s!r}, halign = \"center\", valign = \"center\");"
+
+    def dist2(self, e, q):
+        """(squared distance from q to edge e, its nearest parameter)."""
+        if len(e) == 2:
+            a, b = e
+            ed = [b[0] - a[0], b[1] - a[1]]
+            u = ((q[0] - a[0]) * ed[0] + (q[1] - a[1]) * ed[1]) / (ed[0] ** 2 + ed[1] ** 2)
+            u = min(M(1), max(M(0), u))
+            return (a[0] + u * ed[0] - q[0]) ** 2 + (a[1] + u * ed[1] - q[1]) ** 2, u
+        a, c, b = e
+        k0 = [a[i] - q[i] for i in range(2)]
+        k1 = [2 * (c[i] - a[i]) for i in range(2)]
+        k2 = [a[i] - 2 * c[i] + b[i] for i in range(2)]
+        d2 = lambda x, y: x[0] * y[0] + x[1] * y[1]
+        best = None
+        for u in [M(0), M(1)] + [u for u in cubic_roots([2 * d2(k2, k2), 3 * d2(k1, k2), d2(k1, k1) + 2 * d2(k0, k2), d2(k0, k1)]) if 0 < u < 1]:
+            v = (k0[0] + k1[0] * u + k2[0] * u * u) ** 2 + (k0[1] + k1[1] * u + k2[1] * u * u) ** 2
+            if best is None or v < best[0]:
+                best = (v, u)
+        return best
+
+    def near(self, q):
+        return [i for i, (x0, y0, x1, y1) in enumerate(self.boxes) if x0 <= q[0] <= x1 and y0 <= q[1] <= y1]
+
+    def inside_off(self, q):
+        if self.inside2(q):
+            return True
+        r2 = self.r * self.r
+        return any(self.dist2(self.edges[i], q)[0] <= r2 for i in self.near([float(q[0]), float(q[1])]))
+
+    def contains(self, p):
+        return abs(p[2]) <= self.h and self.inside_off([p[0], p[1]])
+
+    def side_changes(self, o, d):
+        """[(t, tag)] where the line o + t d (2-D) crosses the boundary."""
+        dd = d[0] ** 2 + d[1] ** 2
+        if dd == 0:
+            return []
+        r = self.r
+        nl = [-d[1], d[0]]
+        on = lambda x: nl[0] * (x[0] - o[0]) + nl[1] * (x[1] - o[1])
+        tpar = lambda x: ((x[0] - o[0]) * d[0] + (x[1] - o[1]) * d[1]) / dd
+        cands = []
+        nlf = [float(x) for x in nl]
+        ln = math.hypot(*nlf)
+        of = [float(x) for x in o]
+        for i, e in enumerate(self.edges):
+            x0, y0, x1, y1 = self.boxes[i]
+            vals = [nlf[0] * (x - of[0]) + nlf[1] * (y - of[1]) for x, y in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+            if all(v > 1e-9 * ln * self.s for v in vals) or all(v < -1e-9 * ln * self.s for v in vals):
+                continue
+            a = e[0]
+            # The circle about the edge's start.
+            for t in quadratic(dd, (o[0] - a[0]) * d[0] + (o[1] - a[1]) * d[1], (o[0] - a[0]) ** 2 + (o[1] - a[1]) ** 2 - r * r):
+                cands.append((t, ("disc", i)))
+            if len(e) == 2:
+                b = e[1]
+                ed = [b[0] - a[0], b[1] - a[1]]
+                le = mp.sqrt(ed[0] ** 2 + ed[1] ** 2)
+                nu = [-ed[1] / le, ed[0] / le]
+                for sg in (1, -1):
+                    p0 = [a[j] + sg * r * nu[j] for j in range(2)]
+                    p1 = [b[j] + sg * r * nu[j] for j in range(2)]
+                    s0, s1 = on(p0), on(p1)
+                    if s0 != s1 and (s0 <= 0) != (s1 <= 0):
+                        u = s0 / (s0 - s1)
+                        cands.append((tpar([p0[j] + u * (p1[j] - p0[j]) for j in range(2)]), ("band", i, sg, u)))
+                continue
+            a, c, b = e
+            k = [[a[j] - o[j], 2 * (c[j] - a[j]), a[j] - 2 * c[j] + b[j]] for j in range(2)]
+            X = [d[0] * k[1][j] - d[1] * k[0][j] for j in range(3)]
+            bx, by = [k[0][1], 2 * k[0][2]], [k[1][1], 2 * k[1][2]]
+            bb = [bx[0] ** 2 + by[0] ** 2, 2 * (bx[0] * bx[1] + by[0] * by[1]), bx[1] ** 2 + by[1] ** 2]
+            D = [d[0] * bx[0] + d[1] * by[0], d[0] * bx[1] + d[1] * by[1]]
+            mulp = lambda p_, q_: [sum(p_[i_] * q_[j - i_] for i_ in range(len(p_)) if 0 <= j - i_ < len(q_)) for j in range(len(p_) + len(q_) - 1)]
+            lhs, rhs = mulp(mulp(X, X), bb), mulp(D, D)
+            g = [lhs[j] - (r * r * rhs[j] if j < len(rhs) else 0) for j in range(len(lhs))]
+            while g and g[-1] == 0:
+                g.pop()
+            if len(g) < 2:
+                continue
+            for u in mp.polyroots(g[::-1], maxsteps=400, extraprec=400):
+                if abs(mp.im(u)) > mp.mpf(10) ** -25 or not (0 < mp.re(u) < 1):
+                    continue
+                u = mp.re(u)
+                B = [a[j] * (1 - u) ** 2 + 2 * c[j] * u * (1 - u) + b[j] * u * u for j in range(2)]
+                tg = [bx[0] + bx[1] * u, by[0] + by[1] * u]
+                lt = mp.sqrt(tg[0] ** 2 + tg[1] ** 2)
+                for sg in (1, -1):
+                    x = [B[0] - sg * r * tg[1] / lt, B[1] + sg * r * tg[0] / lt]
+                    if abs(on(x)) <= mp.mpf(10) ** -30 * (1 + dd) * (abs(self.s) + abs(o[0]) + abs(o[1])):
+                        cands.append((tpar(x), ("band", i, sg, u)))
+        cands.sort(key=lambda x: x[0])
+        out, inside = [], False
+        for j, (t, tag) in enumerate(cands):
+            now = j + 1 < len(cands) and self.inside_off([o[0] + (t + cands[j + 1][0]) / 2 * d[0], o[1] + (t + cands[j + 1][0]) / 2 * d[1]])
+            if now != inside:
+                out.append((t, tag))
+                inside = now
+        return out
+
+    def tagged(self, o, d):
+        out = []
+        if d[2] != 0:
+            for zc in (-self.h, self.h):
+                t = (zc - o[2]) / d[2]
+                if self.inside_off([o[0] + t * d[0], o[1] + t * d[1]]):
+                    out.append((t, ("cap", 1 if zc > 0 else -1)))
+            tlo, thi = sorted([(-self.h - o[2]) / d[2], (self.h - o[2]) / d[2]])
+        else:
+            if abs(o[2]) >= self.h:
+                return []
+            tlo, thi = -mp.inf, mp.inf
+        out += [(t, tag) for t, tag in self.side_changes(o, d) if tlo <= t <= thi]
+        return sorted(out, key=lambda x: x[0])
+
+    def normal(self, o, d, t):
+        lo, ld = self.local(o, d)
+        tag = min(self.tagged(lo, ld), key=lambda x: abs(x[0] - t))[1]
+        p = [lo[i] + t * ld[i] for i in range(3)]
+        rho = mp.inf
+        if tag[0] == "cap":
+            g = [M(0), M(0), M(tag[1])]
+        elif tag[0] == "disc":
+            v = self.edges[tag[1]][0]
+            g, rho = [p[0] - v[0], p[1] - v[1], M(0)], self.r
+        else:
+            _, i, sg, u = tag
+            e = self.edges[i]
+            if len(e) == 2:
+                B = [e[0][j] + u * (e[1][j] - e[0][j]) for j in range(2)]
+            else:
+                a, c, b = e
+                B = [a[j] * (1 - u) ** 2 + 2 * c[j] * u * (1 - u) + b[j] * u * u for j in range(2)]
+                b1 = [2 * (1 - u) * (c[j] - a[j]) + 2 * u * (b[j] - c[j]) for j in range(2)]
+                b2 = [2 * (a[j] - 2 * c[j] + b[j]) for j in range(2)]
+                kap = cross2(b1, b2) / mp.sqrt(b1[0] ** 2 + b1[1] ** 2) ** 3
+                # The offset curve's radius: the centre of curvature lies
+                # 1/kappa along the left normal, the point r * sg along it.
+                rho = mp.inf if kap == 0 else abs(1 / kap - sg * self.r)
+            g = [p[0] - B[0], p[1] - B[1], M(0)]
+        ln = mp.sqrt(dot(g, g))
+        g = [x / ln for x in g]
+        eps = M(self.s) * mp.mpf(10) ** -20
+        if self.contains([p[i] + eps * g[i] for i in range(3)]):
+            g = [-x for x in g]
+        w = apply(transpose(self.inv), g)
+        ln = mp.sqrt(dot(w, w))
+        return [x / ln for x in w], rho
+
+
 def power(e, i):
     """Coordinate i of the cubic Bézier edge e in the power basis: k0 + k1
     u + k2 u^2 + k3 u^3."""
@@ -755,7 +939,7 @@ def extrusion_rays(p, n, rng):
             a = 2 * math.pi * j / n
             o = at(-3.0, 0.5 * (1 - slim), -0.25 + 0.05 * math.sin(a))
             out.append(("grazing", o, [1.0, 0.0, 0.0]))
-        elif p.kind not in ("glyph", "cubic"):
+        elif p.kind not in ("glyph", "cubic", "offset_glyph"):
             e = -0.5 + slim
             out.append(("edge", at(e, e, -3.0), [0.0, 0.0, 1.0]))
     return out
@@ -1170,7 +1354,7 @@ def check_ray(p, case, o, d, c, worst, worst_angle, failures):
 
 
 def case_solid(kind, off, size, pose):
-    cls = Extruded if kind in EXTRUSIONS else Convexed if kind in CONVEXES else Prim
+    cls = OffsetGlyph if kind == "offset_glyph" else Extruded if kind in EXTRUSIONS else Convexed if kind in CONVEXES else Prim
     return cls(kind, [off * x for x in [1.0, 0.7, 0.3]], size, pose)
 
 
@@ -1211,7 +1395,7 @@ def main():
     # (or as many as there are cores) at once, their worst merged in order.
     jobs = []
     for kind in kinds:
-        poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic", "turned_cubic") else POSES
+        poses = ["plain", "rotated+scaled"] if kind in ("twisted", "twisted_ellipse", "glyph", "cubic", "turned_cubic", "offset_glyph") else POSES
         for pose in poses:
             for off in OFFSETS:
                 for size in SIZES:

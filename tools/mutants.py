@@ -52,6 +52,7 @@ MUTANTS = {
     "svg_arcs_as_chords": (["tests/openscad/svg.csg"], False),
     "hull_gjk_normals": ([], ["hull_spheres", "rounded_box"]),
     "minkowski_moved_twice": (["tests/openscad/minkowski.csg"], False),
+    "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

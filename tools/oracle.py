@@ -539,6 +539,14 @@ def extrusion_facets(leaf, n):
         qd, qa = quad_facets(leaf, n)
         sd, sa = svg_slack(p["flat"])
         dist = max(max((s[0] * k * b for s in sv), default=0.0), qd * k) + (CROSS_SECTION_GRID + sd) * k
+        bk, sharp = bands(p["flat"])
+        if bk:
+            # A curved outline offset: the flattened outline's distance and
+            # the offset's arcs add (an offset moves by no more than its
+            # outline); Clipper's miters and squares at the flattened
+            # outline's corners (turning by at most 2 qa) stand off the
+            # round offset by up to |d| (1 / cos(qa) - 1).
+            dist += qd * k + (bk * (1 / math.cos(min(qa, 1.0)) - 1) * k if sharp else 0.0)
         ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa) + sa
         return dist, ang
     R = flat_extent(p["flat"])
@@ -736,6 +744,17 @@ def ellipse_singular_values(leaf):
     return leaf._ellipse_sv
 
 
+def bands(f):
+    """(largest |d|, whether any joins are miter or square) of the curved
+    outlines offset in a 2-D tree; (0, False) without."""
+    if f[0] != "op":
+        return 0.0, False
+    parts = [bands(k) for k in f[2]]
+    bk = max([x for x, _ in parts] + [f[3][1] if len(f) == 4 and f[3][0] == "bands" else 0.0])
+    sharp = any(y for _, y in parts) or bool(bk and len(f) == 4 and f[3][0] in ("miter", "square"))
+    return bk, sharp
+
+
 def extrusion_curvature(leaf):
     """The smallest object-space curvature radius of an extrusion's circles
     (a tapered one's at its smaller end; infinite without circles)."""
@@ -746,6 +765,10 @@ def extrusion_curvature(leaf):
         k = max(leaf.params["scale"], 1e-300) if leaf.kind == "linear_extrude" else 1.0
         r = min((s[1] * k for s in sv), default=math.inf)
         r = min([r] + [quad_min_radius(e) * k for e in quads(leaf.params["flat"])])
+        bk = bands(leaf.params["flat"])[0]
+        if bk:
+            # An offset curve's radius is the edge's plus or minus |d|.
+            r = min([r] + [max(quad_min_radius(e) - bk, 1e-300) * k for e in quads(leaf.params["flat"])])
         leaf._curvature = r
     return leaf._curvature
 
@@ -892,6 +915,9 @@ def features(f):
         return [("seg", a, b_) if c is None else ("quad", reader.bezier_points(a, c, b_)) for a, c, b_ in reader.curve_pieces(f)]
     if f[0] == "ellipse":
         return [f]
+    if f[0] == "op" and len(f) == 4 and f[3][0] == "bands":
+        # A curved outline offset: its edges' faces lie |d| from them.
+        return [("band", x, f[3][1]) for x in features(f[2][0])] + [x for k in f[2][1:] for x in features(k)]
     return [x for k in f[2] for x in features(k)]
 
 
@@ -955,9 +981,13 @@ def seg_arrays(fts):
     (so that feature_distances takes them at once); else with the curved
     pieces grouped by degree — their indices, control points and
     QUAD_SAMPLES points — so that feature_distances takes each group at
-    once (the same arithmetic as feature_distance, element by element)."""
+    once (the same arithmetic as feature_distance, element by element).
+    A band (an offset curved outline's edge) is its edge, with the
+    distance |d| subtracted after."""
+    sub = np.array([ft[2] if ft[0] == "band" else 0.0 for ft in fts])
+    fts = [ft[1] if ft[0] == "band" else ft for ft in fts]
     if fts and all(ft[0] == "seg" for ft in fts):
-        return (fts, np.array([ft[1] for ft in fts], float), np.array([ft[2] for ft in fts], float))
+        return (fts, np.array([ft[1] for ft in fts], float), np.array([ft[2] for ft in fts], float), sub)
     groups = {}
     for i, ft in enumerate(fts):
         if ft[0] == "quad":
@@ -967,7 +997,7 @@ def seg_arrays(fts):
         P = np.array([fts[i][1] for i in idx], float)
         S = np.array([reader.bezier_eval(fts[i][1], QUAD_SAMPLES[:, 0]) for i in idx])
         quads.append((idx, P, S))
-    return (fts, None, quads)
+    return (fts, None, quads, sub)
 
 
 def bezier_eval_rows(P, u):
@@ -980,7 +1010,9 @@ def bezier_eval_rows(P, u):
 
 def feature_distances(fts, q):
     """feature_distance for each feature of seg_arrays' answer."""
-    fts, a, b = fts
+    fts, a, b, sub = fts
+    if sub.any():
+        return list(np.abs(np.array(feature_distances((fts, a, b, sub * 0), q)) - sub))
     if a is None:
         out = [None if ft[0] == "quad" else feature_distance(ft, q) for ft in fts]
         for idx, P, S in b:

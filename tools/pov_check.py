@@ -629,10 +629,17 @@ SECTION_ERROR = '#error "csgrt: projection(cut = true) has no POV-Ray equivalent
 HULL_ERROR = '#error "csgrt: hull() and minkowski() have no POV-Ray equivalent"'
 SHADOW_ERROR = '#error "csgrt: projection(cut = false) has no POV-Ray equivalent"'
 XOR_ERROR = '#error "csgrt: a drawing\'s outlines combined even-odd have no POV-Ray equivalent"'
+OFFSET_ERROR = '#error "csgrt: offset() of curved outlines has no POV-Ray equivalent"'
 
 
 def has_faces(f):
     return f is not None and (f[0] == "faces" or f[0] == "op" and any(has_faces(k) for k in f[2]))
+
+
+def has_bands(f):
+    """Whether a 2-D tree holds a curved outline offset (scene.py's
+    ("bands", d) mark)."""
+    return f is not None and f[0] == "op" and (len(f) == 4 and f[3][0] == "bands" or any(has_bands(k) for k in f[2]))
 
 
 def has_xor(f):
@@ -771,6 +778,10 @@ def check(path, binary):
             # whose arcs, ellipses or strokes join their outlines by parity.
             xors = [x for x in sc.leaves if x.kind in reader.EXTRUSIONS and has_xor(x.params.get("flat"))]
             return [] if xors else ["the export refuses an even-odd drawing the file does not have"]
+        if OFFSET_ERROR in text:
+            # Nor offset curves: the same, for curved outlines offset.
+            grown = [x for x in sc.leaves if x.kind in reader.EXTRUSIONS and has_bands(x.params.get("flat"))]
+            return [] if grown else ["the export refuses an offset of curves the file does not have"]
         if SECTION_ERROR in text:
             # Nor a solid made of another's slice: the same, for projections.
             cuts = [x for x in sc.leaves if reader.has_slice(x)]

@@ -765,6 +765,9 @@ class Reader:
             return None
         if pieces[0] != "op":
             return flat_moved(pieces, m)
+        if len(pieces) == 4:
+            # One curved outline's pieces keep their own mark.
+            return ("op", "union", [flat_moved(pieces, m)], (join, d, child, m))
         return ("op", pieces[1], [flat_moved(k, m) for k in pieces[2]], (join, d, child, m))
 
     def flat_kids(self, s, op, m):
@@ -1256,6 +1259,9 @@ def flat_moved(f, m):
         arc = lambda x: None if x is None else (mv(x[0]), x[1] * math.sqrt(abs(np.linalg.det(m[:2, :2]))), mv(x[2]))
         moved = ([[(mv(p), arc(x)) for p, x in path] for path in paths], [(mv(c), r * math.sqrt(abs(np.linalg.det(m[:2, :2])))) for c, r in circles])
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("drawing",) + moved)
+    if len(f) == 4 and f[3][0] == "bands":
+        # Distances scale with a similarity's factor.
+        return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("bands", f[3][1] * math.sqrt(abs(np.linalg.det(m[:2, :2])))))
     if len(f) == 4:
         join, d, child, m0 = f[3]
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], (join, d, child, m @ m0))
@@ -1312,7 +1318,7 @@ def offset_pieces(f, join, d):
             raise ValueError("offset of an ellipse is not in the oracle")
         return ("ellipse", np.eye(2) * (r + d), f[2]) if r + d > 0 else None
     if f[0] == "curves":
-        raise ValueError("offset of text is not in the oracle")
+        return curved_offset_pieces(f, join, d)
     loops = f[1]
     k, side = abs(d), (1.0 if d > 0 else -1.0)
     pieces = []
@@ -1326,20 +1332,78 @@ def offset_pieces(f, join, d):
             t1, t2 = v - a, b - v
             if (t2 @ n1) >= 0 or t1[0] * t2[1] - t1[1] * t2[0] == 0:
                 continue  # no join where the offset side sees the corner reflex
-            cos = float(n1 @ n2)
-            if join == "round":
-                pieces.append(("ellipse", np.eye(2) * k, v.copy()))
-            elif join == "miter" and 1 + cos >= 2e-12:
-                pieces.append(("poly", [np.array([v, v + k * n1, v + (n1 + n2) * (k / (1 + cos)), v + k * n2])]))
-            else:
-                # The cut at distance k along the bisector meets the offset
-                # edges k tan(theta / 4) beyond their ends.
-                theta = math.atan2(abs(n1[0] * n2[1] - n1[1] * n2[0]), cos)
-                run = k * math.tan(theta / 4)
-                u1, u2 = t1 / np.linalg.norm(t1), t2 / np.linalg.norm(t2)
-                pieces.append(("poly", [np.array([v, v + k * n1, v + k * n1 + run * u1, v + k * n2 - run * u2, v + k * n2])]))
+            pieces.append(join_piece(join, v, n1, n2, t1, t2, k))
     body = ("poly", loops)
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
+
+
+def curved_offset_pieces(f, join, d):
+    """A curved outline (a glyph's quadratic edges) offset by d: the points
+    within |d| of it (grown) or of the inside farther than |d| from it
+    (shrunk), whose boundary lies at |d| from the edges — on the curves
+    their points trace along their normals and the circles about their
+    ends. The oracle meshes manifold's own offset of the flattened outline
+    (cross_section); these pieces carry the bounds and the faces: the
+    outline, marked ("bands", |d|) (its edges' faces lie |d| from them),
+    a disc at each corner, and with miter or square joins the kite (or cut
+    kite) at each sharp corner that the offset side sees as convex."""
+    k, side = abs(d), (1.0 if d > 0 else -1.0)
+    if any(c is not None and np.asarray(c).ndim == 2 for _, c, _ in curve_pieces(f)):
+        raise ValueError("offset of cubic curves is not in the oracle")
+    fine = [np.concatenate([bezier_eval(bezier_points(l[i][0], l[i][1], l[(i + 1) % len(l)][0]), np.arange(64) / 64) for i in range(len(l))]) for l in f[1]]
+    size = max(float(np.abs(np.concatenate(fine)).max()), 1e-300)
+
+    def outward(P, u, t):
+        # The unit normal at B(u) on the side the region is not on.
+        n = np.array([t[1], -t[0]]) / np.linalg.norm(t)
+        return -n if even_odd_inside(fine, bezier_eval(P, 0.5) + n * 1e-9 * size) else n
+
+    pieces = [f]
+    for l in f[1]:
+        m = len(l)
+        for i in range(m):
+            pa, ca = l[(i - 1) % m]
+            v, cv = l[i]
+            nxt = l[(i + 1) % m][0]
+            pieces.append(("ellipse", np.eye(2) * k, np.array(v, float)))
+            if join == "round":
+                continue
+            P1, P2 = bezier_points(pa, ca, v), bezier_points(v, cv, nxt)
+            t1 = v - (P1[-2] if not np.array_equal(P1[-2], v) else P1[0])
+            t2 = (P2[1] if not np.array_equal(P2[1], v) else P2[-1]) - v
+            if np.linalg.norm(t1) == 0 or np.linalg.norm(t2) == 0:
+                continue
+            # The sides at the middles, carried to the ends (a quadratic
+            # turns less than half a turn: its normal keeps its side).
+            mid1 = bezier_eval(P1, 0.5) - bezier_eval(P1, 0.5 - 1e-6)
+            mid2 = bezier_eval(P2, 0.5 + 1e-6) - bezier_eval(P2, 0.5)
+            s1 = np.sign(outward(P1, 0.5, mid1) @ np.array([mid1[1], -mid1[0]]))
+            s2 = np.sign(outward(P2, 0.5, mid2) @ np.array([mid2[1], -mid2[0]]))
+            n1 = s1 * np.array([t1[1], -t1[0]]) / np.linalg.norm(t1) * side
+            n2 = s2 * np.array([t2[1], -t2[0]]) / np.linalg.norm(t2) * side
+            if t2 @ n1 >= 0 or 1 - n1 @ n2 <= 1e-12:
+                continue  # reflex as the offset side sees it, or tangent
+            pieces.append(join_piece(join, v, n1, n2, t1, t2, k))
+    return ("op", "union" if d > 0 else "difference", pieces, ("bands", k))
+
+
+def join_piece(join, v, n1, n2, t1, t2, k):
+    """Clipper's join at corner v (edges arriving along t1 and leaving
+    along t2, offset-side unit normals n1 and n2) at distance k: the disc
+    (round), the kite to the offset edges' meeting point (miter), or that
+    kite cut across the bisector at distance k (square, and a miter beyond
+    the limit)."""
+    cos = float(n1 @ n2)
+    if join == "round":
+        return ("ellipse", np.eye(2) * k, v.copy())
+    if join == "miter" and 1 + cos >= 2e-12:
+        return ("poly", [np.array([v, v + k * n1, v + (n1 + n2) * (k / (1 + cos)), v + k * n2])])
+    # The cut at distance k along the bisector meets the offset edges
+    # k tan(theta / 4) beyond their ends.
+    theta = math.atan2(abs(n1[0] * n2[1] - n1[1] * n2[0]), cos)
+    run = k * math.tan(theta / 4)
+    u1, u2 = t1 / np.linalg.norm(t1), t2 / np.linalg.norm(t2)
+    return ("poly", [np.array([v, v + k * n1, v + k * n1 + run * u1, v + k * n2 - run * u2, v + k * n2])])
 
 
 def convex_hull_2d(pts):

@@ -124,9 +124,29 @@ impl Prism {
     }
 }
 
+/// Where the line o + t·d is inside the slab 0 ≤ z ≤ 1 (a prism's, in
+/// object space): entering and leaving by the bottom (part 0) or top (1)
+/// cap, or unbounded along a horizontal line strictly inside; `None` when
+/// it misses.
+#[inline]
+pub(super) fn slab(o: DVec3, d: DVec3) -> Option<RawSpan> {
+    if d.z == 0.0 {
+        if o.z <= 0.0 || o.z >= 1.0 {
+            return None;
+        }
+        return Some((f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP));
+    }
+    let (tb, tt) = (-o.z / d.z, (1.0 - o.z) / d.z);
+    Some(if tb < tt {
+        (tb, BOTTOM, tt, TOP)
+    } else {
+        (tt, TOP, tb, BOTTOM)
+    })
+}
+
 /// The part of span `s` inside the slab, emitted unless it is empty.
 #[inline]
-fn clip(slab: RawSpan, s: RawSpan, emit: &mut impl FnMut(RawSpan)) {
+pub(super) fn clip(slab: RawSpan, s: RawSpan, emit: &mut impl FnMut(RawSpan)) {
     let ((z0, zp0, z1, zp1), (s0, e0, s1, e1)) = (slab, s);
     let (t0, p0) = if s0 > z0 { (s0, e0) } else { (z0, zp0) };
     let (t1, p1) = if s1 < z1 { (s1, e1) } else { (z1, zp1) };
@@ -142,18 +162,8 @@ impl Solid for Prism {
         // Heights from the bottom.
         let (o, d) = (q.o - DVec3::Z * self.z_lo(), q.d);
         // The slab 0 ≤ z ≤ 1.
-        let (z0, zp0, z1, zp1) = if d.z == 0.0 {
-            if o.z <= 0.0 || o.z >= 1.0 {
-                return;
-            }
-            (f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP)
-        } else {
-            let (tb, tt) = (-o.z / d.z, (1.0 - o.z) / d.z);
-            if tb < tt {
-                (tb, BOTTOM, tt, TOP)
-            } else {
-                (tt, TOP, tb, BOTTOM)
-            }
+        let Some((z0, zp0, z1, zp1)) = slab(o, d) else {
+            return;
         };
         if self.top != 1.0 {
             return self.tapered(o, d, (z0, zp0, z1, zp1), emit);

@@ -13,6 +13,7 @@
 //! the line. Parts: 0 the bottom, 1 the top, 2 + 3·k + j the side over edge
 //! j of triangle k.
 
+use super::prism::{clip, slab};
 use super::robust::coincidence;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
@@ -176,18 +177,8 @@ impl Solid for Shadow {
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         let (o, d) = (q.o, q.d);
-        let (z0, zp0, z1, zp1) = if d.z == 0.0 {
-            if o.z <= 0.0 || o.z >= 1.0 {
-                return;
-            }
-            (f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP)
-        } else {
-            let (tb, tt) = (-o.z / d.z, (1.0 - o.z) / d.z);
-            if tb < tt {
-                (tb, BOTTOM, tt, TOP)
-            } else {
-                (tt, TOP, tb, BOTTOM)
-            }
+        let Some((z0, zp0, z1, zp1)) = slab(o, d) else {
+            return;
         };
         let (o2, d2) = (o.truncate(), d.truncate());
         if d2 == DVec2::ZERO {
@@ -197,12 +188,8 @@ impl Solid for Shadow {
             return;
         }
         let scale = o.abs().max_element();
-        for (s0, e0, s1, e1) in self.soup.spans(o2, d2, scale) {
-            let (t0, p0) = if s0 > z0 { (s0, e0) } else { (z0, zp0) };
-            let (t1, p1) = if s1 < z1 { (s1, e1) } else { (z1, zp1) };
-            if t0 < t1 {
-                emit((t0, p0, t1, p1));
-            }
+        for s in self.soup.spans(o2, d2, scale) {
+            clip((z0, zp0, z1, zp1), s, emit);
         }
     }
 

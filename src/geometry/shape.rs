@@ -3,8 +3,8 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{
-    Aabb, Cone, Convex, Cuboid, Halfspace, Lathe, Mesh, Part, Prism, Rounded, Shadow, Sphere,
-    Torus, Twisted,
+    Aabb, Cone, Convex, Cuboid, Halfspace, Lathe, Mesh, OffsetPrism, Part, Prism, Rounded, Shadow,
+    Sphere, Torus, Twisted,
 };
 use glam::{DAffine3, DVec3};
 
@@ -23,6 +23,7 @@ pub enum Shape {
     Shadow(Shadow),
     Convex(Convex),
     Rounded(Rounded),
+    OffsetPrism(OffsetPrism),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -41,6 +42,7 @@ macro_rules! each {
             Shape::Shadow($s) => $e,
             Shape::Convex($s) => $e,
             Shape::Rounded($s) => $e,
+            Shape::OffsetPrism($s) => $e,
         }
     };
 }

@@ -11,6 +11,8 @@
 //! crossings of its edges ([`Outlines::spans`]) — what a prism's spans are
 //! made of once the slab is clipped.
 
+pub mod offset;
+
 use crate::geometry::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};
 

@@ -23,7 +23,7 @@ use super::{combine, Resolver};
 use crate::csg::spans::Op;
 use crate::error::Result;
 use crate::geometry::{
-    Cone, Cuboid, Halfspace, Lathe, Prism, Section, Shape, Sphere, Torus, Twisted,
+    Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Section, Shape, Sphere, Torus, Twisted,
 };
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
@@ -50,6 +50,9 @@ pub(crate) enum Flat {
     Op(Op, Vec<Flat>),
     /// `hull()` of 2-D shapes: extruded, the hull of their extrusions.
     Hull(Vec<Flat>),
+    /// Curved outlines offset with round joins, in their own frame, placed
+    /// in the plane by the map (an offset is not one after any map).
+    Offset(Arc<crate::plane::offset::Offset>, DAffine2),
 }
 
 impl Flat {
@@ -71,6 +74,18 @@ impl Flat {
             }
             // Not asked: a section is refused before (see `has_section`).
             Flat::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
+            // Along the axis seen in the offset's own frame: R's extent
+            // moved out by r when grown (exact), R's own when shrunk (a
+            // bound: refused where exactness matters, by resize).
+            Flat::Offset(o, m) => {
+                let v = m.matrix2.transpose() * axis;
+                let c = m.translation.dot(axis);
+                let reach = |v: DVec2| {
+                    let q = o.region.farthest(v);
+                    q.dot(v) + o.r.max(0.0) * v.length()
+                };
+                (c - reach(-v), c + reach(v))
+            }
             // A hull reaches as far as its farthest shape.
             Flat::Hull(kids) => kids
                 .iter()
@@ -131,6 +146,7 @@ impl Flat {
             Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
             Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.moved(m)).collect()),
+            Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
         }
     }
 
@@ -143,6 +159,7 @@ impl Flat {
             Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
             Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.mirrored_x()).collect()),
+            Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
         }
     }
 
@@ -682,7 +699,7 @@ impl Resolver<'_> {
             Err(why) => Err(self.src.error(
                 s.name_span,
                 why,
-                "csgrt offsets simple polygons and circles, unions when growing",
+                "csgrt offsets simple polygons, circles and curved outlines (text), unions when growing",
             )),
         }
     }
@@ -951,6 +968,28 @@ impl Resolver<'_> {
                     parts.push(self.linear(s, k, xf, mat, h, sweep)?);
                 }
                 Ok(self.op(*op, parts))
+            }
+            Flat::Offset(o, at) => {
+                if !even || top != 1.0 || sweep.twist != 0.0 {
+                    return Err(self.src.error(
+                        s.name_span,
+                        "twisting or scaling an offset of curved outlines is not supported yet",
+                        "csgrt extrudes it straight",
+                    ));
+                }
+                let det = at.matrix2.determinant();
+                if det.is_nan() || det == 0.0 {
+                    return Ok(self.flattened(s));
+                }
+                let place = DAffine3::from_mat3_translation(
+                    DMat3::from_mat2(at.matrix2),
+                    at.translation.extend(0.0),
+                );
+                let shape = Shape::OffsetPrism(OffsetPrism {
+                    region: o.clone(),
+                    centered,
+                });
+                self.leaf(s, shape, xf * local * place, mat)
             }
             // The hull of the shapes' extrusions: straight or tapered, a
             // section of the extrusion of a convex region is that region
@@ -1252,6 +1291,11 @@ impl Resolver<'_> {
                 self.leaf(s, shape, xf * local, mat)
             }
             Flat::Section(..) => unreachable!("refused by rotate_extrude"),
+            Flat::Offset(..) => Err(self.src.error(
+                s.name_span,
+                "turning an offset of curved outlines is not supported yet",
+                "csgrt extrudes it straight with linear_extrude",
+            )),
             Flat::Hull(_) => Err(self.src.error(
                 s.name_span,
                 "turning a 2-D hull is not supported yet",

@@ -27,8 +27,10 @@
 
 use super::flat::{is_circle, Flat};
 use crate::csg::spans::Op;
+use crate::plane::offset::{offsettable, Offset};
 use crate::plane::{Outlines, Region};
-use glam::DVec2;
+use glam::{DAffine2, DVec2};
+use std::sync::Arc;
 
 /// How corners are joined.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -90,6 +92,9 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
         Flat::Polygon(o) => polygon(o, join, d),
         Flat::Section(..) => Err("offsetting a projection is not supported yet".into()),
         Flat::Hull(_) => Err("offsetting a 2-D hull is not supported yet".into()),
+        Flat::Offset(..) => {
+            Err("offsetting an offset of curved outlines is not supported yet".into())
+        }
     }
 }
 
@@ -104,7 +109,7 @@ fn union(mut parts: Vec<Flat>) -> Option<Flat> {
 /// A simple polygon region grown or shrunk.
 fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
     if o.curved() {
-        return Err("offsetting curved outlines (text) is not supported yet".into());
+        return curved(o, join, d);
     }
     let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
     if edges > MAX_OFFSET_EDGES {
@@ -142,33 +147,8 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
             if (b - v).dot(n1) >= 0.0 || (v - a).perp_dot(b - v) == 0.0 {
                 continue;
             }
-            let cos = n1.dot(n2);
-            match join {
-                Join::Round => parts.push(Flat::disc(v, k)),
-                Join::Miter if 1.0 + cos >= MITER_LIMIT => {
-                    let miter = v + (n1 + n2) * (k / (1.0 + cos));
-                    parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
-                        v,
-                        v + n1 * k,
-                        miter,
-                        v + n2 * k,
-                    ]])));
-                }
-                _ => {
-                    // Cut across the bisector at distance k from v: each
-                    // offset edge runs on by k·tan(θ/4) past its end.
-                    let theta = n1.perp_dot(n2).abs().atan2(cos);
-                    let run = k * (theta / 4.0).tan();
-                    let (t1, t2) = ((v - a).normalize(), (b - v).normalize());
-                    parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
-                        v,
-                        v + n1 * k,
-                        v + n1 * k + t1 * run,
-                        v + n2 * k - t2 * run,
-                        v + n2 * k,
-                    ]])));
-                }
-            }
+            let (t1, t2) = ((v - a).normalize(), (b - v).normalize());
+            parts.push(join_piece(join, v, n1, n2, t1, t2, k));
         }
         start += m;
     }
@@ -180,6 +160,116 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
         parts.insert(0, body);
         Flat::Op(Op::Difference, parts)
     }))
+}
+
+/// The join at corner v between an edge arriving along unit tangent t1
+/// and one leaving along t2, their offset-side unit normals n1 and n2, at
+/// distance k: a disc (round), the kite to the offset edges' meeting point
+/// (miter), or that kite cut across the bisector at distance k (square,
+/// and a miter beyond Clipper's limit).
+fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, k: f64) -> Flat {
+    let cos = n1.dot(n2);
+    match join {
+        Join::Round => Flat::disc(v, k),
+        Join::Miter if 1.0 + cos >= MITER_LIMIT => {
+            let miter = v + (n1 + n2) * (k / (1.0 + cos));
+            Flat::Polygon(Outlines::polygons(vec![vec![
+                v,
+                v + n1 * k,
+                miter,
+                v + n2 * k,
+            ]]))
+        }
+        _ => {
+            // Cut across the bisector at distance k from v: each offset
+            // edge runs on by k·tan(θ/4) past its end.
+            let theta = n1.perp_dot(n2).abs().atan2(cos);
+            let run = k * (theta / 4.0).tan();
+            Flat::Polygon(Outlines::polygons(vec![vec![
+                v,
+                v + n1 * k,
+                v + n1 * k + t1 * run,
+                v + n2 * k - t2 * run,
+                v + n2 * k,
+            ]]))
+        }
+    }
+}
+
+/// Outlines with curved (quadratic) edges offset: with round joins the
+/// region of points within |d| of R (grown) or of R farther than |d| from
+/// its outline (shrunk), one leaf ([`crate::plane::offset`]); with miter or
+/// square joins that leaf joined with the kites at its sharp corners the
+/// offset side sees as convex (grown: R ⊕ D ⊆ the mitered offset, and the
+/// kites hold the rest), or less the kites at the corners the outside sees
+/// as convex (shrunk). A corner whose edges meet tangent needs none: its
+/// kite would lie in the disc about it.
+fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
+    if !o.ctrl.iter().flatten().all(|c| offsettable(*c)) {
+        return Err(
+            "offsetting cubic curves (SVG drawings, CFF fonts) is not supported yet".into(),
+        );
+    }
+    let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
+    if edges > MAX_OFFSET_EDGES {
+        return Err(format!(
+            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges is not supported yet"
+        ));
+    }
+    let region = Region::new(o);
+    let (k, side) = (d.abs(), d.signum());
+    let mut kites = Vec::new();
+    if join != Join::Round {
+        let mut start = 0;
+        for l in &region.outlines.loops {
+            let m = l.len();
+            for i in 0..m {
+                let (e1, e2) = (start + (i + m - 1) % m, start + i);
+                let v = region.edges[e2].0;
+                let (t1, t2) = (end_tangent(&region, e1), start_tangent(&region, e2));
+                let (Some(t1), Some(t2)) = (t1.try_normalize(), t2.try_normalize()) else {
+                    continue;
+                };
+                let (n1, n2) = (
+                    region.normal_at(e1, v) * side,
+                    region.normal_at(e2, v) * side,
+                );
+                // Convex as the offset side sees it, and not tangent (the
+                // miter point within rounding of the disc).
+                if t2.dot(n1) >= 0.0 || 1.0 - n1.dot(n2) <= 1e-12 {
+                    continue;
+                }
+                kites.push(join_piece(join, v, n1, n2, t1, t2, k));
+            }
+            start += m;
+        }
+    }
+    let leaf = Flat::Offset(Arc::new(Offset::new(region, d)), DAffine2::IDENTITY);
+    if kites.is_empty() {
+        return Ok(Some(leaf));
+    }
+    kites.insert(0, leaf);
+    let op = if d > 0.0 { Op::Union } else { Op::Difference };
+    Ok(Some(Flat::Op(op, kites)))
+}
+
+/// Edge e's direction where it leaves its start (its first control point
+/// apart from the start, else its end).
+fn start_tangent(r: &Region, e: usize) -> DVec2 {
+    let (a, b) = r.edges[e];
+    r.ctrl[e]
+        .points()
+        .chain(std::iter::once(b))
+        .find(|&p| p != a)
+        .unwrap_or(b)
+        - a
+}
+
+/// Edge e's direction where it arrives at its end.
+fn end_tangent(r: &Region, e: usize) -> DVec2 {
+    let (a, b) = r.edges[e];
+    let pts: Vec<DVec2> = std::iter::once(a).chain(r.ctrl[e].points()).collect();
+    b - pts.into_iter().rev().find(|&p| p != b).unwrap_or(a)
 }
 
 /// Whether two edges of the outlines meet other than where consecutive

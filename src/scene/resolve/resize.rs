@@ -66,6 +66,8 @@ fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
     match f {
         Flat::Polygon(_) | Flat::Ellipse(_) => Ok(f.range(axis)),
         Flat::Section(..) => Err("the extent of a projection"),
+        Flat::Offset(o, _) if o.r > 0.0 => Ok(f.range(axis)),
+        Flat::Offset(..) => Err("the extent of curved outlines shrunk by offset"),
         // A hull reaches exactly as far as its farthest part.
         Flat::Op(Op::Union, kids) | Flat::Hull(kids) => {
             let mut r = (f64::INFINITY, f64::NEG_INFINITY);

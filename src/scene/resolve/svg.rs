@@ -145,7 +145,7 @@ mod tests {
                     Op::Xor => it.filter(|&x| x).count() % 2 == 1,
                 }
             }
-            Flat::Section(..) | Flat::Hull(_) => unreachable!(),
+            Flat::Section(..) | Flat::Hull(_) | Flat::Offset(..) => unreachable!(),
         }
     }
 
