@@ -84,6 +84,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 import manifold3d as mf
 import numpy as np
@@ -1448,9 +1449,11 @@ def verdict(rows):
 SIDES = {}  # (path, w, h, rays, n) -> Side: the oracle's side, once a process
 
 
-def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None):
+def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_fault=False):
     """(rows, problems) for one scene; cmd is csgrt's command line, env
-    its environment (None: this one)."""
+    its environment (None: this one). With first_fault (a build that must
+    fail: tools/mutants.py), stop at the first n whose pixels disagree off
+    the edges — a problem whatever the finer n show."""
     name = os.path.splitext(os.path.basename(path))[0]
     try:
         sc = reader.read(path)
@@ -1474,6 +1477,8 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None):
         rows.append(
             compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced, out_dir, n == segs[-1])
         )
+        if first_fault and rows[-1]["off_edge"]:
+            break
     return rows, verdict(rows)
 
 
@@ -1519,7 +1524,9 @@ def table_row(name, r):
 
 def one(job):
     scene, cmd, w, h, segs, rays, out = job
-    return check_scene(scene, cmd, w, h, segs, rays, out)
+    start = time.monotonic()
+    got = check_scene(scene, cmd, w, h, segs, rays, out)
+    return got, time.monotonic() - start
 
 
 def main():
@@ -1545,8 +1552,9 @@ def main():
     # worker's heap is not carried into the next (a long-lived worker grew
     # past 14 GB on CI).
     with multiprocessing.Pool(max(1, a.jobs), maxtasksperchild=1) as pool:
-        for scene, (rows, bad) in zip(a.scenes, pool.imap(one, jobs)):
+        for scene, ((rows, bad), took) in zip(a.scenes, pool.imap(one, jobs)):
             name = os.path.splitext(os.path.basename(scene))[0]
+            print(f"{name}: {took:.1f} s", file=sys.stderr, flush=True)
             for r in rows:
                 lines.append(table_row(name, r))
                 print(lines[-1], flush=True)
