@@ -9,7 +9,11 @@
 //! shapes the string (kerning, ligatures), and a glyph point p (font units,
 //! upem to the em) lands at size·(p·E/upem/1e5 + offset + pen), offset and pen (the sum of the earlier glyphs' advances times `spacing`)
 //! in 26.6 units divided by 1.024e5 — OpenSCAD's own mixed scale factors,
-//! kept "for compatibility". `halign` moves the line by its width (the sum
+//! kept "for compatibility". HarfBuzz's positions (advances, kerning) are
+//! at the em asked, 138889 units, not the rounded E. Vertical text
+//! (`direction` "ttb", "btt") places each glyph by FreeType's synthesized
+//! vertical metrics, as HarfBuzz reads them through FreeType
+//! ([`vertical_position`]). `halign` moves the line by its width (the sum
 //! of advances times spacing), `valign` by the largest ascent and descent
 //! of the glyphs' grid-fitted control boxes. The differences from OpenSCAD
 //! are FreeType's: it hints the outline at 2170 ppem and rounds points to
@@ -262,10 +266,13 @@ impl ttf_parser::OutlineBuilder for Contours {
     }
 }
 
+/// The em asked of FreeType, in 26.6 units: 1e5/64 points at 100 dpi.
+const NOMINAL_EM: f64 = 138_889.0;
+
 /// The em in 26.6 units FreeType sizes the face to (see the module's
 /// comment): `head` flag bit 3 rounds the ppem to a whole number.
 fn em_26_6(face: &ttf_parser::Face) -> f64 {
-    let nominal = (100_000.0f64 * 100.0 / 72.0).round();
+    let nominal = NOMINAL_EM;
     let integer_ppem = face
         .raw_face()
         .table(ttf_parser::Tag::from_bytes(b"head"))
@@ -276,6 +283,43 @@ fn em_26_6(face: &ttf_parser::Face) -> f64 {
     } else {
         nominal
     }
+}
+
+/// Where OpenSCAD 2021.01 places a glyph in vertical text, and how far the
+/// pen moves: (offset, advance) in 26.6 units. HarfBuzz, through FreeType
+/// (`hb_ft_font_create`, unhinted loads), moves each glyph by minus its
+/// vertical origin — (horiBearingX − vertBearingX, horiBearingY +
+/// vertBearingY) — and advances by minus its vertical advance. A font
+/// without `vmtx` (Liberation Sans has none) gets FreeType's own
+/// (`ttgload.c`): vertBearingX = horiBearingX − horiAdvance/2, the advance
+/// A = sTypoAscender − sTypoDescender (else hhea's) and the top bearing
+/// (A − height)/2 in font units, C's integer division, then scaled. Each
+/// scaling rounds to the nearest 26.6 unit, as FT_MulFix does; `s` is 26.6
+/// units a font unit, `y_lo` and `y_hi` the outline's extent in y. The
+/// advance alone is scaled by the size asked (`FT_Get_Advance` takes the
+/// face's requested scale, 1e5·100/72 units an em, not the TrueType
+/// driver's whole-pixel one): measured against OpenSCAD's own layout, the
+/// rounded scale leaves 8 units of drift a glyph.
+fn vertical_position(
+    face: &rustybuzz::Face,
+    gid: ttf_parser::GlyphId,
+    s: f64,
+    y_lo: f64,
+    y_hi: f64,
+) -> (DVec2, DVec2) {
+    let scaled = |v: f64| (v * s).round();
+    let h_advance = scaled(face.glyph_hor_advance(gid).unwrap_or(0) as f64);
+    let (asc, desc) = match (face.typographic_ascender(), face.typographic_descender()) {
+        (Some(a), Some(d)) => (a, d),
+        _ => (face.ascender(), face.descender()),
+    };
+    let v_advance = asc as f64 - desc as f64;
+    let top_of_box = scaled(y_hi);
+    let height = ((top_of_box - scaled(y_lo)) / s).round();
+    let top = ((v_advance - height) / 2.0).trunc();
+    let origin = DVec2::new((h_advance / 2.0).floor(), top_of_box + scaled(top));
+    let requested = NOMINAL_EM / face.units_per_em() as f64;
+    (-origin, DVec2::new(0.0, -(v_advance * requested).round()))
 }
 
 /// Lays out `p` as OpenSCAD does.
@@ -350,9 +394,13 @@ fn lay_out_with(
     let shaped = rustybuzz::shape(face, features, buf);
     let upem = face.units_per_em() as f64;
     let em = em_26_6(face);
-    // Font units to OpenSCAD's: the outline's (÷1e5) and the advances' and
-    // boxes' (÷1.024e5) scales.
-    let (k_outline, k_metric) = (em / upem / 1e5, em / upem / 1.024e5);
+    // Font units to OpenSCAD's: the outline's (÷1e5, at the em the
+    // TrueType driver rounds to whole pixels) and HarfBuzz's positions'
+    // (÷1.024e5, at the em asked: hb-ft reads advances through
+    // FT_Get_Advance and scales kerning by the face's requested size —
+    // measured against OpenSCAD's own layout, tests/vertical_text.rs, the
+    // rounded em drifts 5e-5 of the size a glyph).
+    let (k_outline, k_metric) = (em / upem / 1e5, NOMINAL_EM / upem / 1.024e5);
     struct Glyph {
         contours: Contours,
         offset: DVec2,
@@ -365,9 +413,7 @@ fn lay_out_with(
         let mut contours = Contours::default();
         face.outline_glyph(gid, &mut contours);
         contours.finish();
-        let offset = DVec2::new(pos.x_offset as f64, pos.y_offset as f64) * k_metric;
-        let advance = DVec2::new(pos.x_advance as f64, pos.y_advance as f64) * k_metric;
-        // FreeType's grid-fitted control box, in 26.6 units.
+        // FreeType's control box (font units), then grid-fitted (26.6).
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         let ctrl = contours.ctrl.iter().flatten().flat_map(|c| c.points());
         for q in contours.loops.iter().flatten().copied().chain(ctrl) {
@@ -377,6 +423,15 @@ fn lay_out_with(
         if lo.x > hi.x {
             (lo, hi) = (DVec2::ZERO, DVec2::ZERO);
         }
+        let (offset, advance) = if horizontal {
+            (
+                DVec2::new(pos.x_offset as f64, pos.y_offset as f64) * k_metric,
+                DVec2::new(pos.x_advance as f64, pos.y_advance as f64) * k_metric,
+            )
+        } else {
+            let (o, a) = vertical_position(face, gid, em / upem, lo.y, hi.y);
+            (o / 1.024e5, a / 1.024e5)
+        };
         let (lo, hi) = (
             (lo * (em / upem) / 64.0).floor() * 64.0,
             (hi * (em / upem) / 64.0).ceil() * 64.0,

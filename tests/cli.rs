@@ -546,15 +546,11 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         fails("import(\"part.eps\");\n"),
         "error: importing `.eps` files is not supported yet\n --> bad.csg:1:8\n  |\n1 | import(\"part.eps\");\n  |        ^^^^^^^^^^ csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes\n"
     );
-    // A text that is no string, at the value; vertical text, at its
-    // direction; a twisted text, at the extrusion.
+    // A text that is no string, at the value; a twisted text, at the
+    // extrusion.
     assert_eq!(
         fails("text(text = 5);\n"),
         "error: `text` of `text` must be a string\n --> bad.csg:1:13\n  |\n1 | text(text = 5);\n  |             ^ expected a string, found a number\n"
-    );
-    assert_eq!(
-        fails("text(\"a\", direction = \"ttb\");\n"),
-        "error: vertical text (`direction` \"ttb\" or \"btt\") is not supported yet\n --> bad.csg:1:23\n  |\n1 | text(\"a\", direction = \"ttb\");\n  |                       ^^^^^ expected \"ltr\" or \"rtl\"\n"
     );
     assert_eq!(
         fails("linear_extrude(height = 1, twist = 10) text(\"J\");\n"),

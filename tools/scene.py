@@ -1184,13 +1184,12 @@ def text_2d(rd, s, a, place):
     size = num(rd.path, s, a, "size", 10.0)
     spacing = num(rd.path, s, a, "spacing", 1.0)
     direction = a.get("direction", "")
-    if direction[:1].lower() in ("t", "b"):
-        raise rd.err(s, "vertical text is not in the oracle")
+    vertical = direction[:1].lower() in ("t", "b")
     tt, gs, hbfont, order = font(font_file(a.get("font", "")))
     buf = hb.Buffer()
     buf.add_str(text)
-    if direction[:1].lower() in ("l", "r"):
-        buf.direction = "ltr" if direction[:1].lower() == "l" else "rtl"
+    if direction[:1].lower() in ("l", "r", "t", "b"):
+        buf.direction = {"l": "ltr", "r": "rtl", "t": "ttb", "b": "btt"}[direction[:1].lower()]
     if a.get("script"):
         try:
             buf.script = a["script"]
@@ -1203,19 +1202,43 @@ def text_2d(rd, s, a, place):
     upem = tt["head"].unitsPerEm
     # FT_Set_Char_Size(face, 0, 1e5, 100, 100): the em in 26.6 units, the
     # ppem rounded to a whole pixel when head.flags bit 3 says so.
-    em = round(1e5 * 100 / 72)
+    # HarfBuzz through FreeType scales its positions by the em asked; the
+    # TrueType driver loads outlines at the rounded one.
+    em_asked = round(1e5 * 100 / 72)
+    em = em_asked
     if tt["head"].flags & 8:
         em = math.floor((em + 32) / 64) * 64
-    k_out, k_met = em / upem / 1e5, em / upem / 1.024e5
+    k_out, k_met = em / upem / 1e5, em_asked / upem / 1.024e5
+    os2 = tt["OS/2"] if "OS/2" in tt else None
+    v_adv = (os2.sTypoAscender - os2.sTypoDescender) if os2 is not None else (tt["hhea"].ascent - tt["hhea"].descent)
     glyphs, width, asc, desc = [], 0.0, 0.0, 0.0
     for info, pos in zip(buf.glyph_infos, buf.glyph_positions):
-        loops = glyph_loops(gs, order[info.codepoint])
+        name = order[info.codepoint]
+        loops = glyph_loops(gs, name)
         pts = [q for l in loops for e in l for q in e if q is not None]
-        lo = np.min(pts, axis=0) if pts else np.zeros(2)
-        hi = np.max(pts, axis=0) if pts else np.zeros(2)
+        lo0 = np.min(pts, axis=0) if pts else np.zeros(2)
+        hi0 = np.max(pts, axis=0) if pts else np.zeros(2)
         # FreeType's grid-fitted control box (26.6 units, whole pixels).
-        lo = np.floor(lo * em / upem / 64) * 64
-        hi = np.ceil(hi * em / upem / 64) * 64
+        lo = np.floor(lo0 * em / upem / 64) * 64
+        hi = np.ceil(hi0 * em / upem / 64) * 64
+        if vertical:
+            # FreeType's vertical metrics for a font without vmtx
+            # (ttgload.c), as hb-ft reads them: the glyph moved by minus
+            # (horiAdvance / 2, top of its box + (A - height) / 2 scaled),
+            # A = sTypoAscender - sTypoDescender, then advanced by -A at
+            # the em asked; 26.6 units, each scaling rounded.
+            sc = em / upem
+            rnd = lambda x: math.copysign(math.floor(abs(x) + 0.5), x)  # FT_MulFix: half away from 0
+            h_adv = rnd(tt["hmtx"][name][0] * sc)
+            top_box = rnd(hi0[1] * sc)
+            height = rnd((top_box - rnd(lo0[1] * sc)) / sc)
+            top = math.trunc((v_adv - height) / 2)
+            off = -np.array([h_adv // 2, top_box + rnd(top * sc)], float) / 1.024e5
+            adv = np.array([0.0, -rnd(v_adv * em_asked / upem)]) / 1.024e5
+            width = max(width, (hi[0] - lo[0]) / 1.024e5)
+            asc += adv[1] * spacing
+            glyphs.append((loops, off, adv))
+            continue
         asc, desc = max(asc, max(0.0, hi[1] / 1.024e5)), max(desc, max(0.0, -lo[1] / 1.024e5))
         adv = np.array([pos.x_advance, pos.y_advance], float) * k_met
         width += adv[0] * spacing

@@ -648,13 +648,6 @@ impl Resolver<'_> {
             language: a.string("language")?.unwrap_or("en"),
             script: a.string("script")?.unwrap_or(""),
         };
-        if p.direction.starts_with(['t', 'T', 'b', 'B']) {
-            return Err(a.error(
-                a.span_of("direction"),
-                "vertical text (`direction` \"ttb\" or \"btt\") is not supported yet",
-                "expected \"ltr\" or \"rtl\"",
-            ));
-        }
         let laid = crate::text::layout(&p);
         for (param, w) in &laid.warnings {
             let place = if a.has(param) {
