@@ -1327,7 +1327,10 @@ def offset_pieces(f, join, d):
     maps over a union, shrinking over an intersection; anything else is
     not in the oracle."""
     if f[0] == "op":
-        if f[1] == "union" and d > 0 or f[1] == "intersection" and d < 0:
+        # Shrinking a union of shapes whose boxes are apart: each by itself
+        # (a disc inside a union of disjoint closed sets lies in one).
+        apart = f[1] == "union" and d < 0 and boxes_apart(f[2])
+        if f[1] == "union" and (d > 0 or apart) or f[1] == "intersection" and d < 0:
             parts = [offset_pieces(k, join, d) for k in f[2]]
             if f[1] == "intersection" and any(p is None for p in parts):
                 return None
@@ -1358,6 +1361,39 @@ def offset_pieces(f, join, d):
             pieces.append(join_piece(join, v, n1, n2, t1, t2, k))
     body = ("poly", loops)
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
+
+
+def outline_box(f):
+    """A box (lo, hi) holding a 2-D tree (its leaves' points and control
+    points; a combination's, all of its leaves'), or None for a projection."""
+    if f[0] in ("poly", "faces"):
+        pts = np.concatenate([np.asarray(l, float) for l in f[1]])
+        return pts.min(axis=0), pts.max(axis=0)
+    if f[0] == "curves":
+        pts = np.array([q for l in f[1] for e in l for q in ([e[0]] + ([] if e[1] is None else list(np.asarray(e[1], float).reshape(-1, 2))))], float)
+        return pts.min(axis=0), pts.max(axis=0)
+    if f[0] == "ellipse":
+        h = np.array([math.hypot(f[1][0, 0], f[1][0, 1]), math.hypot(f[1][1, 0], f[1][1, 1])])
+        return f[2] - h, f[2] + h
+    if f[0] != "op":
+        return None
+    bs = [outline_box(k) for k in f[2]]
+    if any(b is None for b in bs):
+        return None
+    return np.min([b[0] for b in bs], axis=0), np.max([b[1] for b in bs], axis=0)
+
+
+def boxes_apart(kids):
+    """Whether no two of the 2-D trees' boxes meet."""
+    bs = [outline_box(k) for k in kids]
+    if any(b is None for b in bs):
+        return False
+    for i in range(len(bs)):
+        for j in range(i + 1, len(bs)):
+            (a0, a1), (b0, b1) = bs[i], bs[j]
+            if np.all(b0 <= a1) and np.all(a0 <= b1):
+                return False
+    return True
 
 
 def curved_offset_pieces(f, join, d):

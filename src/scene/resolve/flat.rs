@@ -692,7 +692,7 @@ impl Resolver<'_> {
             Err(why) => Err(self.src.error(
                 s.name_span,
                 why,
-                "csgrt offsets simple polygons, circles and curved outlines (text), unions when growing",
+                "csgrt offsets simple polygons, circles and curved outlines (text), unions when growing or apart",
             )),
         }
     }

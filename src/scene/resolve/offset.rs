@@ -20,10 +20,13 @@
 //!
 //! Growing distributes over union ((A ∪ B) ⊕ D = (A ⊕ D) ∪ (B ⊕ D): a
 //! union's convex corners are its operands', and where their edges cross
-//! the union is reflex), shrinking over intersection; a circle grows to the
-//! circle of radius R + d. What needs the boundary of a combination —
-//! shrinking a union, growing an intersection, either of a difference — and
-//! ellipses, curved (text) or self-crossing outlines are not supported yet.
+//! the union is reflex), shrinking over intersection and over a union of
+//! shapes whose boxes are apart (the glyphs of a text, mostly); a circle
+//! grows to the circle of radius R + d. Curved outlines offset as one leaf
+//! of their own ([`crate::plane::offset`]). What needs the boundary of a
+//! combination — shrinking a union whose parts' boxes meet, growing an
+//! intersection, either of a difference — ellipses and self-crossing
+//! polygons are not supported yet.
 
 use super::flat::{is_circle, Flat};
 use crate::csg::spans::Op;
@@ -62,6 +65,17 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             }
             Ok(union(out))
         }
+        // Shrinking a union of shapes whose boxes are apart: a disc inside
+        // a union of disjoint closed sets lies in one of them (it is
+        // connected), so the union's erosion is the union of theirs — and
+        // Clipper too offsets each outline by itself.
+        Flat::Op(Op::Union, kids) if d < 0.0 && boxes_apart(&kids) => {
+            let mut out = Vec::new();
+            for k in kids {
+                out.extend(offset(k, join, d)?);
+            }
+            Ok(union(out))
+        }
         Flat::Op(Op::Intersection, kids) if d < 0.0 => {
             let mut out = Vec::new();
             for k in kids {
@@ -76,7 +90,7 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             "{} a 2-D {} is not supported yet",
             if d > 0.0 { "growing" } else { "shrinking" },
             match op {
-                Op::Union => "union",
+                Op::Union => "union whose parts' boxes meet",
                 Op::Intersection => "intersection",
                 Op::Difference => "difference",
                 Op::Xor => "drawing's even-odd paths",
@@ -96,6 +110,37 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             Err("offsetting an offset of curved outlines is not supported yet".into())
         }
     }
+}
+
+/// Whether no two of `kids` have boxes that meet (each box holds its
+/// shape: [`Flat::range`] is exact for leaves and never smaller for
+/// combinations). Sorted by their left sides and swept.
+fn boxes_apart(kids: &[Flat]) -> bool {
+    let mut boxes: Vec<(DVec2, DVec2)> = kids
+        .iter()
+        .map(|k| {
+            let ((x0, x1), (y0, y1)) = (k.range(DVec2::X), k.range(DVec2::Y));
+            (DVec2::new(x0, y0), DVec2::new(x1, y1))
+        })
+        .collect();
+    if boxes
+        .iter()
+        .any(|(lo, hi)| !(lo.is_finite() && hi.is_finite()))
+    {
+        return false;
+    }
+    boxes.sort_by(|a, b| a.0.x.total_cmp(&b.0.x));
+    for (i, a) in boxes.iter().enumerate() {
+        for b in &boxes[i + 1..] {
+            if b.0.x > a.1.x {
+                break;
+            }
+            if b.0.y <= a.1.y && a.0.y <= b.1.y {
+                return false;
+            }
+        }
+    }
+    true
 }
 
 fn union(mut parts: Vec<Flat>) -> Option<Flat> {
