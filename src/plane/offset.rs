@@ -226,15 +226,30 @@ impl Offset {
     /// (d ≠ 0) inside, sorted.
     pub fn spans(&self, o: DVec2, d: DVec2, mut emit: impl FnMut(f64, u32, f64, u32)) {
         let n = d.perp();
-        let near = self.near(DVec3::new(n.x, n.y, -o.dot(n)));
+        let k = self.r.abs();
+        // An edge lies in the hull of its points and control points: all
+        // of them farther than |r| on one side, no point of the line is
+        // within |r| of it (the margin far above the rounding of the side
+        // values).
+        let reach = k * n.length() * (1.0 + 1e-9);
+        let mut near = self.near(DVec3::new(n.x, n.y, -o.dot(n)));
+        near.retain(|e| {
+            let (a, b) = self.region.edges[*e as usize];
+            let side = |p: DVec2| (p - o).dot(n);
+            let tol = 1e-12 * (a.abs().max(b.abs()).max(o.abs()).max_element() * n.length());
+            let (mut lo, mut hi) = (side(a).min(side(b)), side(a).max(side(b)));
+            for p in self.region.ctrl[*e as usize].points() {
+                lo = lo.min(side(p));
+                hi = hi.max(side(p));
+            }
+            lo <= reach + tol && hi >= -reach - tol
+        });
         if near.is_empty() {
-            // Not within |r| of any edge: R's own spans when grown, its
-            // own spans too when shrunk (no point is near the boundary) —
-            // but a line meeting R meets the grown boxes of its edges.
+            // Within |r| of no edge: a line meeting R crosses an edge, so it
+            // meets neither R nor the points near its outline.
             return;
         }
         let dd = d.length_squared();
-        let k = self.r.abs();
         let mut cuts: SmallVec<[(f64, u32); 64]> = SmallVec::new();
         for &e in &near {
             let (a, b) = self.region.edges[e as usize];
