@@ -624,7 +624,7 @@ mod tests {
     use glam::DVec3;
 
     /// Uniform numbers in [0, 1) from a linear congruential generator.
-    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    pub(super) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
         move || {
             seed = seed
                 .wrapping_mul(6364136223846793005)

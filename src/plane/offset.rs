@@ -532,13 +532,7 @@ mod tests {
     #[test]
     fn spans_agree_with_sampled_distances() {
         let o = blob();
-        let mut rng = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::plane::tests::uniform(0x2545_f491_4f6c_dd1du64);
         for r in [0.4, 1.3, -0.3, -0.7] {
             let off = Offset::new(Region::new(o.clone()), r);
             for _ in 0..200 {
@@ -609,13 +603,7 @@ mod tests {
     #[test]
     fn a_line_leaving_the_boundary_meets_nothing_near() {
         let o = blob();
-        let mut rng = 0x1234_5678_9abc_def1u64;
-        let mut next = || {
-            rng ^= rng << 13;
-            rng ^= rng >> 7;
-            rng ^= rng << 17;
-            (rng >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::plane::tests::uniform(0x1234_5678_9abc_def1u64);
         for r in [0.4, -0.3] {
             let off = Offset::new(Region::new(o.clone()), r);
             for _ in 0..2000 {
