@@ -177,12 +177,21 @@ impl Offset {
         best
     }
 
-    /// Whether `p` is within |r| of an edge among `edges`.
-    fn within(&self, edges: &[u32], p: DVec2) -> bool {
+    /// Whether `p` is within |r| of an edge among `edges` (closer than |r|
+    /// when not `closed`).
+    fn within(&self, edges: &[u32], p: DVec2, closed: bool) -> bool {
         let r2 = self.r * self.r;
         edges.iter().any(|&e| {
             let (lo, hi) = self.boxes[e as usize];
-            !(p.cmplt(lo).any() || p.cmpgt(hi).any()) && self.nearest_on(e as usize, p).0 <= r2
+            if p.cmplt(lo).any() || p.cmpgt(hi).any() {
+                return false;
+            }
+            let d2 = self.nearest_on(e as usize, p).0;
+            if closed {
+                d2 <= r2
+            } else {
+                d2 < r2
+            }
         })
     }
 
@@ -295,9 +304,9 @@ impl Offset {
         let inside = |s: f64| {
             let p = o + d * s;
             if grown {
-                in_region(s) || self.within(&near, p)
+                in_region(s) || self.within(&near, p, true)
             } else {
-                in_region(s) && !self.within_open(&near, p)
+                in_region(s) && !self.within(&near, p, false)
             }
         };
         // Outside before the first candidate and after the last.
@@ -321,15 +330,6 @@ impl Offset {
             }
             i = j;
         }
-    }
-
-    /// Whether `p` is closer than |r| to an edge among `edges`.
-    fn within_open(&self, edges: &[u32], p: DVec2) -> bool {
-        let r2 = self.r * self.r;
-        edges.iter().any(|&e| {
-            let (lo, hi) = self.boxes[e as usize];
-            !(p.cmplt(lo).any() || p.cmpgt(hi).any()) && self.nearest_on(e as usize, p).0 < r2
-        })
     }
 }
 
