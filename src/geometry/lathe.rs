@@ -62,20 +62,42 @@ impl Lathe {
             * (z_hi - z_lo)
                 .abs()
                 .max(self.profile.hi.y.abs().max(self.profile.lo.y.abs()));
-        for (k, &(a, b)) in self.profile.edges.iter().enumerate() {
+        // Whether the line, while its height is within an edge's heights,
+        // stays farther from the axis than the edge's largest radius or
+        // nearer than its smallest, by more than the rounding of `value`:
+        // then the edge cannot be crossed, and both its ends are on one
+        // side (the same for each: `value` < 0, or > 0), as they would be
+        // found. The edge (a curve: its control points' hull) lies within
+        // the box [lo, hi].
+        let tc = -b2 / (2.0 * a2);
+        let apart_radially = |lo: DVec2, hi: DVec2| {
+            let (ta, tb) = ((lo.y - o.z) / d.z, (hi.y - o.z) / d.z);
+            let (ta, tb) = (ta.min(tb), ta.max(tb));
+            let far = ta.abs().max(tb.abs());
+            let r = hi.x.max(-lo.x);
+            let margin = 1e-12 * (r * r + (a2 * far + b2.abs()) * far + c2);
+            let near = rho2(tc.clamp(ta, tb));
+            if near - r * r > margin {
+                return true;
+            }
+            lo.x > 0.0 && lo.x * lo.x - rho2(ta).max(rho2(tb)) > margin
+        };
+        let meets = |lo: DVec2, hi: DVec2| {
+            hi.y >= z_lo - pad && lo.y <= z_hi + pad && !apart_radially(lo, hi)
+        };
+        let mut cross = |k: usize| {
+            let (a, b) = self.profile.edges[k];
             let ctrl = self.profile.ctrl[k];
             // An edge on the axis turns into no surface: the line's trace
             // meets r = 0 only by touching it, where the region goes on.
             if a.x == 0.0 && b.x == 0.0 && ctrl == Ctrl::Line {
-                continue;
+                return;
             }
-            let (zl, zh) = ctrl
+            let (lo, hi) = ctrl
                 .points()
-                .fold((a.y.min(b.y), a.y.max(b.y)), |(l, h), p| {
-                    (l.min(p.y), h.max(p.y))
-                });
-            if zh < z_lo - pad || zl > z_hi + pad {
-                continue;
+                .fold((a.min(b), a.max(b)), |(l, h), p| (l.min(p), h.max(p)));
+            if !meets(lo, hi) {
+                return;
             }
             if ctrl != Ctrl::Line {
                 // A curve (r, z) = B(u): the line's height reaches z = Z(u)
@@ -152,7 +174,7 @@ impl Lathe {
                     }
                     cuts.push((t, k as u32));
                 });
-                continue;
+                return;
             }
             let (ga, gb) = (side(a), side(b));
             // The edge's line n·(r, z) = c turned about the axis is a cone:
@@ -226,6 +248,12 @@ impl Lathe {
                 cuts.push((found[0].0, k as u32));
                 cuts.push((found[1].0, k as u32));
             }
+        };
+        // The tree's boxes hold their edges' boxes, and a box the line's
+        // trace misses holds no edge it meets.
+        match &self.profile.tree {
+            Some(tree) => tree.visit_boxes(meets, &mut |k| cross(k as usize)),
+            None => (0..self.profile.edges.len()).for_each(cross),
         }
     }
 }

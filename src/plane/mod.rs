@@ -484,23 +484,29 @@ impl EdgeTree {
 
     /// Calls `f` with every edge in a box the line ℓ·(x, y, 1) = 0 may meet.
     pub fn visit(&self, line: DVec3, f: &mut impl FnMut(u32)) {
+        self.visit_boxes(
+            |lo, hi| {
+                let (mut pos, mut neg) = (true, true);
+                for c in [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)] {
+                    let v = line.x * c.x + line.y * c.y + line.z;
+                    let tol = 1e-14 * ((line.x * c.x).abs() + (line.y * c.y).abs() + line.z.abs());
+                    pos &= v > tol;
+                    neg &= v < -tol;
+                }
+                !(pos || neg)
+            },
+            f,
+        )
+    }
+
+    /// Calls `f` with every edge in the boxes `[lo, hi]` for which `meets`
+    /// holds, and all of whose enclosing boxes it holds for.
+    pub fn visit_boxes(&self, meets: impl Fn(DVec2, DVec2) -> bool, f: &mut impl FnMut(u32)) {
         let mut stack: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
         stack.push(0);
         while let Some(i) = stack.pop() {
             let nd = &self.nodes[i as usize];
-            let (mut pos, mut neg) = (true, true);
-            for c in [
-                nd.lo,
-                DVec2::new(nd.hi.x, nd.lo.y),
-                nd.hi,
-                DVec2::new(nd.lo.x, nd.hi.y),
-            ] {
-                let v = line.x * c.x + line.y * c.y + line.z;
-                let tol = 1e-14 * ((line.x * c.x).abs() + (line.y * c.y).abs() + line.z.abs());
-                pos &= v > tol;
-                neg &= v < -tol;
-            }
-            if pos || neg {
+            if !meets(nd.lo, nd.hi) {
                 continue;
             }
             if nd.count > 0 {
