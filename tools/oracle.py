@@ -1032,6 +1032,33 @@ def feature_distances(fts, q):
     return list(np.linalg.norm(q - a - u[:, None] * e, axis=1))
 
 
+def ieee_div(a, b):
+    """a / b as IEEE (and numpy) divide: ±inf for a nonzero a over a zero b
+    (signed zeros kept), NaN for 0/0."""
+    if b != 0.0:
+        return a / b
+    if a == 0.0 or a != a:
+        return math.nan
+    return math.copysign(math.inf, a) * math.copysign(1.0, b)
+
+
+def slab_range(lo, hi, o, v):
+    """(near, far) of the line o + t·v through the box [lo, hi], by the
+    slab rule numpy's vector form used before: per axis the smaller and
+    larger of the two slab distances; a NaN nearer distance counts as −∞
+    and a NaN farther one as +∞, and an axis whose other distance is NaN
+    is passed over."""
+    near, far = [], []
+    for li, hi_, oi, vi in zip(lo, hi, o, v):
+        t0, t1 = ieee_div(li - oi, vi), ieee_div(hi_ - oi, vi)
+        nan0, nan1 = t0 != t0, t1 != t1
+        near.append(-math.inf if nan0 else math.nan if nan1 else min(t0, t1))
+        far.append(math.inf if nan1 else math.nan if nan0 else max(t0, t1))
+    near = [x for x in near if x == x]
+    far = [x for x in far if x == x]
+    return (max(near) if near else math.nan), (min(far) if far else math.nan)
+
+
 class Caster:
     """All crossings of a ray with the mesh, fast.
 
@@ -1050,6 +1077,7 @@ class Caster:
         self.big = 1e6 * max(size, 1.0)
         margin = 1e-6 * max(size, 1.0)
         self.lo, self.hi = lo - margin, hi + margin
+        self.lo_f, self.hi_f = self.lo.tolist(), self.hi.tolist()
         self.parts = []  # (leaf, its own mesh, its box)
         root = sc.root
         tops = root.children if isinstance(root, reader.Op) and root.op == "union" else [root]
@@ -1065,7 +1093,7 @@ class Caster:
         if isinstance(node, reader.Leaf):
             m = leaf_mesh(node, n, self.big)
             b = m.bounding_box()
-            self.parts.append((node, m, np.array(b[:3]), np.array(b[3:])))
+            self.parts.append((node, m, [float(c) for c in b[:3]], [float(c) for c in b[3:]]))
             return m
         op = {"union": mf.OpType.Add, "intersection": mf.OpType.Intersect}.get(node.op)
         if op is not None:
@@ -1083,8 +1111,11 @@ class Caster:
         to sign, made that surface. (manifold's face_id numbers its inner
         order, not the leaves.)"""
         eps = 1e-7 * max(1.0, float(np.abs(x).max()))
+        xs = x.tolist()
         for leaf, m, lo, hi in self.parts:
-            if np.any(x < lo - eps) or np.any(x > hi + eps):
+            # The box test in plain floats: numpy's per-call cost on three
+            # numbers was a tenth of the oracle's time.
+            if any(xi < li - eps or xi > hj + eps for xi, li, hj in zip(xs, lo, hi)):
                 continue
             for h in m.ray_cast((x - eps * v).tolist(), (x + eps * v).tolist()):
                 if abs(float(np.dot(h.normal, nrm))) > 1 - 1e-6:
@@ -1106,20 +1137,19 @@ class Caster:
         return [(t, n, self.owner(o + t * v, v, n) if owners else None) for t, n in hits]
 
     def _cast(self, o, v, tmax, first):
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t0 = (self.lo - o) / v
-            t1 = (self.hi - o) / v
-        near = np.nanmax(np.where(np.isnan(t0), -np.inf, np.minimum(t0, t1)))
-        far = np.nanmin(np.where(np.isnan(t1), np.inf, np.maximum(t0, t1)))
+        near, far = slab_range(self.lo_f, self.hi_f, o.tolist(), v.tolist())
         near = max(near, 0.0)
-        inside = near <= far and np.isfinite(far) and near < tmax
+        inside = near <= far and math.isfinite(far) and near < tmax
         hits = []
         if self.outside is not None and inside and near > 0:
             hits += self._seg(self.outside, o, v, 0.0, min(near, tmax))
             if first and hits:
                 return hits[:1]
         if inside:
-            edges = np.linspace(near, min(far, tmax), self.PIECES + 1)
+            # np.linspace's points: start + i·step, the last one the end.
+            end = min(far, tmax)
+            step = (end - near) / self.PIECES
+            edges = [i * step + near for i in range(self.PIECES)] + [end]
             for a, b in zip(edges, edges[1:]):
                 hits += [h for h in self._seg(self.solid, o, v, a, b) if h[0] > 0]
                 if first and hits:

@@ -28,9 +28,29 @@ use std::sync::Arc;
 pub struct Lathe {
     /// The profile: x is the distance from the axis (all x ≥ 0), y is z.
     pub profile: Arc<Region>,
+    /// Each edge's box (a curve's: its control points'), empty for a
+    /// straight edge on the axis, which turns into no surface: the line's
+    /// trace meets r = 0 only by touching it, where the region goes on.
+    boxes: Arc<[(DVec2, DVec2)]>,
 }
 
 impl Lathe {
+    pub fn new(profile: Arc<Region>) -> Lathe {
+        let boxes = profile
+            .edges
+            .iter()
+            .zip(&profile.ctrl)
+            .map(|(&(a, b), ctrl)| {
+                if a.x == 0.0 && b.x == 0.0 && *ctrl == Ctrl::Line {
+                    return (DVec2::INFINITY, DVec2::NEG_INFINITY);
+                }
+                ctrl.points()
+                    .fold((a.min(b), a.max(b)), |(l, h), p| (l.min(p), h.max(p)))
+            })
+            .collect();
+        Lathe { profile, boxes }
+    }
+
     /// The crossings `(t, edge)` of the line with the profile's sides, for
     /// a line with both d_z ≠ 0 and d_xy ≠ 0.
     fn crossings(&self, o: DVec3, d: DVec3, cuts: &mut Cuts) {
@@ -70,8 +90,9 @@ impl Lathe {
         // found. The edge (a curve: its control points' hull) lies within
         // the box [lo, hi].
         let tc = -b2 / (2.0 * a2);
+        let inv_dz = 1.0 / d.z;
         let apart_radially = |lo: DVec2, hi: DVec2| {
-            let (ta, tb) = ((lo.y - o.z) / d.z, (hi.y - o.z) / d.z);
+            let (ta, tb) = ((lo.y - o.z) * inv_dz, (hi.y - o.z) * inv_dz);
             let (ta, tb) = (ta.min(tb), ta.max(tb));
             let far = ta.abs().max(tb.abs());
             let r = hi.x.max(-lo.x);
@@ -88,14 +109,7 @@ impl Lathe {
         let mut cross = |k: usize| {
             let (a, b) = self.profile.edges[k];
             let ctrl = self.profile.ctrl[k];
-            // An edge on the axis turns into no surface: the line's trace
-            // meets r = 0 only by touching it, where the region goes on.
-            if a.x == 0.0 && b.x == 0.0 && ctrl == Ctrl::Line {
-                return;
-            }
-            let (lo, hi) = ctrl
-                .points()
-                .fold((a.min(b), a.max(b)), |(l, h), p| (l.min(p), h.max(p)));
+            let (lo, hi) = self.boxes[k];
             if !meets(lo, hi) {
                 return;
             }
@@ -229,14 +243,20 @@ impl Lathe {
                     Roots::None => Roots::None,
                 }
             };
-            let found: smallvec::SmallVec<[(f64, f64); 2]> = match r {
-                Roots::None => smallvec::SmallVec::new(),
-                Roots::One(t) => on_edge(t).map(|l| (t, l)).into_iter().collect(),
-                Roots::Two(t0, t1) => [t0, t1]
-                    .into_iter()
-                    .filter_map(|t| on_edge(t).map(|l| (t, l)))
-                    .collect(),
+            let mut found = [(0.0, 0.0); 2];
+            let mut m = 0;
+            let (t0, t1, count) = match r {
+                Roots::None => (0.0, 0.0, 0),
+                Roots::One(t) => (t, t, 1),
+                Roots::Two(t0, t1) => (t0, t1, 2),
             };
+            for t in [t0, t1].into_iter().take(count) {
+                if let Some(l) = on_edge(t) {
+                    found[m] = (t, l);
+                    m += 1;
+                }
+            }
+            let found = &found[..m];
             if ga != gb {
                 // One crossing: the root nearest the edge.
                 let off = |l: f64| (l - l.clamp(0.0, 1.0)).abs();

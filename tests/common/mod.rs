@@ -131,9 +131,9 @@ pub fn l_lathe() -> csgrt::geometry::Shape {
             .map(|l| l.iter().map(|p| *p + glam::DVec2::new(0.5, -1.0)).collect())
             .collect(),
     );
-    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
-        profile: std::sync::Arc::new(Region::new(moved)),
-    })
+    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe::new(std::sync::Arc::new(
+        Region::new(moved),
+    )))
 }
 
 fn l_region() -> csgrt::plane::Region {
@@ -181,9 +181,7 @@ fn curved_region(
 pub fn curved_lathe() -> csgrt::geometry::Shape {
     use csgrt::plane::Ctrl;
     let region = curved_region(|p| Ctrl::Quad(p(2.2, 1.0)), glam::DVec2::new(0.4, -1.0));
-    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe {
-        profile: std::sync::Arc::new(region),
-    })
+    csgrt::geometry::Shape::Lathe(csgrt::geometry::Lathe::new(std::sync::Arc::new(region)))
 }
 
 /// The curved region with a cubic S-bend bow, as a prism whose top section

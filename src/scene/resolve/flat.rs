@@ -1242,9 +1242,7 @@ impl Resolver<'_> {
                 if clipped.loops.is_empty() {
                     return Ok(None);
                 }
-                let shape = Shape::Lathe(Lathe {
-                    profile: Arc::new(Region::new(clipped)),
-                });
+                let shape = Shape::Lathe(Lathe::new(Arc::new(Region::new(clipped))));
                 self.leaf(s, shape, xf, mat)
             }
             Flat::Ellipse(e) => {
