@@ -20,7 +20,7 @@
 use super::poly::{Poly, MAX_DEGREE};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
-use crate::plane::{side_changes, Ctrl, Curve, Region};
+use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -277,8 +277,6 @@ impl Lathe {
         }
     }
 }
-
-type Cuts = smallvec::SmallVec<[(f64, u32); 16]>;
 
 enum Roots {
     None,

@@ -367,7 +367,7 @@ impl Region {
 
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
-    pub fn crossings(&self, o: DVec2, d: DVec2) -> Vec<(f64, u32)> {
+    pub fn crossings(&self, o: DVec2, d: DVec2) -> Cuts {
         sorted_crossings(self.edges_near(o, d), o, d)
     }
 
@@ -401,6 +401,11 @@ impl Region {
         })
     }
 }
+
+/// The crossings `(s, edge)` of a line with a region's edges, sorted: on
+/// the stack up to 16 (a glyph's or a gear's line meets fewer), so that a
+/// prism's test allocates nothing.
+pub type Cuts = smallvec::SmallVec<[(f64, u32); 16]>;
 
 /// The most edges a region checks one by one; above, an [`EdgeTree`].
 pub const FLAT_EDGES: usize = 32;
@@ -546,8 +551,8 @@ fn sorted_crossings(
     edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
     o: DVec2,
     d: DVec2,
-) -> Vec<(f64, u32)> {
-    let mut cuts: Vec<(f64, u32)> = Vec::new();
+) -> Cuts {
+    let mut cuts = Cuts::new();
     crossings(edges, o, d, |s, k| cuts.push((s, k)));
     cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
     cuts
