@@ -1383,6 +1383,7 @@ def main():
     ap.add_argument("--report", default=None)
     ap.add_argument("--kinds", default=None, help="only these primitives (comma-separated)")
     ap.add_argument("--same-as", default=None, help="instead of exact answers, require another build's, to the byte")
+    ap.add_argument("--first-failure", action="store_true", help="stop at the first case that fails (tools/mutants.py: one is enough)")
     a = ap.parse_args()
     rng = random.Random(20261122)
     worst = {}  # (kind, pose, case) -> (error, description)
@@ -1412,6 +1413,8 @@ def main():
                 if v[0] > worst_angle.get(key, (-1.0, 0.0))[0]:
                     worst_angle[key] = v
             failures += fs
+            if a.first_failure and fs:
+                break  # (leaving the pool terminates the cases still running)
     lines = [
         "# Accuracy against exact arithmetic",
         "",

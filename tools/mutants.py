@@ -86,7 +86,7 @@ def tool_fails(fault, script, *args):
 
 
 def accuracy_fails(binary, fault, kinds):
-    failed, lines = tool_fails(fault, "accuracy.py", "--csgrt", binary, "--check", "--kinds", ",".join(kinds))
+    failed, lines = tool_fails(fault, "accuracy.py", "--csgrt", binary, "--check", "--first-failure", "--kinds", ",".join(kinds))
     return failed, lines[-1] if lines else ""
 
 
