@@ -97,7 +97,9 @@ impl Lathe {
             let far = ta.abs().max(tb.abs());
             let r = hi.x.max(-lo.x);
             let margin = 1e-12 * (r * r + (a2 * far + b2.abs()) * far + c2);
-            let near = rho2(tc.clamp(ta, tb));
+            // (max then min: `clamp` would panic on a NaN end, as a
+            // subnormal d_z makes of a box at the origin's height.)
+            let near = rho2(tc.max(ta).min(tb));
             if near - r * r > margin {
                 return true;
             }
