@@ -1076,8 +1076,8 @@ class Caster:
         size = float(np.linalg.norm(hi - lo))
         self.big = 1e6 * max(size, 1.0)
         margin = 1e-6 * max(size, 1.0)
-        self.lo, self.hi = lo - margin, hi + margin
-        self.lo_f, self.hi_f = self.lo.tolist(), self.hi.tolist()
+        # (plain floats: the box is clipped against one ray at a time)
+        self.lo, self.hi = (lo - margin).tolist(), (hi + margin).tolist()
         self.parts = []  # (leaf, its own mesh, its box)
         root = sc.root
         tops = root.children if isinstance(root, reader.Op) and root.op == "union" else [root]
@@ -1137,7 +1137,7 @@ class Caster:
         return [(t, n, self.owner(o + t * v, v, n) if owners else None) for t, n in hits]
 
     def _cast(self, o, v, tmax, first):
-        near, far = slab_range(self.lo_f, self.hi_f, o.tolist(), v.tolist())
+        near, far = slab_range(self.lo, self.hi, o.tolist(), v.tolist())
         near = max(near, 0.0)
         inside = near <= far and math.isfinite(far) and near < tmax
         hits = []

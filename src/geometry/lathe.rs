@@ -44,8 +44,7 @@ impl Lathe {
                 if a.x == 0.0 && b.x == 0.0 && *ctrl == Ctrl::Line {
                     return (DVec2::INFINITY, DVec2::NEG_INFINITY);
                 }
-                ctrl.points()
-                    .fold((a.min(b), a.max(b)), |(l, h), p| (l.min(p), h.max(p)))
+                ctrl.bounds(a, b)
             })
             .collect();
         Lathe { profile, boxes }

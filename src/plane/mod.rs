@@ -64,6 +64,13 @@ impl Ctrl {
         };
         a.into_iter().chain(b)
     }
+
+    /// The box `(lo, hi)` of the edge from `a` to `b`: its ends' and
+    /// control points', which holds a curve (it lies in their hull).
+    pub fn bounds(&self, a: DVec2, b: DVec2) -> (DVec2, DVec2) {
+        self.points()
+            .fold((a.min(b), a.max(b)), |(lo, hi), p| (lo.min(p), hi.max(p)))
+    }
 }
 
 /// One edge from `a` to `b`: its point at u ∈ [0, 1] is B(u), a polynomial
@@ -296,10 +303,7 @@ impl Region {
             let boxes: Vec<(DVec2, DVec2)> = edges
                 .iter()
                 .zip(&ctrl)
-                .map(|(&(a, b), c)| {
-                    c.points()
-                        .fold((a.min(b), a.max(b)), |(lo, hi), p| (lo.min(p), hi.max(p)))
-                })
+                .map(|(&(a, b), c)| c.bounds(a, b))
                 .collect();
             EdgeTree::new(&boxes)
         });

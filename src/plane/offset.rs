@@ -69,9 +69,7 @@ impl Offset {
             .iter()
             .zip(&region.ctrl)
             .map(|(&(a, b), c)| {
-                let (lo, hi) = c
-                    .points()
-                    .fold((a.min(b), a.max(b)), |(lo, hi), p| (lo.min(p), hi.max(p)));
+                let (lo, hi) = c.bounds(a, b);
                 (lo - DVec2::splat(pad), hi + DVec2::splat(pad))
             })
             .collect();
