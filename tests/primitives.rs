@@ -12,7 +12,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
 mod common;
-use common::{curved_lathe, curved_prism, l_lathe, l_prism, l_twisted, Rng};
+use common::{curved_lathe, curved_prism, l_lathe, l_offset, l_prism, l_twisted, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![
@@ -448,4 +448,93 @@ fn support_points_are_the_farthest_points_of_the_solid() {
         Shape::Halfspace(csgrt::geometry::Halfspace).support(DVec3::Z),
         None
     );
+}
+
+/// Directions with zero, subnormal and negative-zero components (the
+/// slab and quadratic divisions by them): every primitive, from every
+/// placement, answers with a finite t and a unit normal; so do lines lying
+/// in a side (where a side's function is zero all along: this hung).
+#[test]
+fn subnormal_and_zero_direction_components() {
+    let tiny = [5e-324, 1e-310, 0.0, -1e-310, -0.0];
+    let mut dirs = Vec::new();
+    for e in tiny {
+        dirs.push(DVec3::new(-1.0, 0.0, e));
+        dirs.push(DVec3::new(-1.0, e, e));
+        dirs.push(DVec3::new(e, e, -1.0));
+        dirs.push(DVec3::new(e, -1.0, e));
+    }
+    let mut all = shapes();
+    all.extend([("grown L", l_offset(0.3)), ("shrunk L", l_offset(-0.2))]);
+    for (name, shape) in all {
+        let csg = single(&shape, DAffine3::IDENTITY);
+        for &d in &dirs {
+            for x in [0.0, 0.5, 1.0, 5.0] {
+                for z in [-1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 2.0] {
+                    for target in [DVec3::new(x, 0.0, z), DVec3::new(5.0, x, z)] {
+                        let ray = Ray::new(target - 10.0 * d, d);
+                        if let Some(h) = first(&csg, &ray) {
+                            assert!(h.t.is_finite(), "{name}: t = {} along {d:?}", h.t);
+                            assert!(
+                                (h.normal.length() - 1.0).abs() < 1e-9,
+                                "{name}: normal {:?} along {d:?} to {target:?}",
+                                h.normal
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        // A component below the smallest normal number changes nothing a
+        // ray meets away from faces at its height: the same hits as with
+        // that component zero.
+        for e in tiny {
+            let pairs = [
+                (DVec3::new(-1.0, 0.0, e), DVec3::new(-1.0, 0.0, 0.0)),
+                (DVec3::new(-1.0, e, e), DVec3::new(-1.0, 0.0, 0.0)),
+                (DVec3::new(e, e, -1.0), DVec3::new(0.0, 0.0, -1.0)),
+                (DVec3::new(e, -1.0, e), DVec3::new(0.0, -1.0, 0.0)),
+            ];
+            for (d, d0) in pairs {
+                // Clear of the faces and edges of every shape, scaled or not.
+                for x in [0.317, 0.736, 1.171] {
+                    for z in [-0.713, -0.229, 0.268, 0.771] {
+                        for target in [DVec3::new(x, 0.131, z), DVec3::new(0.934, x, z)] {
+                            let hit = first(&csg, &Ray::new(target - 10.0 * d, d));
+                            let hit0 = first(&csg, &Ray::new(target - 10.0 * d0, d0));
+                            match (hit, hit0) {
+                                (None, None) => {}
+                                (Some(h), Some(h0)) => assert!(
+                                    (h.t - h0.t).abs() < 1e-9,
+                                    "{name}: t = {} along {d:?}, {} along {d0:?}, to {target:?}",
+                                    h.t,
+                                    h0.t
+                                ),
+                                (h, h0) => panic!(
+                                    "{name}: {:?} along {d:?}, {:?} along {d0:?}, to {target:?}",
+                                    h.map(|h| h.t),
+                                    h0.map(|h| h.t)
+                                ),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Lines in the planes y = 0 and x = 0 (the L's sides lie in them,
+        // and an untwisted extrusion's sides stay there at every height).
+        for d in [DVec3::new(0.3, 0.0, 1.0), DVec3::new(0.0, -0.2, 1.0)] {
+            let d = d.normalize();
+            for x in [0.25, 0.5, 1.5] {
+                let o = if d.y == 0.0 {
+                    DVec3::new(x, 0.0, -5.0)
+                } else {
+                    DVec3::new(0.0, x, -5.0)
+                };
+                if let Some(h) = first(&csg, &Ray::new(o, d)) {
+                    assert!(h.t.is_finite(), "{name}: t = {} along {d:?}", h.t);
+                }
+            }
+        }
+    }
 }

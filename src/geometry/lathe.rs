@@ -24,6 +24,14 @@ use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
+/// A line whose direction's vertical part is at most this fraction of its
+/// horizontal part (or the other way round) is taken as level (as along
+/// the axis): over the stretch near the solid, of its size over the larger
+/// part, the smaller moves it 10⁻¹⁰⁰ of that size, far below any rounding,
+/// while the general path's squares of t = Δz/d_z would overflow (a d_z
+/// below the normal numbers made them ±∞, and the line missed the solid).
+pub(super) const FLAT: f64 = 1e-100;
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lathe {
     /// The profile: x is the distance from the axis (all x ≥ 0), y is z.
@@ -313,7 +321,7 @@ impl Solid for Lathe {
         let (o, d) = (q.o, q.d);
         let (oxy, dxy) = (o.truncate(), d.truncate());
         let region = &self.profile;
-        if dxy == DVec2::ZERO {
+        if dxy.length() <= FLAT * d.z.abs() {
             // Along the axis: a line of the half-plane at r = ρ.
             let o2 = DVec2::new(oxy.length(), o.z);
             for pair in region.crossings(o2, DVec2::new(0.0, d.z)).chunks_exact(2) {
@@ -323,7 +331,7 @@ impl Solid for Lathe {
             }
             return;
         }
-        if d.z == 0.0 {
+        if d.z.abs() <= FLAT * dxy.length() {
             // At one height: the half-line r ≥ ρ_min, traced in then out.
             let a2 = dxy.length_squared();
             let tc = -oxy.dot(dxy) / a2;

@@ -438,7 +438,7 @@ impl Solid for Twisted {
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         // Heights from the bottom.
         let (o, d) = (q.o - DVec3::Z * self.z_lo(), q.d);
-        if d.z == 0.0 {
+        if d.z.abs() <= super::lathe::FLAT * d.truncate().length() {
             // A straight path through the section at this height.
             if o.z <= 0.0 || o.z >= 1.0 {
                 return;

@@ -576,6 +576,11 @@ pub fn crossings(
     d: DVec2,
     mut cut: impl FnMut(f64, u32),
 ) {
+    // A direction so short (or long) that d·d leaves the normal numbers is
+    // scaled by a power of two to about unit length (exactly), and the
+    // parameters scaled back (to ±∞ where they overflow).
+    let (d, back) = unit_scale(d);
+    let mut cut = |s: f64, k: u32| cut(s / back.0 / back.1, k);
     let n = d.perp();
     let dd = d.length_squared();
     for (k, a, c, b) in edges {
@@ -606,6 +611,20 @@ pub fn crossings(
             cut(p.dot(d) / dd, k);
         });
     }
+}
+
+/// `d` scaled by a power of two to about unit length where its square is
+/// far from 1, and the two powers of two it was divided by (one alone may
+/// not reach 2¹⁰⁷⁴): a parameter along it divided by both is `d`'s.
+pub fn unit_scale(d: DVec2) -> (DVec2, (f64, f64)) {
+    let m = d.x.abs().max(d.y.abs());
+    if (1e-150..=1e150).contains(&m) || m == 0.0 || !m.is_finite() {
+        return (d, (1.0, 1.0));
+    }
+    let k = m.log2().floor() as i32;
+    let (k1, k2) = (k / 2, k - k / 2);
+    let (p1, p2) = (2f64.powi(k1), 2f64.powi(k2));
+    (d / p1 / p2, (p1, p2))
 }
 
 /// The parameters u ∈ [0, 1] where a curve passes from one side of a line

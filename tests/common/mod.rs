@@ -195,3 +195,12 @@ pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
         centered: true,
     })
 }
+
+/// The L of [`l_prism`] offset by `r` (grown or shrunk, round corners) and
+/// extruded.
+pub fn l_offset(r: f64) -> csgrt::geometry::Shape {
+    csgrt::geometry::Shape::OffsetPrism(csgrt::geometry::OffsetPrism {
+        region: std::sync::Arc::new(csgrt::plane::offset::Offset::new(l_region(), r)),
+        centered: false,
+    })
+}
