@@ -127,7 +127,13 @@ pub const MAX_FILE_BYTES: u64 = 64 << 20;
 
 /// Reads a model file into a named source.
 pub fn read_source(path: &Path) -> Result<Source> {
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    let meta = std::fs::metadata(path).map_err(|e| unreadable(path, e))?;
+    if meta.is_dir() {
+        return Err(Error::Usage(format!(
+            "{}: is a folder, not a file",
+            path.display()
+        )));
+    }
     if meta.len() > MAX_FILE_BYTES {
         return Err(Error::Usage(format!(
             "{}: the file has {} bytes; the limit is {} MiB",
@@ -136,10 +142,36 @@ pub fn read_source(path: &Path) -> Result<Source> {
             MAX_FILE_BYTES >> 20
         )));
     }
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|_| Error::Usage(format!("{}: the file is not UTF-8 text", path.display())))?;
-    Ok(Source::new(path.display().to_string(), text))
+    let bytes = std::fs::read(path).map_err(|e| unreadable(path, e))?;
+    let name = path.display().to_string();
+    match String::from_utf8(bytes) {
+        Ok(text) => Ok(Source::new(name, text)),
+        Err(e) => {
+            // The place of the first byte that is not UTF-8, in the text
+            // as far as it is (the same bytes in its lossy reading).
+            let at = e.utf8_error().valid_up_to();
+            let byte = e.as_bytes()[at];
+            let src = Source::new(name, String::from_utf8_lossy(e.as_bytes()).into_owned());
+            Err(src.error(
+                crate::error::TextRange::new(at, at + 1),
+                format!("byte 0x{byte:02X} is not UTF-8 text"),
+                "expected a file saved as UTF-8 (as OpenSCAD writes it)",
+            ))
+        }
+    }
+}
+
+/// A model or ray file that cannot be read, in plain words: missing, a
+/// folder, or not readable are the user's to fix (exit 2); anything else
+/// is the system's (exit 1).
+fn unreadable(path: &Path, e: std::io::Error) -> Error {
+    use std::io::ErrorKind;
+    let why = match e.kind() {
+        ErrorKind::NotFound => "no such file",
+        ErrorKind::PermissionDenied => "permission denied: this user may not read it",
+        _ => return Error::io(path, e),
+    };
+    Error::Usage(format!("{}: {why}", path.display()))
 }
 
 /// Loads a model by its extension.
@@ -208,12 +240,14 @@ fn trace_rays(cli: &Cli, scene: &Scene, input: &Path) -> Result<()> {
     if let Some(p) = &cli.stats_json {
         write_atomic(p, &cli.model, stats_json(&stats, seconds).as_bytes())?;
     }
+    to_stdout(out.as_bytes())
+}
+
+/// Bytes to standard output; a closed pipe (`| head`) is the reader's
+/// choice, not an error.
+fn to_stdout(bytes: &[u8]) -> Result<()> {
     let mut stdout = std::io::stdout().lock();
-    match stdout
-        .write_all(out.as_bytes())
-        .and_then(|_| stdout.flush())
-    {
-        // A closed pipe (`| head`) is the reader's choice, not an error.
+    match stdout.write_all(bytes).and_then(|_| stdout.flush()) {
         Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::io("<stdout>", e)),
         _ => Ok(()),
     }
@@ -243,6 +277,15 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
     {
         refuse_model(p, &cli.model)?;
     }
+    // Formats before rendering: nothing is drawn for an output csgrt cannot
+    // write.
+    let format = ImageFormat::of(&output)?;
+    let mask_format = cli.mask.as_deref().map(ImageFormat::of).transpose()?;
+    if output == Path::new("-") && cli.mask.as_deref() == Some(Path::new("-")) {
+        return Err(Error::Usage(
+            "the image and the mask cannot both go to standard output".into(),
+        ));
+    }
     let bar = (!cli.quiet && std::io::stderr().is_terminal()).then(|| {
         let b = ProgressBar::new(height as u64);
         b.set_style(
@@ -267,17 +310,11 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
     }
     let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
     // Everything is computed; now write.
-    write_atomic(
-        &output,
-        &cli.model,
-        &png(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?,
-    )?;
-    if let (Some(p), Some(m)) = (&cli.mask, &mask) {
-        write_atomic(
-            p,
-            &cli.model,
-            &png(m, width, height, image::ExtendedColorType::L8)?,
-        )?;
+    let rgb = format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?;
+    write_image(&output, &cli.model, &rgb)?;
+    if let (Some(p), Some(m), Some(f)) = (&cli.mask, &mask, mask_format) {
+        let grey = f.encode(m, width, height, image::ExtendedColorType::L8)?;
+        write_image(p, &cli.model, &grey)?;
     }
     if let Some(p) = &cli.dump_scene {
         let cam = scene.view(width, height);
@@ -294,21 +331,94 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
         write_atomic(p, &cli.model, stats_json(&image.stats, seconds).as_bytes())?;
     }
     if !cli.quiet {
+        let name = if output == Path::new("-") {
+            "<stdout>".to_string()
+        } else {
+            output.display().to_string()
+        };
         eprintln!(
-            "csgrt: wrote {} ({width}x{height}, {} spp) in {seconds:.3} s",
-            output.display(),
+            "csgrt: wrote {name} ({width}x{height}, {} spp) in {seconds:.3} s",
             cli.spp
         );
     }
     Ok(())
 }
 
-fn png(data: &[u8], w: u32, h: u32, color: image::ExtendedColorType) -> Result<Vec<u8>> {
-    let mut out = Vec::new();
-    let enc = image::codecs::png::PngEncoder::new(&mut out);
-    image::ImageEncoder::write_image(enc, data, w, h, color)
-        .map_err(|e| Error::io("<png>", std::io::Error::other(e)))?;
-    Ok(out)
+/// The image formats csgrt writes, chosen by the output's extension
+/// (`-`: PNG on standard output).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ImageFormat {
+    Png,
+    Jpeg,
+    Bmp,
+    Tiff,
+    WebP,
+}
+
+impl ImageFormat {
+    fn of(path: &Path) -> Result<ImageFormat> {
+        // (A folder is refused when written, as any output is.)
+        if path == Path::new("-") || path.is_dir() {
+            return Ok(ImageFormat::Png);
+        }
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        Ok(match ext.as_deref() {
+            Some("png") => ImageFormat::Png,
+            Some("jpg" | "jpeg") => ImageFormat::Jpeg,
+            Some("bmp") => ImageFormat::Bmp,
+            Some("tif" | "tiff") => ImageFormat::Tiff,
+            Some("webp") => ImageFormat::WebP,
+            other => {
+                let what = other.map_or("no extension".to_string(), |e| format!("`.{e}`"));
+                return Err(Error::Usage(format!(
+                    "{}: {what} names no image format csgrt writes; expected .png, .jpg, \
+                     .jpeg, .bmp, .tif, .tiff or .webp (or `-` for PNG on standard output)",
+                    path.display()
+                )));
+            }
+        })
+    }
+
+    /// The encoded file (JPEG at quality 90; WebP lossless).
+    fn encode(
+        self,
+        data: &[u8],
+        w: u32,
+        h: u32,
+        color: image::ExtendedColorType,
+    ) -> Result<Vec<u8>> {
+        use image::ImageEncoder;
+        let mut out = std::io::Cursor::new(Vec::new());
+        let done = match self {
+            ImageFormat::Png => {
+                image::codecs::png::PngEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::Jpeg => image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90)
+                .write_image(data, w, h, color),
+            ImageFormat::Bmp => {
+                image::codecs::bmp::BmpEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::Tiff => {
+                image::codecs::tiff::TiffEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::WebP => image::codecs::webp::WebPEncoder::new_lossless(&mut out)
+                .write_image(data, w, h, color),
+        };
+        done.map_err(|e| Error::io(format!("<{self:?}>"), std::io::Error::other(e)))?;
+        Ok(out.into_inner())
+    }
+}
+
+/// An image to its file, or to standard output for `-`.
+fn write_image(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
+    if path == Path::new("-") {
+        to_stdout(bytes)
+    } else {
+        write_atomic(path, model, bytes)
+    }
 }
 
 /// Refuses an output path that names the model itself.

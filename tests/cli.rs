@@ -291,14 +291,6 @@ fn the_output_may_not_be_the_model() {
 }
 
 #[test]
-fn a_missing_model_is_an_io_error() {
-    let dir = tempfile::tempdir().unwrap();
-    let r = csgrt(dir.path(), &["nope.csg"]);
-    assert_eq!(r.status, 1);
-    assert!(r.stderr.starts_with("error: nope.csg: "), "{}", r.stderr);
-}
-
-#[test]
 fn a_missing_font_family_falls_back_to_the_built_in_font_with_a_warning() {
     let text = "linear_extrude(1) text(\"Hi\", font = \"Nowhere Sans:style=Bold\");\n";
     let (dir, _) = scene("f.csg", text);
@@ -589,4 +581,113 @@ fn an_unknown_facets_mode_is_a_usage_error() {
         "{}",
         r.stderr
     );
+}
+
+/// Each file format by its own signature and header, read here by hand;
+/// the BMP's pixels (uncompressed, bottom-up BGR rows padded to 4 bytes)
+/// are the PNG's, pixel for pixel.
+#[test]
+fn the_output_format_follows_the_extension() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    let (w, h) = (37u32, 23u32);
+    for name in [
+        "a.png", "a.jpg", "a.JPEG", "a.bmp", "a.tif", "a.tiff", "a.webp",
+    ] {
+        let r = csgrt(
+            dir.path(),
+            &["ball.csg", "--size", "37x23", "-q", "-o", name],
+        );
+        assert_eq!(r.status, 0, "{name}: {}", r.stderr);
+    }
+    let read = |n: &str| std::fs::read(dir.path().join(n)).unwrap();
+    let png = read("a.png");
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    assert_eq!(&png[16..24], [w.to_be_bytes(), h.to_be_bytes()].concat());
+    for jpeg in [read("a.jpg"), read("a.JPEG")] {
+        assert_eq!(&jpeg[..3], [0xFF, 0xD8, 0xFF]);
+        assert_eq!(&jpeg[jpeg.len() - 2..], [0xFF, 0xD9]);
+    }
+    for tiff in [read("a.tif"), read("a.tiff")] {
+        assert_eq!(&tiff[..4], b"II*\0");
+    }
+    let webp = read("a.webp");
+    assert_eq!((&webp[..4], &webp[8..12]), (&b"RIFF"[..], &b"WEBP"[..]));
+    let bmp = read("a.bmp");
+    assert_eq!(&bmp[..2], b"BM");
+    let le = |at: usize| u32::from_le_bytes(bmp[at..at + 4].try_into().unwrap());
+    assert_eq!((le(18), le(22), le(28) & 0xFFFF), (w, h, 24));
+    let (offset, stride) = (le(10) as usize, (3 * w as usize).div_ceil(4) * 4);
+    let decoded = image::load_from_memory(&png).unwrap().to_rgb8();
+    for (x, y, p) in decoded.enumerate_pixels() {
+        let at = offset + (h - 1 - y) as usize * stride + 3 * x as usize;
+        assert_eq!([bmp[at + 2], bmp[at + 1], bmp[at]], p.0, "pixel {x},{y}");
+    }
+}
+
+#[test]
+fn an_output_in_no_known_format_is_refused_before_rendering() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    for (name, what) in [
+        ("a.exr", "`.exr`"),
+        ("a.PNGX", "`.pngx`"),
+        ("noext", "no extension"),
+    ] {
+        let r = csgrt(dir.path(), &["ball.csg", "-q", "-o", name]);
+        assert_eq!(r.status, 2);
+        assert_eq!(
+            r.stderr,
+            format!(
+                "error: {name}: {what} names no image format csgrt writes; expected .png, .jpg, \
+                 .jpeg, .bmp, .tif, .tiff or .webp (or `-` for PNG on standard output)\n"
+            )
+        );
+        let r = csgrt(dir.path(), &["ball.csg", "-q", "--mask", name]);
+        assert_eq!(r.status, 2, "{}", r.stderr);
+    }
+    assert_eq!(files(dir.path()), ["ball.csg"]);
+}
+
+#[test]
+fn a_dash_writes_the_png_to_standard_output() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_csgrt"))
+        .current_dir(dir.path())
+        .args(["ball.csg", "--size", "40x30", "-o", "-"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(&out.stdout[..8], b"\x89PNG\r\n\x1a\n");
+    let img = image::load_from_memory(&out.stdout).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (40, 30));
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        said.starts_with("csgrt: wrote <stdout> (40x30, 1 spp) in "),
+        "{said}"
+    );
+    assert_eq!(files(dir.path()), ["ball.csg"]);
+}
+
+#[test]
+fn a_model_that_cannot_be_read_is_named_in_plain_words() {
+    let (dir, _) = scene("ball.csg", SPHERE);
+    std::fs::create_dir(dir.path().join("folder.csg")).unwrap();
+    for (model, want) in [
+        ("nope.csg", "error: nope.csg: no such file\n"),
+        ("folder.csg", "error: folder.csg: is a folder, not a file\n"),
+    ] {
+        let r = csgrt(dir.path(), &[model, "-q"]);
+        assert_eq!((r.status, r.stderr.as_str()), (2, want));
+    }
+    std::fs::write(
+        dir.path().join("latin1.csg"),
+        b"cube(1);\nsphere(2); // \xe9t\xe9\n",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["latin1.csg", "-q"]);
+    assert_eq!(r.status, 2);
+    assert_eq!(
+        r.stderr,
+        "error: byte 0xE9 is not UTF-8 text\n --> latin1.csg:2:15\n  |\n2 | sphere(2); // \u{FFFD}t\u{FFFD}\n  |               ^ expected a file saved as UTF-8 (as OpenSCAD writes it)\n"
+    );
+    assert_eq!(files(dir.path()), ["ball.csg", "folder.csg", "latin1.csg"]);
 }
