@@ -26,8 +26,13 @@ pub const MAX_THREADS: usize = 1024;
 #[derive(Parser, Debug)]
 #[command(name = "csgrt", version, about, long_about = None)]
 pub struct Cli {
-    /// The scene to render: `.csg`, or the seed's `.ray` display list.
+    /// The scene to render: `.csg`, the seed's `.ray` display list, or
+    /// `.scad` (exported to `.csg` by `openscad` on PATH first).
     pub model: PathBuf,
+    /// Passed to OpenSCAD for a `.scad` model: `-D name=value` sets a
+    /// variable, as on OpenSCAD's own command line (repeatable).
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub define: Vec<String>,
     /// The image to write (PNG); default: MODEL with the extension `.png`.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -174,6 +179,13 @@ fn unreadable(path: &Path, e: std::io::Error) -> Error {
     Error::Usage(format!("{}: {why}", path.display()))
 }
 
+/// Whether `path` names an OpenSCAD program (`.scad`).
+fn is_scad(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("scad"))
+}
+
 /// Loads a model by its extension.
 pub fn load(path: &Path) -> Result<Scene> {
     load_with(path, crate::scene::Facets::default())
@@ -181,6 +193,11 @@ pub fn load(path: &Path) -> Result<Scene> {
 
 /// [`load`] with `$fn`, `$fa`, `$fs` read as `facets` says (`.csg` only).
 pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
+    load_model(path, facets, &[])
+}
+
+/// [`load_with`], a `.scad` model exported with OpenSCAD's `-D` `defines`.
+pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String]) -> Result<Scene> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -188,15 +205,22 @@ pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
     match ext.as_deref() {
         Some("csg") => crate::load_csg_with(&read_source(path)?, facets),
         Some("ray") => crate::syntax::ray::load_ray(&read_source(path)?),
+        Some("scad") => crate::load_csg_with(&crate::scad::export(path, defines)?, facets),
         _ => Err(Error::Usage(format!(
-            "{}: unknown model format; expected a `.csg` scene or a `.ray` display list",
+            "{}: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program",
             path.display()
         ))),
     }
 }
 
 pub fn run(cli: &Cli) -> Result<()> {
-    let scene = load_with(&cli.model, cli.facets)?;
+    if !cli.define.is_empty() && !is_scad(&cli.model) {
+        return Err(Error::Usage(format!(
+            "{}: -D sets OpenSCAD variables, for a `.scad` model only",
+            cli.model.display()
+        )));
+    }
+    let scene = load_model(&cli.model, cli.facets, &cli.define)?;
     for w in &scene.warnings {
         eprintln!("{w}");
     }

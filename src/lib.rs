@@ -25,6 +25,7 @@ pub mod mutant;
 pub mod plane;
 pub mod pov;
 pub mod render;
+pub mod scad;
 pub mod scene;
 pub mod stats;
 pub mod svg;

@@ -691,3 +691,113 @@ fn a_model_that_cannot_be_read_is_named_in_plain_words() {
     );
     assert_eq!(files(dir.path()), ["ball.csg", "folder.csg", "latin1.csg"]);
 }
+
+/// Runs csgrt in `dir` with PATH set to `path` only.
+#[cfg(unix)]
+fn csgrt_with_path(dir: &std::path::Path, path: &std::path::Path, args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_csgrt"))
+        .current_dir(dir)
+        .env("PATH", path)
+        .args(args)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&out.stderr).into_owned();
+    (out.status.code().unwrap_or(-1), said)
+}
+
+/// A stand-in `openscad` in its own folder: `body` is its shell script.
+#[cfg(unix)]
+fn fake_openscad(body: &str) -> tempfile::TempDir {
+    use std::os::unix::fs::PermissionsExt;
+    let bin = tempfile::tempdir().unwrap();
+    let p = bin.path().join("openscad");
+    std::fs::write(&p, format!("#!/bin/sh\n{body}\n")).unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
+    bin
+}
+
+/// A `.scad` model goes through `openscad -o X.csg [-D ...] MODEL` on
+/// PATH (a stand-in here that records its arguments and writes a fixed
+/// export), and renders as that export does: the same bytes.
+#[cfg(unix)]
+#[test]
+fn a_scad_model_is_exported_by_openscad_on_path_then_rendered() {
+    let (dir, _) = scene("ref.csg", SPHERE);
+    std::fs::write(dir.path().join("part.scad"), "r = 1; sphere(r);\n").unwrap();
+    let bin = fake_openscad(&format!(
+        "echo \"$@\" > args.txt\nprintf '{}' > \"$2\"",
+        SPHERE.replace('\n', "\\n")
+    ));
+    let args = ["--size", "40x30", "-q", "-D", "r=2", "-D", "name=\"a b\""];
+    let (status, said) = csgrt_with_path(
+        dir.path(),
+        bin.path(),
+        &[&["part.scad"], &args[..]].concat(),
+    );
+    assert_eq!((status, said.as_str()), (0, ""));
+    let asked = std::fs::read_to_string(dir.path().join("args.txt")).unwrap();
+    let words: Vec<&str> = asked.split_whitespace().collect();
+    assert_eq!(words[0], "-o");
+    assert!(words[1].ends_with("export.csg"), "{asked}");
+    assert_eq!(
+        &words[2..],
+        ["-D", "r=2", "-D", "name=\"a", "b\"", "part.scad"]
+    );
+    let r = csgrt(dir.path(), &["ref.csg", "--size", "40x30", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let read = |n: &str| std::fs::read(dir.path().join(n)).unwrap();
+    assert_eq!(read("part.png"), read("ref.png"));
+    // The export itself is not left beside the model.
+    assert_eq!(
+        files(dir.path()),
+        ["args.txt", "part.png", "part.scad", "ref.csg", "ref.png"]
+    );
+}
+
+#[cfg(unix)]
+#[test]
+fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
+    let (dir, _) = scene("part.scad", "sphere(;\n");
+    let nothing = tempfile::tempdir().unwrap();
+    let (status, said) = csgrt_with_path(dir.path(), nothing.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    assert_eq!(
+        said,
+        "error: part.scad: reading a .scad program needs OpenSCAD, and `openscad` is not on \
+         PATH; install it (Debian and Ubuntu: apt-get install -y openscad) or export the model \
+         yourself (openscad -o part.csg part.scad) and render the .csg\n"
+    );
+    let bin = fake_openscad("echo \"ERROR: Parser error in file part.scad, line 1\" >&2\nexit 1");
+    let (status, said) = csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    assert_eq!(
+        said,
+        "error: part.scad: OpenSCAD could not export it (exit status: 1); it said:\nERROR: Parser error in file part.scad, line 1\n"
+    );
+    // An error in the export is placed in it, named after the model.
+    let bin = fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
+    let (status, said) = csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    assert!(said.contains(" --> part.scad.csg:1:6\n"), "{said}");
+    assert_eq!(files(dir.path()), ["part.scad"]);
+}
+
+#[test]
+fn definitions_are_for_scad_models_only_and_name_a_variable() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(dir.path(), &["s.csg", "-D", "r=2", "-q"]);
+    assert_eq!(
+        (r.status, r.stderr.as_str()),
+        (
+            2,
+            "error: s.csg: -D sets OpenSCAD variables, for a `.scad` model only\n"
+        )
+    );
+    std::fs::write(dir.path().join("p.scad"), "sphere(1);\n").unwrap();
+    let r = csgrt(dir.path(), &["p.scad", "-D", "=2", "-q"]);
+    assert_eq!(
+        (r.status, r.stderr.as_str()),
+        (2, "error: -D =2: expected NAME=VALUE, as in -D width=20\n")
+    );
+    assert_eq!(files(dir.path()), ["p.scad", "s.csg"]);
+}

@@ -75,7 +75,7 @@ fn an_unknown_extension_is_refused() {
     assert_eq!(r.status, 2);
     assert_eq!(
         r.stderr,
-        "error: part.stl: unknown model format; expected a `.csg` scene or a `.ray` display list\n"
+        "error: part.stl: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program\n"
     );
     assert_eq!(files(dir.path()), ["part.stl"]);
 }
