@@ -39,6 +39,9 @@ pub struct Cli {
     /// Image size in pixels.
     #[arg(long, value_name = "WxH", default_value = "800x600", value_parser = parse_size)]
     pub size: (u32, u32),
+    /// OpenSCAD's spelling of `--size`: `--imgsize W,H`.
+    #[arg(long, value_name = "W,H", value_parser = parse_imgsize, conflicts_with = "size")]
+    pub imgsize: Option<(u32, u32)>,
     /// Samples per pixel, stratified and jittered inside the pixel.
     #[arg(long, value_name = "N", default_value_t = 1,
           value_parser = clap::value_parser!(u32).range(1..=MAX_SPP as i64))]
@@ -97,6 +100,11 @@ fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let w: u32 = w.trim().parse().map_err(|_| bad())?;
     let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    within_limits(s, w, h)
+}
+
+/// A size's sides and pixels within csgrt's limits.
+fn within_limits(s: &str, w: u32, h: u32) -> std::result::Result<(u32, u32), String> {
     if w == 0 || h == 0 {
         return Err(format!("`{s}`: width and height must be at least 1"));
     }
@@ -107,6 +115,15 @@ fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
         return Err(format!("`{s}`: at most {MAX_PIXELS} pixels in all"));
     }
     Ok((w, h))
+}
+
+/// `W,H`, as OpenSCAD's `--imgsize` takes it, within `--size`'s limits.
+fn parse_imgsize(s: &str) -> std::result::Result<(u32, u32), String> {
+    let bad = || format!("`{s}` is not a size: expected W,H, as in 800,600");
+    let (w, h) = s.split_once(',').ok_or_else(bad)?;
+    let w: u32 = w.trim().parse().map_err(|_| bad())?;
+    let h: u32 = h.trim().parse().map_err(|_| bad())?;
+    within_limits(s, w, h)
 }
 
 /// Runs csgrt with the process's arguments; returns the exit status.
@@ -278,7 +295,7 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
 }
 
 fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
-    let (width, height) = cli.size;
+    let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let settings = Settings {
         width,
         height,

@@ -801,3 +801,47 @@ fn definitions_are_for_scad_models_only_and_name_a_variable() {
     );
     assert_eq!(files(dir.path()), ["p.scad", "s.csg"]);
 }
+
+/// OpenSCAD's `--imgsize W,H` is `--size WxH`: the same image, the same
+/// limits; the two together are refused.
+#[test]
+fn imgsize_is_openscad_s_spelling_of_size() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--imgsize", "41,29", "-o", "a.png", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--size", "41x29", "-o", "b.png", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let read = |n: &str| std::fs::read(dir.path().join(n)).unwrap();
+    assert_eq!(read("a.png"), read("b.png"));
+    for (arg, why) in [
+        (
+            "41x29",
+            "`41x29` is not a size: expected W,H, as in 800,600",
+        ),
+        ("0,29", "`0,29`: width and height must be at least 1"),
+        (
+            "40000,2",
+            "`40000,2`: each side may be at most 32768 pixels",
+        ),
+    ] {
+        let r = csgrt(dir.path(), &["s.csg", "--imgsize", arg, "-q"]);
+        assert_eq!(r.status, 2);
+        let want = format!("error: invalid value '{arg}' for '--imgsize <W,H>': {why}\n");
+        assert!(r.stderr.starts_with(&want), "{}", r.stderr);
+    }
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--imgsize", "4,3", "--size", "4x3", "-q"],
+    );
+    assert_eq!(r.status, 2);
+    assert!(r
+        .stderr
+        .starts_with("error: the argument '--imgsize <W,H>' cannot be used with '--size <WxH>'"));
+    assert_eq!(files(dir.path()), ["a.png", "b.png", "s.csg"]);
+}
