@@ -68,6 +68,18 @@ pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
             said.trim_end()
         )));
     }
+    // OpenSCAD's warnings (its other lines are progress) are passed on.
+    for line in String::from_utf8_lossy(&run.stderr).lines() {
+        for tag in ["WARNING:", "DEPRECATED:"] {
+            if let Some(said) = line.strip_prefix(tag) {
+                eprintln!(
+                    "warning: {}: OpenSCAD says: {}",
+                    path.display(),
+                    said.trim()
+                );
+            }
+        }
+    }
     let text = crate::cli::read_source(&out)?.text;
     let mut name = path.as_os_str().to_owned();
     name.push(".csg");

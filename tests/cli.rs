@@ -774,6 +774,23 @@ fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
         said,
         "error: part.scad: OpenSCAD could not export it (exit status: 1); it said:\nERROR: Parser error in file part.scad, line 1\n"
     );
+    // OpenSCAD's warnings are passed on, its progress lines not.
+    let bin = fake_openscad(&format!(
+        "echo 'Compiling design (CSG Products generation)...' >&2\n\
+         echo \"WARNING: Ignoring unknown variable 'q'.\" >&2\n\
+         printf '{}' > \"$2\"",
+        SPHERE.replace('\n', "\\n")
+    ));
+    let (status, said) =
+        csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q", "-o", "w.png"]);
+    assert_eq!(
+        (status, said.as_str()),
+        (
+            0,
+            "warning: part.scad: OpenSCAD says: Ignoring unknown variable 'q'.\n"
+        )
+    );
+    std::fs::remove_file(dir.path().join("w.png")).unwrap();
     // An error in the export is placed in it, named after the model.
     let bin = fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
     let (status, said) = csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
