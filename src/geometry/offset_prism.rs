@@ -45,10 +45,7 @@ impl Solid for OffsetPrism {
             }
             return;
         }
-        // A direction of no normal size: scaled exactly (see `unit_scale`).
-        let (d2, (k0, k1)) = crate::plane::unit_scale(d2);
         self.region.spans(o2, d2, |s0, e0, s1, e1| {
-            let (s0, s1) = (s0 / k0 / k1, s1 / k0 / k1);
             clip((z0, zp0, z1, zp1), (s0, SIDE + e0, s1, SIDE + e1), emit);
         });
     }

@@ -616,7 +616,7 @@ pub fn crossings(
 /// `d` scaled by a power of two to about unit length where its square is
 /// far from 1, and the two powers of two it was divided by (one alone may
 /// not reach 2¹⁰⁷⁴): a parameter along it divided by both is `d`'s.
-pub fn unit_scale(d: DVec2) -> (DVec2, (f64, f64)) {
+fn unit_scale(d: DVec2) -> (DVec2, (f64, f64)) {
     let m = d.x.abs().max(d.y.abs());
     if (1e-150..=1e150).contains(&m) || m == 0.0 || !m.is_finite() {
         return (d, (1.0, 1.0));

@@ -232,6 +232,9 @@ impl Offset {
     /// The spans `(s_in, edge_in, s_out, edge_out)` of the line `o + s·d`
     /// (d ≠ 0) inside, sorted.
     pub fn spans(&self, o: DVec2, d: DVec2, mut emit: impl FnMut(f64, u32, f64, u32)) {
+        // A direction of no normal size: scaled exactly (see `unit_scale`).
+        let (d, (k0, k1)) = super::unit_scale(d);
+        let mut emit = |s0: f64, e0, s1: f64, e1| emit(s0 / k0 / k1, e0, s1 / k0 / k1, e1);
         let n = d.perp();
         let k = self.r.abs();
         // An edge lies in the hull of its points and control points: all
