@@ -149,13 +149,7 @@ pub const MAX_FILE_BYTES: u64 = 64 << 20;
 
 /// Reads a model file into a named source.
 pub fn read_source(path: &Path) -> Result<Source> {
-    let meta = std::fs::metadata(path).map_err(|e| unreadable(path, e))?;
-    if meta.is_dir() {
-        return Err(Error::Usage(format!(
-            "{}: is a folder, not a file",
-            path.display()
-        )));
-    }
+    let meta = model_file(path)?;
     if meta.len() > MAX_FILE_BYTES {
         return Err(Error::Usage(format!(
             "{}: the file has {} bytes; the limit is {} MiB",
@@ -183,6 +177,19 @@ pub fn read_source(path: &Path) -> Result<Source> {
     }
 }
 
+/// The metadata of a model or ray file, or why it is none: missing, not
+/// readable or a folder, in plain words (see [`unreadable`]).
+pub(crate) fn model_file(path: &Path) -> Result<std::fs::Metadata> {
+    let meta = std::fs::metadata(path).map_err(|e| unreadable(path, e))?;
+    if meta.is_dir() {
+        return Err(Error::Usage(format!(
+            "{}: is a folder, not a file",
+            path.display()
+        )));
+    }
+    Ok(meta)
+}
+
 /// A model or ray file that cannot be read, in plain words: missing, a
 /// folder, or not readable are the user's to fix (exit 2); anything else
 /// is the system's (exit 1).
@@ -196,11 +203,16 @@ fn unreadable(path: &Path, e: std::io::Error) -> Error {
     Error::Usage(format!("{}: {why}", path.display()))
 }
 
-/// Whether `path` names an OpenSCAD program (`.scad`).
-fn is_scad(path: &Path) -> bool {
+/// `path`'s extension in lower case, if it has one.
+fn extension(path: &Path) -> Option<String> {
     path.extension()
         .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("scad"))
+        .map(|e| e.to_ascii_lowercase())
+}
+
+/// Whether `path` names an OpenSCAD program (`.scad`).
+fn is_scad(path: &Path) -> bool {
+    extension(path).as_deref() == Some("scad")
 }
 
 /// Loads a model by its extension.
@@ -215,11 +227,7 @@ pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
 
 /// [`load_with`], a `.scad` model exported with OpenSCAD's `-D` `defines`.
 pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String]) -> Result<Scene> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase());
-    match ext.as_deref() {
+    match extension(path).as_deref() {
         Some("csg") => crate::load_csg_with(&read_source(path)?, facets),
         Some("ray") => crate::syntax::ray::load_ray(&read_source(path)?),
         Some("scad") => crate::load_csg_with(&crate::scad::export(path, defines)?, facets),
@@ -402,11 +410,7 @@ impl ImageFormat {
         if path == Path::new("-") || path.is_dir() {
             return Ok(ImageFormat::Png);
         }
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase());
-        Ok(match ext.as_deref() {
+        Ok(match extension(path).as_deref() {
             Some("png") => ImageFormat::Png,
             Some("jpg" | "jpeg") => ImageFormat::Jpeg,
             Some("bmp") => ImageFormat::Bmp,

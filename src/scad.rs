@@ -21,14 +21,7 @@ fn find_openscad() -> Option<PathBuf> {
 
 /// The CSG text OpenSCAD exports for the program at `path`.
 pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
-    let meta = std::fs::metadata(path)
-        .map_err(|_| Error::Usage(format!("{}: no such file", path.display())))?;
-    if meta.is_dir() {
-        return Err(Error::Usage(format!(
-            "{}: is a folder, not a file",
-            path.display()
-        )));
-    }
+    crate::cli::model_file(path)?;
     for d in defines {
         if !d
             .split_once('=')

@@ -695,14 +695,8 @@ fn a_model_that_cannot_be_read_is_named_in_plain_words() {
 /// Runs csgrt in `dir` with PATH set to `path` only.
 #[cfg(unix)]
 fn csgrt_with_path(dir: &std::path::Path, path: &std::path::Path, args: &[&str]) -> (i32, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_csgrt"))
-        .current_dir(dir)
-        .env("PATH", path)
-        .args(args)
-        .output()
-        .unwrap();
-    let said = String::from_utf8_lossy(&out.stderr).into_owned();
-    (out.status.code().unwrap_or(-1), said)
+    let r = common::csgrt_env(dir, args, None, &[("PATH", path.as_os_str())]);
+    (r.status, r.stderr)
 }
 
 /// A stand-in `openscad` in its own folder: `body` is its shell script.

@@ -15,9 +15,22 @@ pub fn csgrt(dir: &Path, args: &[&str]) -> Run {
 }
 
 pub fn csgrt_stdin(dir: &Path, args: &[&str], stdin: Option<&str>) -> Run {
+    csgrt_env(dir, args, stdin, &[])
+}
+
+/// [`csgrt_stdin`] with these environment variables set.
+pub fn csgrt_env(
+    dir: &Path,
+    args: &[&str],
+    stdin: Option<&str>,
+    vars: &[(&str, &std::ffi::OsStr)],
+) -> Run {
     use std::io::Write;
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_csgrt"));
     cmd.current_dir(dir).args(args);
+    for (k, v) in vars {
+        cmd.env(k, v);
+    }
     cmd.stdin(std::process::Stdio::piped())
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped());
