@@ -78,6 +78,26 @@ pub struct Cli {
     #[arg(long, value_name = "MODE", default_value = "shapes", value_parser = parse_facets)]
     pub facets: crate::scene::Facets,
 
+    /// OpenSCAD's camera, overriding the file's: `tx,ty,tz,rx,ry,rz,dist`
+    /// (OpenSCAD's `$vpt`, `$vpr` in degrees and `$vpd`) or
+    /// `ex,ey,ez,cx,cy,cz` (eye and centre); OpenSCAD's 22.5° vertical
+    /// field of view.
+    #[arg(long, value_name = "NUMBERS", allow_hyphen_values = true,
+          value_parser = crate::scene::openscad_view::Viewpoint::parse)]
+    pub camera: Option<crate::scene::openscad_view::Viewpoint>,
+    /// As OpenSCAD: move the camera back until the whole scene is in view
+    /// (without `--camera`, OpenSCAD's default view is used).
+    #[arg(long)]
+    pub viewall: bool,
+    /// As OpenSCAD: with `--viewall`, look at the centre of the scene's box
+    /// (without `--camera`, OpenSCAD's default view is used).
+    #[arg(long)]
+    pub autocenter: bool,
+    /// `ortho` (or `o`, `orthogonal`) for parallel rays, `perspective` (or
+    /// `p`), as OpenSCAD's `--projection`.
+    #[arg(long, value_name = "ortho|perspective", value_parser = parse_projection)]
+    pub projection: Option<crate::scene::Projection>,
+
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -91,6 +111,17 @@ fn parse_facets(s: &str) -> std::result::Result<crate::scene::Facets, String> {
         "openscad" => Ok(Facets::OpenScad),
         _ => Err(format!(
             "`{s}` is not a facets mode: expected shapes, exact or openscad"
+        )),
+    }
+}
+
+fn parse_projection(s: &str) -> std::result::Result<crate::scene::Projection, String> {
+    use crate::scene::Projection;
+    match s {
+        "o" | "ortho" | "orthogonal" => Ok(Projection::Orthographic),
+        "p" | "perspective" => Ok(Projection::Perspective),
+        _ => Err(format!(
+            "`{s}` is not a projection: expected ortho (o, orthogonal) or perspective (p)"
         )),
     }
 }
@@ -245,7 +276,8 @@ pub fn run(cli: &Cli) -> Result<()> {
             cli.model.display()
         )));
     }
-    let scene = load_model(&cli.model, cli.facets, &cli.define)?;
+    let mut scene = load_model(&cli.model, cli.facets, &cli.define)?;
+    set_view(cli, &mut scene);
     for w in &scene.warnings {
         eprintln!("{w}");
     }
@@ -260,6 +292,30 @@ pub fn run(cli: &Cli) -> Result<()> {
         Some(input) => trace_rays(cli, &scene, input),
         None => render_files(cli, &scene),
     })
+}
+
+/// The command line's camera options put into the scene: OpenSCAD's camera
+/// for any of `--camera`, `--viewall` or `--autocenter`; `--projection`
+/// alone keeps the file's camera (or csgrt's framing) and sets how it
+/// projects.
+fn set_view(cli: &Cli, scene: &mut Scene) {
+    use crate::scene::openscad_view::{self, ViewOptions};
+    let (width, height) = cli.imgsize.unwrap_or(cli.size);
+    let opts = ViewOptions {
+        camera: cli.camera,
+        viewall: cli.viewall,
+        autocenter: cli.autocenter,
+        projection: cli.projection,
+    };
+    if opts.is_openscad() {
+        let bounds = scene.framing_bounds();
+        scene.camera = Some(openscad_view::camera(&opts, &bounds, width, height));
+    } else if let Some(projection) = cli.projection {
+        scene.camera = Some(crate::scene::CameraSpec {
+            projection,
+            ..scene.view(width, height)
+        });
+    }
 }
 
 fn trace_rays(cli: &Cli, scene: &Scene, input: &Path) -> Result<()> {

@@ -78,7 +78,11 @@ pub fn scene_json(scene: &Scene, cam: &CameraSpec, width: u32, height: u32) -> V
         .collect();
     json!({
         "camera": {"eye": v3(cam.eye), "lookat": v3(cam.lookat), "up": v3(cam.up),
-                   "fov": cam.fov, "width": width, "height": height},
+                   "fov": cam.fov, "width": width, "height": height,
+                   "projection": match cam.projection {
+                       crate::scene::Projection::Perspective => "perspective",
+                       crate::scene::Projection::Orthographic => "orthographic",
+                   }},
         "background": v3(scene.background),
         "lights": lights,
         "materials": materials,

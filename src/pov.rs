@@ -16,7 +16,7 @@
 
 use crate::csg::spans::Op;
 use crate::csg::{Csg, NodeKind};
-use crate::scene::{CameraSpec, Light, Scene};
+use crate::scene::{CameraSpec, Light, Projection, Scene};
 use glam::{DAffine3, DVec3};
 use std::fmt::Write;
 
@@ -113,15 +113,34 @@ pub fn scene_sdl(
         v(ambient)
     );
     let _ = writeln!(out, "background {{ color rgb {} }}", v(scene.background));
-    let _ = writeln!(
-        out,
-        "camera {{ perspective location {} sky {} right -x*{:?} up y look_at {} angle {:?} }}",
-        v(cam.eye),
-        v(cam.up),
-        width as f64 / height as f64,
-        v(cam.lookat),
-        cam.fov
-    );
+    match cam.projection {
+        Projection::Perspective => {
+            let _ = writeln!(
+                out,
+                "camera {{ perspective location {} sky {} right -x*{:?} up y look_at {} angle {:?} }}",
+                v(cam.eye),
+                v(cam.up),
+                width as f64 / height as f64,
+                v(cam.lookat),
+                cam.fov
+            );
+        }
+        Projection::Orthographic => {
+            // POV-Ray's orthographic rays start on the plane through its
+            // location and show `right` × `up` world units: csgrt's.
+            let look = cam.lookat - cam.eye;
+            let wide = 2.0 * look.length() * (0.5 * cam.fov).to_radians().tan();
+            let _ = writeln!(
+                out,
+                "camera {{ orthographic location {} sky {} right -x*{:?} up y*{:?} look_at {} }}",
+                v(cam.eye - 100.0 * look),
+                v(cam.up),
+                wide,
+                wide * height as f64 / width as f64,
+                v(cam.lookat)
+            );
+        }
+    }
     let far = {
         let b = scene.framing_bounds();
         let size = if b.is_bounded() {

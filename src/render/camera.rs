@@ -5,9 +5,15 @@
 //! `Vp = normalize(look)·fl − ½(width·Du + height·Dv)`; the ray through
 //! image point (x, y) — column i, row j has its centre at (i + ½, j + ½),
 //! row 0 at the top — goes from the eye along `x·Du + y·Dv + Vp`.
+//!
+//! Orthographic (OpenSCAD's `--projection=ortho`): every ray goes along
+//! `look`; the image shows the rectangle of the plane through `lookat`
+//! that the perspective view shows there, `2·|look|·tan(fov/2)` wide. The
+//! rays start `100·|look|` behind the eye, where OpenSCAD's `glOrtho` puts
+//! its near plane, so what lies behind the eye is seen as OpenSCAD shows it.
 
 use crate::geometry::Ray;
-use crate::scene::CameraSpec;
+use crate::scene::{CameraSpec, Projection};
 use glam::DVec3;
 
 #[derive(Clone, Copy, Debug)]
@@ -16,6 +22,9 @@ pub struct Camera {
     pub du: DVec3,
     pub dv: DVec3,
     pub vp: DVec3,
+    /// Orthographic: the direction of every ray (`eye`, `du`, `dv` and
+    /// `vp` then place its origin); `None` for the pinhole.
+    pub parallel: Option<DVec3>,
 }
 
 impl Camera {
@@ -30,17 +39,34 @@ impl Camera {
             w
         };
         let fl = side / (2.0 * (0.5 * spec.fov).to_radians().tan());
-        let vp = look.normalize() * fl - 0.5 * (w * du + h * dv);
+        let forward = look.normalize();
+        if spec.projection == Projection::Orthographic {
+            // World units per pixel: the perspective view's at `lookat`.
+            let s = look.length() / fl;
+            return Camera {
+                eye: spec.eye - 100.0 * look,
+                du: s * du,
+                dv: s * dv,
+                vp: -0.5 * s * (w * du + h * dv),
+                parallel: Some(forward),
+            };
+        }
+        let vp = forward * fl - 0.5 * (w * du + h * dv);
         Camera {
             eye: spec.eye,
             du,
             dv,
             vp,
+            parallel: None,
         }
     }
 
     /// The ray through image point (x, y), in pixels from the top left.
     pub fn ray(&self, x: f64, y: f64) -> Ray {
-        Ray::new(self.eye, (x * self.du + y * self.dv + self.vp).normalize())
+        let across = x * self.du + y * self.dv + self.vp;
+        match self.parallel {
+            None => Ray::new(self.eye, across.normalize()),
+            Some(d) => Ray::new(self.eye + across, d),
+        }
     }
 }

@@ -85,5 +85,6 @@ pub fn framing_camera(bounds: &Aabb, width: u32, height: u32) -> CameraSpec {
         lookat: center,
         up: DVec3::Z,
         fov: FOV,
+        projection: Default::default(),
     }
 }

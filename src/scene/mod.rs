@@ -4,6 +4,7 @@
 pub mod args;
 pub mod builder;
 pub mod defaults;
+pub mod openscad_view;
 mod resolve;
 
 pub use resolve::{resolve, resolve_with, unsupported};
@@ -62,13 +63,24 @@ pub enum Light {
 }
 
 /// The seed's pinhole camera (slide 6); `fov` is the horizontal angle in
-/// degrees.
+/// degrees. Orthographic, it shows the same rectangle of the plane through
+/// `lookat` square to the view, with parallel rays.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraSpec {
     pub eye: DVec3,
     pub lookat: DVec3,
     pub up: DVec3,
     pub fov: f64,
+    pub projection: Projection,
+}
+
+/// How a camera projects (`--projection`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Projection {
+    #[default]
+    Perspective,
+    /// Parallel rays along `lookat − eye`, as OpenSCAD's `--projection=ortho`.
+    Orthographic,
 }
 
 #[derive(Clone, Debug, Default)]

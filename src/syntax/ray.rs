@@ -91,6 +91,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
         lookat: DVec3::ZERO,
         up: DVec3::Y,
         fov: 30.0,
+        projection: Default::default(),
     };
     let mut b = SceneBuilder::new();
     let mut current: Option<u32> = None;

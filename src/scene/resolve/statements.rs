@@ -62,6 +62,7 @@ impl Resolver<'_> {
                     lookat,
                     up,
                     fov,
+                    projection: Default::default(),
                 });
                 self.camera_at = Some(s.span);
             }
