@@ -20,20 +20,39 @@ pub const MAX_PIXELS: u64 = 100_000_000;
 pub const MAX_SPP: u32 = 65_536;
 pub const MAX_DEPTH: u32 = 64;
 pub const MAX_THREADS: usize = 1024;
+/// The most frames `--animate` renders.
+pub const MAX_FRAMES: u32 = 100_000;
 
 /// csgrt renders CSG scenes exactly: OpenSCAD's `.csg` export plus camera,
 /// lights and materials.
 #[derive(Parser, Debug)]
 #[command(name = "csgrt", version, about, long_about = None)]
 pub struct Cli {
-    /// The scene to render: `.csg`, the seed's `.ray` display list, or
-    /// `.scad` (exported to `.csg` by `openscad` on PATH first).
-    pub model: PathBuf,
+    /// The scenes to render: `.csg`, the seed's `.ray` display list, or
+    /// `.scad` (exported to `.csg` by `openscad` on PATH first). Several
+    /// models give one image each (beside each model, or in `-O DIR`).
+    #[arg(required = true, num_args = 1..)]
+    pub model: Vec<PathBuf>,
+    /// With several models: write each one's image into DIR (created if
+    /// missing), named after the model (`part.csg` → `DIR/part.png`).
+    #[arg(
+        short = 'O',
+        long = "output-dir",
+        value_name = "DIR",
+        conflicts_with = "output"
+    )]
+    pub output_dir: Option<PathBuf>,
+    /// For a `.scad` model: render N frames, frame i with OpenSCAD's `$t` =
+    /// i/N, named as OpenSCAD names them (`part.png` → `part00000.png`, …).
+    #[arg(long, value_name = "N",
+          value_parser = clap::value_parser!(u32).range(1..=MAX_FRAMES as i64))]
+    pub animate: Option<u32>,
     /// Passed to OpenSCAD for a `.scad` model: `-D name=value` sets a
     /// variable, as on OpenSCAD's own command line (repeatable).
     #[arg(short = 'D', value_name = "NAME=VALUE")]
     pub define: Vec<String>,
-    /// The image to write (PNG); default: MODEL with the extension `.png`.
+    /// The image to write, its format from its extension (`-`: PNG on
+    /// standard output); default: MODEL with the extension `.png`.
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
     /// Image size in pixels.
@@ -269,18 +288,126 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
     }
 }
 
+/// One image to render: a model (with OpenSCAD variables for a `.scad`
+/// one) and where its image goes.
+#[derive(Clone, Debug)]
+struct Job {
+    model: PathBuf,
+    defines: Vec<String>,
+    output: PathBuf,
+}
+
+/// `path` with `suffix` added to its file stem (`a/b.png`, `00003` →
+/// `a/b00003.png`), as OpenSCAD names animation frames.
+fn with_stem_suffix(path: &Path, suffix: &str) -> PathBuf {
+    let mut name = path.file_stem().unwrap_or_default().to_owned();
+    name.push(suffix);
+    if let Some(e) = path.extension() {
+        name.push(".");
+        name.push(e);
+    }
+    path.with_file_name(name)
+}
+
+/// The images the command line asks for, checked before anything is read:
+/// options that name one file need one model, `-D` and `--animate` a
+/// `.scad` one, and no two images may share a name.
+fn jobs(cli: &Cli) -> Result<Vec<Job>> {
+    let several = cli.model.len() > 1;
+    if several || cli.animate.is_some() {
+        let single = [
+            ("--mask", cli.mask.is_some()),
+            ("--stats-json", cli.stats_json.is_some()),
+            ("--dump-scene", cli.dump_scene.is_some()),
+            ("--export-pov", cli.export_pov.is_some()),
+            ("--trace-rays", cli.trace_rays.is_some()),
+        ];
+        let what = if several {
+            "several models"
+        } else {
+            "--animate"
+        };
+        if several && cli.output.is_some() {
+            return Err(Error::Usage(
+                "-o names one image; for several models use -O DIR (one image per model)".into(),
+            ));
+        }
+        if let Some((opt, _)) = single.iter().find(|(_, on)| *on) {
+            return Err(Error::Usage(format!(
+                "{opt} writes one file, for one image; it cannot be used with {what}"
+            )));
+        }
+        if cli.output.as_deref() == Some(Path::new("-")) {
+            return Err(Error::Usage(
+                "-o - writes one image to standard output; it cannot be used with --animate".into(),
+            ));
+        }
+    }
+    if let Some(dir) = &cli.output_dir {
+        if dir.exists() && !dir.is_dir() {
+            return Err(Error::Usage(format!(
+                "-O {}: is a file, not a folder",
+                dir.display()
+            )));
+        }
+    }
+    let mut out = Vec::new();
+    for model in &cli.model {
+        if !is_scad(model) {
+            for (opt, on) in [
+                ("-D", !cli.define.is_empty()),
+                ("--animate", cli.animate.is_some()),
+            ] {
+                if on {
+                    return Err(Error::Usage(format!(
+                        "{}: {opt} sets OpenSCAD variables, for a `.scad` model only",
+                        model.display()
+                    )));
+                }
+            }
+        }
+        let image = model.with_extension("png");
+        let output = match (&cli.output, &cli.output_dir) {
+            (Some(o), _) => o.clone(),
+            (None, Some(dir)) => dir.join(image.file_name().unwrap_or_default()),
+            (None, None) => image,
+        };
+        match cli.animate {
+            None => out.push(Job {
+                model: model.clone(),
+                defines: cli.define.clone(),
+                output,
+            }),
+            Some(n) => {
+                for i in 0..n {
+                    let mut defines = cli.define.clone();
+                    // OpenSCAD's own frame time, `frame * (1.0 / frames)`.
+                    defines.push(format!("$t={:?}", i as f64 * (1.0 / n as f64)));
+                    out.push(Job {
+                        model: model.clone(),
+                        defines,
+                        output: with_stem_suffix(&output, &format!("{i:05}")),
+                    });
+                }
+            }
+        }
+    }
+    let mut seen = std::collections::HashMap::new();
+    for j in &out {
+        if let Some(first) = seen.insert(j.output.clone(), &j.model) {
+            return Err(Error::Usage(format!(
+                "{} and {} would both be written to {}; render them with separate -O folders",
+                first.display(),
+                j.model.display(),
+                j.output.display()
+            )));
+        }
+    }
+    Ok(out)
+}
+
 pub fn run(cli: &Cli) -> Result<()> {
-    if !cli.define.is_empty() && !is_scad(&cli.model) {
-        return Err(Error::Usage(format!(
-            "{}: -D sets OpenSCAD variables, for a `.scad` model only",
-            cli.model.display()
-        )));
-    }
-    let mut scene = load_model(&cli.model, cli.facets, &cli.define)?;
-    set_view(cli, &mut scene);
-    for w in &scene.warnings {
-        eprintln!("{w}");
-    }
+    let jobs = jobs(cli)?;
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(n) = cli.threads {
         pool = pool.num_threads(n as usize);
@@ -288,10 +415,52 @@ pub fn run(cli: &Cli) -> Result<()> {
     let pool = pool
         .build()
         .map_err(|e| Error::Usage(format!("cannot start {:?} threads: {e}", cli.threads)))?;
-    pool.install(|| match &cli.trace_rays {
-        Some(input) => trace_rays(cli, &scene, input),
-        None => render_files(cli, &scene),
-    })
+    if let Some(dir) = &cli.output_dir {
+        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    }
+    if let [job] = &jobs[..] {
+        let scene = scene_of(cli, job)?;
+        return pool.install(|| match &cli.trace_rays {
+            Some(input) => trace_rays(cli, job, &scene, input),
+            None => render_files(cli, job, &scene, true),
+        });
+    }
+    // Several images: each is rendered and written on its own; one that
+    // fails is reported and the others still come out. The exit status is
+    // the worst of theirs. Frames of an animation are exported and
+    // rendered side by side (each render uses the whole pool too).
+    let one = |job: &Job| scene_of(cli, job).and_then(|s| render_files(cli, job, &s, false));
+    let results: Vec<Result<()>> = pool.install(|| {
+        if cli.animate.is_some() {
+            use rayon::prelude::*;
+            jobs.par_iter().map(one).collect()
+        } else {
+            jobs.iter().map(one).collect()
+        }
+    });
+    let failed: Vec<Error> = results.into_iter().filter_map(|r| r.err()).collect();
+    for e in &failed {
+        eprintln!("{e}");
+    }
+    match failed.iter().map(Error::exit_code).max() {
+        None => Ok(()),
+        Some(code) => Err(Error::Several {
+            failed: failed.len(),
+            of: jobs.len(),
+            code,
+        }),
+    }
+}
+
+/// A job's model read and viewed as the command line says, its warnings
+/// printed.
+fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
+    let mut scene = load_model(&job.model, cli.facets, &job.defines)?;
+    set_view(cli, &mut scene);
+    for w in &scene.warnings {
+        eprintln!("{w}");
+    }
+    Ok(scene)
 }
 
 /// The command line's camera options put into the scene: OpenSCAD's camera
@@ -318,7 +487,7 @@ fn set_view(cli: &Cli, scene: &mut Scene) {
     }
 }
 
-fn trace_rays(cli: &Cli, scene: &Scene, input: &Path) -> Result<()> {
+fn trace_rays(cli: &Cli, job: &Job, scene: &Scene, input: &Path) -> Result<()> {
     let src = if input == Path::new("-") {
         let mut text = String::new();
         std::io::stdin()
@@ -343,7 +512,7 @@ fn trace_rays(cli: &Cli, scene: &Scene, input: &Path) -> Result<()> {
         out.push('\n');
     }
     if let Some(p) = &cli.stats_json {
-        write_atomic(p, &cli.model, stats_json(&stats, seconds).as_bytes())?;
+        write_atomic(p, &job.model, stats_json(&stats, seconds).as_bytes())?;
     }
     to_stdout(out.as_bytes())
 }
@@ -358,7 +527,7 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
     }
 }
 
-fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
+fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let settings = Settings {
         width,
@@ -366,12 +535,9 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
         spp: cli.spp,
         max_depth: cli.max_depth,
     };
-    let output = cli
-        .output
-        .clone()
-        .unwrap_or_else(|| cli.model.with_extension("png"));
+    let output = &job.output;
     for p in [
-        Some(&output),
+        Some(output),
         cli.mask.as_ref(),
         cli.stats_json.as_ref(),
         cli.dump_scene.as_ref(),
@@ -380,18 +546,18 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
     .into_iter()
     .flatten()
     {
-        refuse_model(p, &cli.model)?;
+        refuse_model(p, &job.model)?;
     }
     // Formats before rendering: nothing is drawn for an output csgrt cannot
     // write.
-    let format = ImageFormat::of(&output)?;
+    let format = ImageFormat::of(output)?;
     let mask_format = cli.mask.as_deref().map(ImageFormat::of).transpose()?;
     if output == Path::new("-") && cli.mask.as_deref() == Some(Path::new("-")) {
         return Err(Error::Usage(
             "the image and the mask cannot both go to standard output".into(),
         ));
     }
-    let bar = (!cli.quiet && std::io::stderr().is_terminal()).then(|| {
+    let bar = (bar && !cli.quiet && std::io::stderr().is_terminal()).then(|| {
         let b = ProgressBar::new(height as u64);
         b.set_style(
             ProgressStyle::with_template(
@@ -416,24 +582,24 @@ fn render_files(cli: &Cli, scene: &Scene) -> Result<()> {
     let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
     // Everything is computed; now write.
     let rgb = format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?;
-    write_image(&output, &cli.model, &rgb)?;
+    write_image(output, &job.model, &rgb)?;
     if let (Some(p), Some(m), Some(f)) = (&cli.mask, &mask, mask_format) {
         let grey = f.encode(m, width, height, image::ExtendedColorType::L8)?;
-        write_image(p, &cli.model, &grey)?;
+        write_image(p, &job.model, &grey)?;
     }
     if let Some(p) = &cli.dump_scene {
         let cam = scene.view(width, height);
         let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
             .expect("JSON of plain values");
-        write_atomic(p, &cli.model, json.as_bytes())?;
+        write_atomic(p, &job.model, json.as_bytes())?;
     }
     if let Some(p) = &cli.export_pov {
         let cam = scene.view(width, height);
         let sdl = crate::pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
-        write_atomic(p, &cli.model, sdl.as_bytes())?;
+        write_atomic(p, &job.model, sdl.as_bytes())?;
     }
     if let Some(p) = &cli.stats_json {
-        write_atomic(p, &cli.model, stats_json(&image.stats, seconds).as_bytes())?;
+        write_atomic(p, &job.model, stats_json(&image.stats, seconds).as_bytes())?;
     }
     if !cli.quiet {
         let name = if output == Path::new("-") {

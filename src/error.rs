@@ -209,6 +209,10 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// Some of several images failed, each already reported; `code` is the
+    /// worst of their exit statuses.
+    #[error("error: {failed} of {of} images failed (each said why above)")]
+    Several { failed: usize, of: usize, code: i32 },
 }
 
 impl Error {
@@ -217,6 +221,7 @@ impl Error {
         match self {
             Error::Scene(_) | Error::Usage(_) => 2,
             Error::Io { .. } => 1,
+            Error::Several { code, .. } => *code,
         }
     }
 

@@ -692,24 +692,6 @@ fn a_model_that_cannot_be_read_is_named_in_plain_words() {
     assert_eq!(files(dir.path()), ["ball.csg", "folder.csg", "latin1.csg"]);
 }
 
-/// Runs csgrt in `dir` with PATH set to `path` only.
-#[cfg(unix)]
-fn csgrt_with_path(dir: &std::path::Path, path: &std::path::Path, args: &[&str]) -> (i32, String) {
-    let r = common::csgrt_env(dir, args, None, &[("PATH", path.as_os_str())]);
-    (r.status, r.stderr)
-}
-
-/// A stand-in `openscad` in its own folder: `body` is its shell script.
-#[cfg(unix)]
-fn fake_openscad(body: &str) -> tempfile::TempDir {
-    use std::os::unix::fs::PermissionsExt;
-    let bin = tempfile::tempdir().unwrap();
-    let p = bin.path().join("openscad");
-    std::fs::write(&p, format!("#!/bin/sh\n{body}\n")).unwrap();
-    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
-    bin
-}
-
 /// A `.scad` model goes through `openscad -o X.csg [-D ...] MODEL` on
 /// PATH (a stand-in here that records its arguments and writes a fixed
 /// export), and renders as that export does: the same bytes.
@@ -718,12 +700,12 @@ fn fake_openscad(body: &str) -> tempfile::TempDir {
 fn a_scad_model_is_exported_by_openscad_on_path_then_rendered() {
     let (dir, _) = scene("ref.csg", SPHERE);
     std::fs::write(dir.path().join("part.scad"), "r = 1; sphere(r);\n").unwrap();
-    let bin = fake_openscad(&format!(
+    let bin = common::fake_openscad(&format!(
         "echo \"$@\" > args.txt\nprintf '{}' > \"$2\"",
         SPHERE.replace('\n', "\\n")
     ));
     let args = ["--size", "40x30", "-q", "-D", "r=2", "-D", "name=\"a b\""];
-    let (status, said) = csgrt_with_path(
+    let (status, said) = common::csgrt_with_path(
         dir.path(),
         bin.path(),
         &[&["part.scad"], &args[..]].concat(),
@@ -753,7 +735,7 @@ fn a_scad_model_is_exported_by_openscad_on_path_then_rendered() {
 fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
     let (dir, _) = scene("part.scad", "sphere(;\n");
     let nothing = tempfile::tempdir().unwrap();
-    let (status, said) = csgrt_with_path(dir.path(), nothing.path(), &["part.scad", "-q"]);
+    let (status, said) = common::csgrt_with_path(dir.path(), nothing.path(), &["part.scad", "-q"]);
     assert_eq!(status, 2);
     assert_eq!(
         said,
@@ -761,22 +743,23 @@ fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
          PATH; install it (Debian and Ubuntu: apt-get install -y openscad) or export the model \
          yourself (openscad -o part.csg part.scad) and render the .csg\n"
     );
-    let bin = fake_openscad("echo \"ERROR: Parser error in file part.scad, line 1\" >&2\nexit 1");
-    let (status, said) = csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    let bin =
+        common::fake_openscad("echo \"ERROR: Parser error in file part.scad, line 1\" >&2\nexit 1");
+    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
     assert_eq!(status, 2);
     assert_eq!(
         said,
         "error: part.scad: OpenSCAD could not export it (exit status: 1); it said:\nERROR: Parser error in file part.scad, line 1\n"
     );
     // OpenSCAD's warnings are passed on, its progress lines not.
-    let bin = fake_openscad(&format!(
+    let bin = common::fake_openscad(&format!(
         "echo 'Compiling design (CSG Products generation)...' >&2\n\
          echo \"WARNING: Ignoring unknown variable 'q'.\" >&2\n\
          printf '{}' > \"$2\"",
         SPHERE.replace('\n', "\\n")
     ));
     let (status, said) =
-        csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q", "-o", "w.png"]);
+        common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q", "-o", "w.png"]);
     assert_eq!(
         (status, said.as_str()),
         (
@@ -786,8 +769,8 @@ fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
     );
     std::fs::remove_file(dir.path().join("w.png")).unwrap();
     // An error in the export is placed in it, named after the model.
-    let bin = fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
-    let (status, said) = csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    let bin = common::fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
+    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
     assert_eq!(status, 2);
     assert!(said.contains(" --> part.scad.csg:1:6\n"), "{said}");
     assert_eq!(files(dir.path()), ["part.scad"]);

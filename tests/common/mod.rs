@@ -51,6 +51,28 @@ pub fn csgrt_env(
     }
 }
 
+/// Runs csgrt in `dir` with PATH set to `path` only.
+#[cfg(unix)]
+pub fn csgrt_with_path(
+    dir: &std::path::Path,
+    path: &std::path::Path,
+    args: &[&str],
+) -> (i32, String) {
+    let r = csgrt_env(dir, args, None, &[("PATH", path.as_os_str())]);
+    (r.status, r.stderr)
+}
+
+/// A stand-in `openscad` in its own folder: `body` is its shell script.
+#[cfg(unix)]
+pub fn fake_openscad(body: &str) -> tempfile::TempDir {
+    use std::os::unix::fs::PermissionsExt;
+    let bin = tempfile::tempdir().unwrap();
+    let p = bin.path().join("openscad");
+    std::fs::write(&p, format!("#!/bin/sh\n{body}\n")).unwrap();
+    std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o755)).unwrap();
+    bin
+}
+
 /// A fresh scratch folder holding `name` with `text`.
 pub fn scene(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();

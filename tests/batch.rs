@@ -1,0 +1,238 @@
+//! Several images in one run: several models (beside each model or into
+//! `-O DIR`) and `--animate N` frames of a `.scad` model. Each image must be
+//! byte for byte the one a run of that model alone writes.
+
+mod common;
+use common::csgrt;
+use std::path::Path;
+
+const CUBE: &str = "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\ncube(2, center = true);\n";
+const BALL: &str = "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\nsphere(1.2);\n";
+
+fn read(dir: &Path, name: &str) -> Vec<u8> {
+    std::fs::read(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// Renders `text` alone as `name` in a fresh folder and returns its PNG.
+fn alone(name: &str, text: &str) -> Vec<u8> {
+    let (dir, _) = common::scene(name, text);
+    let r = csgrt(dir.path(), &[name, "--size", "40x30", "-q", "-o", "x.png"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    read(dir.path(), "x.png")
+}
+
+#[test]
+fn several_models_into_a_folder() {
+    let (dir, _) = common::scene("cube.csg", CUBE);
+    std::fs::create_dir(dir.path().join("more")).unwrap();
+    std::fs::write(dir.path().join("more/ball.csg"), BALL).unwrap();
+    let r = csgrt(
+        dir.path(),
+        &[
+            "cube.csg",
+            "more/ball.csg",
+            "-O",
+            "thumbs/new",
+            "--size",
+            "40x30",
+            "-q",
+        ],
+    );
+    assert_eq!((r.status, r.stderr.as_str()), (0, ""));
+    assert_eq!(
+        common::files(&dir.path().join("thumbs/new")),
+        ["ball.png", "cube.png"]
+    );
+    assert_eq!(
+        read(dir.path(), "thumbs/new/cube.png"),
+        alone("a.csg", CUBE)
+    );
+    assert_eq!(
+        read(dir.path(), "thumbs/new/ball.png"),
+        alone("a.csg", BALL)
+    );
+    // Without -O, each image goes beside its model.
+    let r = csgrt(
+        dir.path(),
+        &["cube.csg", "more/ball.csg", "--size", "40x30", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(read(dir.path(), "more/ball.png"), alone("a.csg", BALL));
+    assert_eq!(read(dir.path(), "cube.png"), alone("a.csg", CUBE));
+}
+
+#[test]
+fn a_bad_model_among_several_fails_alone() {
+    let (dir, _) = common::scene("cube.csg", CUBE);
+    std::fs::write(dir.path().join("bad.csg"), "cube(1;\n").unwrap();
+    std::fs::write(dir.path().join("ball.csg"), BALL).unwrap();
+    let r = csgrt(
+        dir.path(),
+        &[
+            "cube.csg",
+            "bad.csg",
+            "ball.csg",
+            "missing.csg",
+            "-O",
+            "out",
+            "--size",
+            "40x30",
+            "-q",
+        ],
+    );
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(r.stderr.contains("bad.csg:1:"), "{}", r.stderr);
+    assert!(
+        r.stderr.contains("missing.csg: no such file"),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.contains("2 of 4 images failed"), "{}", r.stderr);
+    assert_eq!(
+        common::files(&dir.path().join("out")),
+        ["ball.png", "cube.png"]
+    );
+}
+
+#[test]
+fn several_models_refuse_single_file_options_and_clashing_names() {
+    let (dir, _) = common::scene("a.csg", CUBE);
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(dir.path().join("sub/a.csg"), BALL).unwrap();
+    std::fs::write(dir.path().join("b.csg"), BALL).unwrap();
+    std::fs::write(dir.path().join("file"), "x").unwrap();
+    for (args, says) in [
+        (&["a.csg", "b.csg", "-o", "x.png"][..], "use -O DIR"),
+        (
+            &["a.csg", "b.csg", "--mask", "m.png"],
+            "--mask writes one file",
+        ),
+        (
+            &["a.csg", "b.csg", "--stats-json", "s.json"],
+            "--stats-json writes one file",
+        ),
+        (
+            &["a.csg", "sub/a.csg", "-O", "out"],
+            "would both be written to out/a.png",
+        ),
+        (&["a.csg", "b.csg", "-O", "file"], "is a file, not a folder"),
+        (
+            &["a.csg", "-o", "x.png", "-O", "out"],
+            "cannot be used with",
+        ),
+    ] {
+        let r = csgrt(dir.path(), args);
+        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
+        assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
+        assert_eq!(
+            common::files(dir.path()),
+            ["a.csg", "b.csg", "file", "sub"],
+            "{args:?}"
+        );
+    }
+}
+
+/// `--animate N` runs OpenSCAD once per frame with `-D $t=i/N` (a stand-in
+/// here that moves a ball by `$t`), and frame i is the image of that
+/// export, named as OpenSCAD names frames.
+#[cfg(unix)]
+#[test]
+fn animate_renders_openscads_frames() {
+    let (dir, _) = common::scene("spin.scad", "translate([$t, 0, 0]) sphere(1);\n");
+    let bin = common::fake_openscad(
+        r#"t=0
+for a in "$@"; do case "$a" in '$t='*) t="${a#\$t=}";; esac; done
+echo "$@" >> "${0%/*}/calls.txt"
+printf 'camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, %s], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(1);\n' "$t" > "$2""#,
+    );
+    let (status, said) = common::csgrt_with_path(
+        dir.path(),
+        bin.path(),
+        &[
+            "spin.scad",
+            "--animate",
+            "4",
+            "-D",
+            "k=1",
+            "--size",
+            "40x30",
+            "-q",
+            "-o",
+            "f.png",
+        ],
+    );
+    assert_eq!((status, said.as_str()), (0, ""));
+    assert_eq!(
+        common::files(dir.path()),
+        [
+            "f00000.png",
+            "f00001.png",
+            "f00002.png",
+            "f00003.png",
+            "spin.scad"
+        ]
+    );
+    let calls = std::fs::read_to_string(bin.path().join("calls.txt")).unwrap();
+    let mut ts: Vec<&str> = calls
+        .lines()
+        .map(|l| l.split_whitespace().find(|w| w.starts_with("$t=")).unwrap())
+        .collect();
+    ts.sort();
+    assert_eq!(ts, ["$t=0.0", "$t=0.25", "$t=0.5", "$t=0.75"]);
+    assert!(calls.lines().all(|l| l.contains("-D k=1")), "{calls}");
+    let mut frames = Vec::new();
+    for i in 0..4 {
+        let x = i as f64 / 4.0;
+        let want = alone(
+            "a.csg",
+            &format!("camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, {x}], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(1);\n"),
+        );
+        let got = read(dir.path(), &format!("f{i:05}.png"));
+        assert_eq!(got, want, "frame {i}");
+        frames.push(got);
+    }
+    assert!(frames.windows(2).all(|w| w[0] != w[1]), "the ball moves");
+    // Without -o, the frames go beside the model; -O puts them in a folder.
+    let (status, said) = common::csgrt_with_path(
+        dir.path(),
+        bin.path(),
+        &[
+            "spin.scad",
+            "--animate",
+            "2",
+            "--size",
+            "40x30",
+            "-q",
+            "-O",
+            "frames",
+        ],
+    );
+    assert_eq!((status, said.as_str()), (0, ""));
+    assert_eq!(
+        common::files(&dir.path().join("frames")),
+        ["spin00000.png", "spin00001.png"]
+    );
+}
+
+#[test]
+fn animate_needs_a_scad_model_and_one_image_per_frame() {
+    let (dir, _) = common::scene("a.csg", CUBE);
+    std::fs::write(dir.path().join("a.scad"), "cube(1);\n").unwrap();
+    for (args, says) in [
+        (&["a.csg", "--animate", "3"][..], "for a `.scad` model only"),
+        (
+            &["a.scad", "--animate", "3", "--mask", "m.png"],
+            "cannot be used with --animate",
+        ),
+        (
+            &["a.scad", "--animate", "3", "-o", "-"],
+            "cannot be used with --animate",
+        ),
+        (&["a.scad", "--animate", "0"], "--animate"),
+    ] {
+        let r = csgrt(dir.path(), args);
+        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
+        assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
+        assert_eq!(common::files(dir.path()), ["a.csg", "a.scad"], "{args:?}");
+    }
+}
