@@ -61,10 +61,13 @@ pub struct Cli {
     /// OpenSCAD's spelling of `--size`: `--imgsize W,H`.
     #[arg(long, value_name = "W,H", value_parser = parse_imgsize, conflicts_with = "size")]
     pub imgsize: Option<(u32, u32)>,
-    /// Samples per pixel, stratified and jittered inside the pixel.
-    #[arg(long, value_name = "N", default_value_t = 1,
+    /// Samples per pixel, stratified and jittered inside the pixel (1: the
+    /// pixel centre). Without it, adaptive anti-aliasing: one sample at
+    /// each pixel centre, then 16 where a neighbour differs by more than
+    /// 0.3 (POV-Ray's default threshold, summed over red, green and blue).
+    #[arg(long, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..=MAX_SPP as i64))]
-    pub spp: u32,
+    pub spp: Option<u32>,
     /// Depth of the ray tree (reflection + refraction).
     #[arg(long, value_name = "N", default_value_t = 5,
           value_parser = clap::value_parser!(u32).range(0..=MAX_DEPTH as i64))]
@@ -529,12 +532,6 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
 
 fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
-    let settings = Settings {
-        width,
-        height,
-        spp: cli.spp,
-        max_depth: cli.max_depth,
-    };
     let output = &job.output;
     for p in [
         Some(output),
@@ -552,6 +549,25 @@ fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     // write.
     let format = ImageFormat::of(output)?;
     let mask_format = cli.mask.as_deref().map(ImageFormat::of).transpose()?;
+    if let (Some(p), Some(f)) = (&cli.mask, mask_format) {
+        if f.is_linear() {
+            return Err(Error::Usage(format!(
+                "{}: a mask is an 8-bit grey image; expected .png, .jpg, .bmp, .tif or .webp",
+                p.display()
+            )));
+        }
+    }
+    let settings = Settings {
+        width,
+        height,
+        spp: cli.spp.unwrap_or(render::ADAPTIVE_SPP),
+        max_depth: cli.max_depth,
+        adaptive: cli.spp.is_none().then_some(render::Adaptive {
+            threshold: render::ADAPTIVE_THRESHOLD,
+        }),
+        radiance: format.is_linear(),
+    };
+
     if output == Path::new("-") && cli.mask.as_deref() == Some(Path::new("-")) {
         return Err(Error::Usage(
             "the image and the mask cannot both go to standard output".into(),
@@ -581,7 +597,11 @@ fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     }
     let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
     // Everything is computed; now write.
-    let rgb = format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?;
+    let rgb = if format.is_linear() {
+        format.encode_linear(&image.radiance, width, height)?
+    } else {
+        format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?
+    };
     write_image(output, &job.model, &rgb)?;
     if let (Some(p), Some(m), Some(f)) = (&cli.mask, &mask, mask_format) {
         let grey = f.encode(m, width, height, image::ExtendedColorType::L8)?;
@@ -607,10 +627,17 @@ fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
         } else {
             output.display().to_string()
         };
-        eprintln!(
-            "csgrt: wrote {name} ({width}x{height}, {} spp) in {seconds:.3} s",
-            cli.spp
-        );
+        let sampling = match settings.adaptive {
+            None => format!("{} spp", settings.spp),
+            Some(_) => {
+                let again = (image.stats.primary_rays - image.stats.pixels) / settings.spp as u64;
+                format!(
+                    "adaptive: {again} of {} pixels at {} spp",
+                    image.stats.pixels, settings.spp
+                )
+            }
+        };
+        eprintln!("csgrt: wrote {name} ({width}x{height}, {sampling}) in {seconds:.3} s");
     }
     Ok(())
 }
@@ -624,6 +651,10 @@ enum ImageFormat {
     Bmp,
     Tiff,
     WebP,
+    /// Radiance RGBE, linear.
+    Hdr,
+    /// OpenEXR, linear 32-bit float.
+    Exr,
 }
 
 impl ImageFormat {
@@ -638,15 +669,49 @@ impl ImageFormat {
             Some("bmp") => ImageFormat::Bmp,
             Some("tif" | "tiff") => ImageFormat::Tiff,
             Some("webp") => ImageFormat::WebP,
+            Some("hdr") => ImageFormat::Hdr,
+            Some("exr") => ImageFormat::Exr,
             other => {
                 let what = other.map_or("no extension".to_string(), |e| format!("`.{e}`"));
                 return Err(Error::Usage(format!(
                     "{}: {what} names no image format csgrt writes; expected .png, .jpg, \
-                     .jpeg, .bmp, .tif, .tiff or .webp (or `-` for PNG on standard output)",
+                     .jpeg, .bmp, .tif, .tiff, .webp, .hdr or .exr (or `-` for PNG on \
+                     standard output)",
                     path.display()
                 )));
             }
         })
+    }
+
+    /// Whether the format holds linear radiance (HDR, EXR) rather than
+    /// 8-bit colour.
+    fn is_linear(self) -> bool {
+        matches!(self, ImageFormat::Hdr | ImageFormat::Exr)
+    }
+
+    /// Linear RGB radiance (three `f32` a pixel) as an HDR or EXR file.
+    fn encode_linear(self, rgb: &[f32], w: u32, h: u32) -> Result<Vec<u8>> {
+        use image::ImageEncoder;
+        let mut out = std::io::Cursor::new(Vec::new());
+        let done = match self {
+            ImageFormat::Hdr => {
+                let px: Vec<image::Rgb<f32>> = rgb
+                    .chunks_exact(3)
+                    .map(|c| image::Rgb([c[0], c[1], c[2]]))
+                    .collect();
+                image::codecs::hdr::HdrEncoder::new(&mut out).encode(&px, w as usize, h as usize)
+            }
+            _ => image::codecs::openexr::OpenExrEncoder::new(&mut out).write_image(
+                &rgb.iter()
+                    .flat_map(|v| v.to_ne_bytes())
+                    .collect::<Vec<u8>>(),
+                w,
+                h,
+                image::ExtendedColorType::Rgb32F,
+            ),
+        };
+        done.map_err(|e| Error::io(format!("<{self:?}>"), std::io::Error::other(e)))?;
+        Ok(out.into_inner())
     }
 
     /// The encoded file (JPEG at quality 90; WebP lossless).
@@ -673,6 +738,9 @@ impl ImageFormat {
             }
             ImageFormat::WebP => image::codecs::webp::WebPEncoder::new_lossless(&mut out)
                 .write_image(data, w, h, color),
+            ImageFormat::Hdr | ImageFormat::Exr => {
+                unreachable!("linear formats are written from radiance, by encode_linear")
+            }
         };
         done.map_err(|e| Error::io(format!("<{self:?}>"), std::io::Error::other(e)))?;
         Ok(out.into_inner())

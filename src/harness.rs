@@ -42,6 +42,7 @@ pub fn exercise(data: &[u8]) {
         height: 4,
         spp: 2,
         max_depth: 4,
+        ..Settings::default()
     };
     let out = render::render(&scene, &s, &|| {});
     assert_eq!(out.rgb.len(), 6 * 4 * 3);
@@ -89,6 +90,7 @@ pub fn exercise_svg(data: &[u8]) {
         height: 4,
         spp: 1,
         max_depth: 2,
+        ..Settings::default()
     };
     let out = render::render(&scene, &s, &|| {});
     assert_eq!(out.stats.nonfinite_samples, 0, "a non-finite sample");

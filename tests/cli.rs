@@ -628,7 +628,7 @@ fn the_output_format_follows_the_extension() {
 fn an_output_in_no_known_format_is_refused_before_rendering() {
     let (dir, _) = scene("ball.csg", SPHERE);
     for (name, what) in [
-        ("a.exr", "`.exr`"),
+        ("a.gif", "`.gif`"),
         ("a.PNGX", "`.pngx`"),
         ("noext", "no extension"),
     ] {
@@ -638,7 +638,8 @@ fn an_output_in_no_known_format_is_refused_before_rendering() {
             r.stderr,
             format!(
                 "error: {name}: {what} names no image format csgrt writes; expected .png, .jpg, \
-                 .jpeg, .bmp, .tif, .tiff or .webp (or `-` for PNG on standard output)\n"
+                 .jpeg, .bmp, .tif, .tiff, .webp, .hdr or .exr (or `-` for PNG on standard \
+                 output)\n"
             )
         );
         let r = csgrt(dir.path(), &["ball.csg", "-q", "--mask", name]);
@@ -661,7 +662,7 @@ fn a_dash_writes_the_png_to_standard_output() {
     assert_eq!(img.dimensions(), (40, 30));
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(
-        said.starts_with("csgrt: wrote <stdout> (40x30, 1 spp) in "),
+        said.starts_with("csgrt: wrote <stdout> (40x30, adaptive: "),
         "{said}"
     );
     assert_eq!(files(dir.path()), ["ball.csg"]);

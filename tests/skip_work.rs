@@ -13,6 +13,9 @@ fn counters(text: &str, size: &str) -> serde_json::Value {
             "s.csg",
             "--size",
             size,
+            // One sample at each pixel centre, where the mask looks.
+            "--spp",
+            "1",
             "--stats-json",
             "st.json",
             "--mask",

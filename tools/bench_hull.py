@@ -116,7 +116,7 @@ PAIRS = [
 
 def render(binary, scene, size, work):
     stats = os.path.join(work, "stats.json")
-    subprocess.run([binary, scene, "-q", "--threads", "1", "--size", size, "-o", os.path.join(work, "x.png"), "--stats-json", stats], check=True)
+    subprocess.run([binary, scene, "-q", "--threads", "1", "--spp", "1", "--size", size, "-o", os.path.join(work, "x.png"), "--stats-json", stats], check=True)
     with open(stats) as f:
         return json.load(f)
 

@@ -161,7 +161,7 @@ def main():
         edge = oracle.mixed(np.where(grid, 1, -1)).reshape(-1) if hasattr(oracle, "mixed") else np.zeros(len(mine), bool)
         # Full render against POV-Ray's mesh2.
         pov = os.path.join(work, "g.pov")
-        subprocess.run(one + [a.csgrt, scene, "--size", a.size, "--threads", "1", "--stats-json", st, "--export-pov", pov, "-o", os.path.join(work, "g.png"), "-q"], check=True)
+        subprocess.run(one + [a.csgrt, scene, "--size", a.size, "--threads", "1", "--spp", "1", "--stats-json", st, "--export-pov", pov, "-o", os.path.join(work, "g.png"), "-q"], check=True)
         render = json.load(open(st))["render_seconds"]
         r = subprocess.run(one + ["povray", f"+I{pov}", f"+O{os.path.join(work, 'p.png')}", f"+W{w}", f"+H{h}", "+FN", "-D", "+WT1"], capture_output=True, text=True)
         pov_trace = next(float(x.split("(")[1].split()[0]) for x in r.stderr.splitlines() if "Trace Time:" in x)

@@ -15,12 +15,18 @@ use glam::DVec3;
 use rayon::prelude::*;
 use shade::Shader;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     pub width: u32,
     pub height: u32,
+    /// Samples per pixel; with `adaptive`, the samples of a pixel that is
+    /// sampled again.
     pub spp: u32,
     pub max_depth: u32,
+    /// Adaptive anti-aliasing: see [`Adaptive`].
+    pub adaptive: Option<Adaptive>,
+    /// Keep each pixel's linear radiance (for HDR and EXR files).
+    pub radiance: bool,
 }
 
 impl Default for Settings {
@@ -30,15 +36,39 @@ impl Default for Settings {
             height: 600,
             spp: 1,
             max_depth: 5,
+            adaptive: None,
+            radiance: false,
         }
     }
 }
 
-/// An 8-bit RGB image, row-major from the top left.
+/// Adaptive anti-aliasing, as POV-Ray's `+AM1` with `+A0.3`: every pixel
+/// gets one sample at its centre; a pixel whose centre colour differs from
+/// any of its eight neighbours' by more than `threshold` (the sum of the
+/// absolute differences of red, green and blue, in [0, 1]) is sampled
+/// again with [`Settings::spp`] stratified samples, exactly the samples
+/// `--spp` of that number takes there, and gets their mean. Which pixels
+/// are refined depends on the first pass only, so the image is the same
+/// for any thread count.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    pub threshold: f64,
+}
+
+/// POV-Ray's default `Antialias_Threshold`.
+pub const ADAPTIVE_THRESHOLD: f64 = 0.3;
+/// The samples of a refined pixel by default.
+pub const ADAPTIVE_SPP: u32 = 16;
+
+/// An 8-bit RGB image, row-major from the top left, and on request the
+/// linear radiance it was rounded from.
 pub struct Rendered {
     pub width: u32,
     pub height: u32,
     pub rgb: Vec<u8>,
+    /// Linear RGB per pixel (three `f32` each), when
+    /// [`Settings::radiance`] asked for it; else empty.
+    pub radiance: Vec<f32>,
     pub stats: Stats,
 }
 
@@ -47,49 +77,131 @@ pub fn to_byte(v: f64) -> u8 {
     (v.clamp(0.0, 1.0) * 255.0).round() as u8
 }
 
-/// Renders the scene; `on_row` is called once per finished row.
+/// Renders the scene; `on_row` is called once per finished row (of the
+/// last pass).
 pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Rendered {
     let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
     let shader = Shader::new(scene, s.max_depth);
+    // The mean of a pixel's `n` samples (non-finite ones counted, not
+    // summed): of their colours, and of their radiance before the last
+    // clamp.
+    let pixel = |x: u32, y: u32, n: u32, st: &mut Stats| {
+        let (mut sum, mut lin) = (DVec3::ZERO, DVec3::ZERO);
+        for k in 0..n {
+            let (ox, oy) = sampler::offset(x, y, k, n);
+            let ray = cam.ray(x as f64 + ox, y as f64 + oy);
+            st.primary_rays += 1;
+            let (c, r) = shader.primary(&ray, st);
+            if c.is_finite() && r.is_finite() {
+                sum += c;
+                lin += r;
+            } else {
+                st.nonfinite_samples += 1;
+            }
+        }
+        (sum / n as f64, lin / n as f64)
+    };
+    let w = s.width as usize;
+    let keep = s.radiance || s.adaptive.is_some();
+    let mut rgb = vec![0u8; 3 * w * s.height as usize];
+    let mut lin = vec![0f32; if keep { rgb.len() } else { 0 }];
+    let first = if s.adaptive.is_some() { 1 } else { s.spp };
+    let tick_first = s.adaptive.is_none();
     // Each row is written in place by whichever thread takes it; the
     // counters are sums and maxima, the same in any order.
-    let mut rgb = vec![0u8; 3 * (s.width as usize) * (s.height as usize)];
-    let stats = rgb
-        .par_chunks_mut(3 * s.width as usize)
-        .enumerate()
-        .map(|(y, row)| {
-            let y = y as u32;
+    let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
+        let mut st = Stats::default();
+        for x in 0..s.width {
+            let c = pixel(x, y, first, &mut st);
+            put(row, lrow, x as usize, c);
+            st.pixels += 1;
+        }
+        if tick_first {
+            on_row();
+        }
+        st
+    });
+    if let Some(a) = s.adaptive {
+        let again = refine(&lin, w, s.height as usize, a.threshold);
+        stats.add(&rows(&mut rgb, &mut lin, w, |y, row, lrow| {
             let mut st = Stats::default();
-            for (x, px) in (0..s.width).zip(row.chunks_exact_mut(3)) {
-                let mut sum = DVec3::ZERO;
-                for k in 0..s.spp {
-                    let (ox, oy) = sampler::offset(x, y, k, s.spp);
-                    let ray = cam.ray(x as f64 + ox, y as f64 + oy);
-                    st.primary_rays += 1;
-                    let c = shader.trace(&ray, 0, 1.0, &mut st);
-                    if c.is_finite() {
-                        sum += c;
-                    } else {
-                        st.nonfinite_samples += 1;
-                    }
-                }
-                let c = sum / s.spp as f64;
-                px.copy_from_slice(&[to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
-                st.pixels += 1;
+            let flags = &again[y as usize * w..][..w];
+            for (x, _) in flags.iter().enumerate().filter(|(_, &f)| f) {
+                let c = pixel(x as u32, y, s.spp, &mut st);
+                put(row, lrow, x, c);
             }
             on_row();
             st
-        })
-        .reduce(Stats::default, |mut a, b| {
-            a.add(&b);
-            a
-        });
+        }));
+        if !s.radiance {
+            lin = Vec::new();
+        }
+    }
     Rendered {
         width: s.width,
         height: s.height,
         rgb,
+        radiance: lin,
         stats,
     }
+}
+
+/// Runs `f(y, bytes, radiance)` on every row in parallel (`radiance`
+/// empty when none is kept) and sums the counters.
+fn rows(
+    rgb: &mut [u8],
+    lin: &mut [f32],
+    w: usize,
+    f: impl Fn(u32, &mut [u8], &mut [f32]) -> Stats + Sync,
+) -> Stats {
+    let reduce = |mut a: Stats, b: Stats| {
+        a.add(&b);
+        a
+    };
+    if lin.is_empty() {
+        rgb.par_chunks_mut(3 * w)
+            .enumerate()
+            .map(|(y, row)| f(y as u32, row, &mut []))
+            .reduce(Stats::default, reduce)
+    } else {
+        rgb.par_chunks_mut(3 * w)
+            .zip(lin.par_chunks_mut(3 * w))
+            .enumerate()
+            .map(|(y, (row, lrow))| f(y as u32, row, lrow))
+            .reduce(Stats::default, reduce)
+    }
+}
+
+/// Pixel `x` of a row: the bytes of colour `c`, and radiance `r` if the
+/// row keeps it.
+fn put(row: &mut [u8], lrow: &mut [f32], x: usize, (c, r): (DVec3, DVec3)) {
+    row[3 * x..3 * x + 3].copy_from_slice(&[to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
+    if !lrow.is_empty() {
+        lrow[3 * x..3 * x + 3].copy_from_slice(&[r.x as f32, r.y as f32, r.z as f32]);
+    }
+}
+
+/// Which pixels adaptive anti-aliasing samples again: those whose colour
+/// (clamped to [0, 1], as it is shown) differs from an 8-neighbour's by
+/// more than `threshold`, summed over red, green and blue.
+fn refine(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
+    let at = |x: usize, y: usize| {
+        let p = &lin[3 * (y * w + x)..][..3];
+        [p[0], p[1], p[2]].map(|v| (v as f64).clamp(0.0, 1.0))
+    };
+    (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let c = at(x, y);
+            (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
+                (x.saturating_sub(1)..(x + 2).min(w)).any(|nx| {
+                    let n = at(nx, ny);
+                    (0..3).map(|k| (c[k] - n[k]).abs()).sum::<f64>() > threshold
+                })
+            })
+        })
+        .collect()
 }
 
 /// 255 where the ray through the pixel centre hits the scene, else 0.

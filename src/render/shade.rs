@@ -11,7 +11,8 @@
 //!   internal reflection sending the ray back in; entering or leaving is
 //!   decided by the outward normal.
 //!
-//! Each channel is clamped to [0, 1] at every level, as slide 29 does. A
+//! Each channel is clamped to [0, 1] at every level, as slide 29 does (the
+//! camera ray's own radiance is also kept unclamped, for HDR and EXR). A
 //! secondary ray is cast only while the ray tree is shallower than
 //! `max_depth` and its weight (the product of kr/kt along the path) is at
 //! least 1/512: below that it cannot change an 8-bit pixel by ½.
@@ -55,8 +56,23 @@ impl<'a> Shader<'a> {
     /// The colour seen along `ray` (t > 0), clamped to [0, 1].
     pub fn trace(&self, ray: &Ray, depth: u32, weight: f64, st: &mut Stats) -> DVec3 {
         match self.scene.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
-            Some(b) => self.shade(ray, &b, depth, weight, st),
+            Some(b) => self
+                .shade(ray, &b, depth, weight, st)
+                .clamp(DVec3::ZERO, DVec3::ONE),
             None => self.scene.background,
+        }
+    }
+
+    /// For a camera ray: the colour [`Shader::trace`] gives, and the
+    /// radiance before its last clamp (every deeper level clamped as
+    /// always), for linear HDR and EXR files.
+    pub fn primary(&self, ray: &Ray, st: &mut Stats) -> (DVec3, DVec3) {
+        match self.scene.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
+            Some(b) => {
+                let c = self.shade(ray, &b, 0, 1.0, st);
+                (c.clamp(DVec3::ZERO, DVec3::ONE), c)
+            }
+            None => (self.scene.background, self.scene.background),
         }
     }
 
@@ -116,7 +132,7 @@ impl<'a> Shader<'a> {
                 color += m.kt * self.trace(&trans, depth + 1, weight * m.kt, st);
             }
         }
-        color.clamp(DVec3::ZERO, DVec3::ONE)
+        color
     }
 
     /// The fraction of light that passes along `ray` up to `dist`: the
