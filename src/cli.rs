@@ -120,6 +120,13 @@ pub struct Cli {
     #[arg(long, value_name = "ortho|perspective", value_parser = parse_projection)]
     pub projection: Option<crate::scene::Projection>,
 
+    /// OpenSCAD's colour scheme for what the file leaves uncoloured: the
+    /// background and the colour of solids without `color` (Cornfield,
+    /// Metallic, Sunset, Starnight, BeforeDawn, Nature, DeepOcean,
+    /// Solarized, Tomorrow, "Tomorrow Night", Monotone); default Cornfield.
+    #[arg(long, value_name = "NAME", value_parser = parse_color_scheme)]
+    pub colorscheme: Option<crate::scene::defaults::ColorScheme>,
+
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -146,6 +153,22 @@ fn parse_projection(s: &str) -> std::result::Result<crate::scene::Projection, St
             "`{s}` is not a projection: expected ortho (o, orthogonal) or perspective (p)"
         )),
     }
+}
+
+fn parse_color_scheme(s: &str) -> std::result::Result<crate::scene::defaults::ColorScheme, String> {
+    use crate::scene::defaults::COLOR_SCHEMES;
+    let squash = |n: &str| n.replace([' ', '-', '_'], "").to_ascii_lowercase();
+    COLOR_SCHEMES
+        .iter()
+        .find(|c| squash(c.name) == squash(s))
+        .copied()
+        .ok_or_else(|| {
+            let names: Vec<&str> = COLOR_SCHEMES.iter().map(|c| c.name).collect();
+            format!(
+                "`{s}` is not one of OpenSCAD's colour schemes: expected {}",
+                names.join(", ")
+            )
+        })
 }
 
 fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
@@ -460,6 +483,9 @@ pub fn run(cli: &Cli) -> Result<()> {
 fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
     let mut scene = load_model(&job.model, cli.facets, &job.defines)?;
     set_view(cli, &mut scene);
+    if let Some(c) = &cli.colorscheme {
+        scene.apply_color_scheme(c);
+    }
     for w in &scene.warnings {
         eprintln!("{w}");
     }

@@ -840,3 +840,69 @@ fn imgsize_is_openscad_s_spelling_of_size() {
         .starts_with("error: the argument '--imgsize <W,H>' cannot be used with '--size <WxH>'"));
     assert_eq!(files(dir.path()), ["a.png", "b.png", "s.csg"]);
 }
+
+/// `--colorscheme` gives what the file leaves uncoloured OpenSCAD's
+/// scheme: its background and its face colour (here Starnight's, from
+/// OpenSCAD 2021.01's `color-schemes/render/starnight.json`: background
+/// #000000, face #ffffe0), under an ambient light of 1 and the default
+/// ka = 0.2; `color` and the file's `background` stay.
+#[test]
+fn a_color_scheme_colours_what_the_file_does_not() {
+    let text = "camera(eye = [0, -12, 0], lookat = [0, 0, 0]);\nambient_light([1, 1, 1]);\n\
+                translate([-1.5, 0, 0]) cube(2, center = true);\n\
+                color([1, 0, 0]) translate([1.5, 0, 0]) cube(2, center = true);\n";
+    let (dir, _) = scene("s.csg", text);
+    let px = |name: &str, x: u32, y: u32| {
+        image::open(dir.path().join(name))
+            .unwrap()
+            .to_rgb8()
+            .get_pixel(x, y)
+            .0
+    };
+    let args = ["s.csg", "--size", "80x40", "--spp", "1", "-q"];
+    for scheme in ["Starnight", "starnight", "STAR-NIGHT"] {
+        let r = csgrt(
+            dir.path(),
+            &[&args[..], &["--colorscheme", scheme, "-o", "a.png"]].concat(),
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+        let face = |c: u32| (0.2 * c as f64).round() as u8;
+        assert_eq!(px("a.png", 20, 20), [face(0xff), face(0xff), face(0xe0)]);
+        assert_eq!(px("a.png", 60, 20), [51, 0, 0]);
+        assert_eq!(px("a.png", 2, 2), [0, 0, 0]);
+    }
+    // Without the option, Cornfield: #ffffe5 behind, #f9d72c faces.
+    let r = csgrt(dir.path(), &[&args[..], &["-o", "b.png"]].concat());
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(px("b.png", 20, 20), [50, 43, 9]);
+    assert_eq!(px("b.png", 2, 2), [0xff, 0xff, 0xe5]);
+    // The file's own background stays.
+    std::fs::write(
+        dir.path().join("g.csg"),
+        format!("background([0.5, 0.5, 0.5]);\n{text}"),
+    )
+    .unwrap();
+    let r = csgrt(
+        dir.path(),
+        &[
+            "g.csg",
+            "--size",
+            "80x40",
+            "-q",
+            "--colorscheme",
+            "Nature",
+            "-o",
+            "g.png",
+        ],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(px("g.png", 2, 2), [128, 128, 128]);
+    // An unknown name lists the schemes.
+    let r = csgrt(dir.path(), &["s.csg", "--colorscheme", "Autumn"]);
+    assert_eq!(r.status, 2);
+    assert!(
+        r.stderr.contains("expected Cornfield, Metallic, Sunset"),
+        "{}",
+        r.stderr
+    );
+}

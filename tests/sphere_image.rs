@@ -71,7 +71,10 @@ fn expected(x: f64, y: f64, w: f64, h: f64) -> DVec3 {
 fn a_sphere_matches_the_seed_model_on_every_pixel() {
     let (dir, _) = scene("sphere.csg", SCENE);
     let (w, h) = (160u32, 120u32);
-    let r = csgrt(dir.path(), &["sphere.csg", "--size", "160x120", "--spp", "1", "-q"]);
+    let r = csgrt(
+        dir.path(),
+        &["sphere.csg", "--size", "160x120", "--spp", "1", "-q"],
+    );
     assert_eq!(r.status, 0, "{}", r.stderr);
     let img = image::open(dir.path().join("sphere.png"))
         .unwrap()

@@ -78,6 +78,7 @@ impl SceneBuilder {
         Scene {
             camera: self.camera,
             background: self.background.unwrap_or(background),
+            background_given: self.background.is_some(),
             lights: if self.lights.is_empty() {
                 defaults::lights()
             } else {

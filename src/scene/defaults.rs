@@ -15,7 +15,49 @@ pub const MATERIAL: Material = Material {
     kr: 0.0,
     kt: 0.0,
     ior: 1.5,
+    scheme_color: true,
 };
+
+/// An OpenSCAD colour scheme: the background and the face colour of its
+/// preview (`color-schemes/render/*.json`, `colormap.cc`, 2021.01).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColorScheme {
+    pub name: &'static str,
+    pub background: DVec3,
+    pub face: DVec3,
+}
+
+const fn hex(rgb: u32) -> DVec3 {
+    DVec3::new(
+        ((rgb >> 16) & 255) as f64 / 255.0,
+        ((rgb >> 8) & 255) as f64 / 255.0,
+        (rgb & 255) as f64 / 255.0,
+    )
+}
+
+const fn scheme(name: &'static str, background: u32, face: u32) -> ColorScheme {
+    ColorScheme {
+        name,
+        background: hex(background),
+        face: hex(face),
+    }
+}
+
+/// OpenSCAD 2021.01's colour schemes, in its menu's order; the first is
+/// its default and csgrt's.
+pub const COLOR_SCHEMES: [ColorScheme; 11] = [
+    scheme("Cornfield", 0xffffe5, 0xf9d72c),
+    scheme("Metallic", 0xaaaaff, 0xddddff),
+    scheme("Sunset", 0xaa4444, 0xffaaaa),
+    scheme("Starnight", 0x000000, 0xffffe0),
+    scheme("BeforeDawn", 0x333333, 0xcccccc),
+    scheme("Nature", 0xfafafa, 0x16a085),
+    scheme("DeepOcean", 0x333333, 0xeeeeee),
+    scheme("Solarized", 0xfdf6e3, 0xb58800),
+    scheme("Tomorrow", 0xf8f8f8, 0x4271ae),
+    scheme("Tomorrow Night", 0x1d1f21, 0x81a2be),
+    scheme("Monotone", 0xffffe5, 0xf9d72c),
+];
 
 pub const BACKGROUND: DVec3 = DVec3::new(1.0, 1.0, 0.898);
 

@@ -44,6 +44,9 @@ pub struct Material {
     pub kt: f64,
     /// Index of refraction.
     pub ior: f64,
+    /// The colour is the colour scheme's: no `color` or material colour
+    /// was given (`--colorscheme` may change it).
+    pub scheme_color: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,6 +91,8 @@ pub struct Scene {
     /// The camera the file asked for; `None` frames the scene's bounds.
     pub camera: Option<CameraSpec>,
     pub background: DVec3,
+    /// The file gave the background (`--colorscheme` keeps it).
+    pub background_given: bool,
     pub lights: Vec<Light>,
     pub materials: Vec<Material>,
     pub csg: Csg,
@@ -95,6 +100,17 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// OpenSCAD's colour scheme `scheme` where the file says nothing: its
+    /// background, and its face colour on every solid without a colour.
+    pub fn apply_color_scheme(&mut self, scheme: &defaults::ColorScheme) {
+        if !self.background_given {
+            self.background = scheme.background;
+        }
+        for m in self.materials.iter_mut().filter(|m| m.scheme_color) {
+            m.color = scheme.face;
+        }
+    }
+
     /// The camera to render with at `width`×`height`.
     pub fn view(&self, width: u32, height: u32) -> CameraSpec {
         self.camera

@@ -171,6 +171,7 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
                     kr: n[7],
                     kt: n[8],
                     ior: n[9],
+                    scheme_color: false,
                 };
                 current = Some(b.material_id(m));
             }

@@ -21,6 +21,7 @@ impl Resolver<'_> {
                 _ if mutant::active("outer_color_wins") && m.color != defaults::MATERIAL.color => {}
                 Some(c) => {
                     m.color = DVec3::new(c[0], c[1], c[2]).clamp(DVec3::ZERO, DVec3::ONE);
+                    m.scheme_color = false;
                     let alpha = alpha.or(c.get(3).copied()).unwrap_or(1.0).clamp(0.0, 1.0);
                     if alpha < 1.0 {
                         m.kt = 1.0 - alpha;
@@ -38,6 +39,7 @@ impl Resolver<'_> {
         )?;
         if let Some(c) = a.numbers("color", &[3])? {
             m.color = DVec3::new(c[0], c[1], c[2]);
+            m.scheme_color = false;
         }
         let fields: [(&str, &mut f64); 7] = [
             ("ka", &mut m.ka),
