@@ -127,6 +127,12 @@ pub struct Cli {
     #[arg(long, value_name = "NAME", value_parser = parse_color_scheme)]
     pub colorscheme: Option<crate::scene::defaults::ColorScheme>,
 
+    /// Render, then render again whenever the model changes (a `.scad`
+    /// model: also what it includes, uses or imports, as OpenSCAD lists
+    /// them); an error is reported and the watch goes on. Ctrl-C stops.
+    #[arg(long)]
+    pub watch: bool,
+
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -317,10 +323,10 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
 /// One image to render: a model (with OpenSCAD variables for a `.scad`
 /// one) and where its image goes.
 #[derive(Clone, Debug)]
-struct Job {
-    model: PathBuf,
-    defines: Vec<String>,
-    output: PathBuf,
+pub(crate) struct Job {
+    pub model: PathBuf,
+    pub defines: Vec<String>,
+    pub output: PathBuf,
 }
 
 /// `path` with `suffix` added to its file stem (`a/b.png`, `00003` →
@@ -444,6 +450,19 @@ pub fn run(cli: &Cli) -> Result<()> {
     if let Some(dir) = &cli.output_dir {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     }
+    if cli.watch {
+        let [job] = &jobs[..] else {
+            return Err(Error::Usage(
+                "--watch renders one image; give one model and no --animate".into(),
+            ));
+        };
+        if cli.trace_rays.is_some() || job.output == Path::new("-") {
+            return Err(Error::Usage(
+                "--watch writes image files; it cannot be used with --trace-rays or -o -".into(),
+            ));
+        }
+        return pool.install(|| crate::watch::watch(cli, job));
+    }
     if let [job] = &jobs[..] {
         let scene = scene_of(cli, job)?;
         return pool.install(|| match &cli.trace_rays {
@@ -482,14 +501,32 @@ pub fn run(cli: &Cli) -> Result<()> {
 /// printed.
 fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
     let mut scene = load_model(&job.model, cli.facets, &job.defines)?;
-    set_view(cli, &mut scene);
+    finish_scene(cli, &mut scene);
+    Ok(scene)
+}
+
+/// [`scene_of`], and the files it was read from: the model, and for a
+/// `.scad` model what OpenSCAD says it read.
+pub(crate) fn watched_scene(cli: &Cli, job: &Job) -> Result<(Scene, Vec<PathBuf>)> {
+    if !is_scad(&job.model) {
+        return Ok((scene_of(cli, job)?, vec![job.model.clone()]));
+    }
+    let (src, deps) = crate::scad::export_with(&job.model, &job.defines, true)?;
+    let mut scene = crate::load_csg_with(&src, cli.facets)?;
+    finish_scene(cli, &mut scene);
+    Ok((scene, deps))
+}
+
+/// The command line's view and colours applied to a loaded scene; its
+/// warnings printed.
+fn finish_scene(cli: &Cli, scene: &mut Scene) {
+    set_view(cli, scene);
     if let Some(c) = &cli.colorscheme {
         scene.apply_color_scheme(c);
     }
     for w in &scene.warnings {
         eprintln!("{w}");
     }
-    Ok(scene)
 }
 
 /// The command line's camera options put into the scene: OpenSCAD's camera
@@ -556,7 +593,7 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
     }
 }
 
-fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
+pub(crate) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let output = &job.output;
     for p in [

@@ -31,6 +31,7 @@ pub mod stats;
 pub mod svg;
 pub mod syntax;
 pub mod text;
+mod watch;
 
 pub use error::{Error, Result, Source};
 pub use scene::Scene;

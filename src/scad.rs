@@ -21,6 +21,13 @@ fn find_openscad() -> Option<PathBuf> {
 
 /// The CSG text OpenSCAD exports for the program at `path`.
 pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
+    export_with(path, defines, false).map(|(src, _)| src)
+}
+
+/// [`export`], and with `deps` the files the program read (itself, what it
+/// includes and uses, what it imports), from OpenSCAD's `-d` dependency
+/// file; empty without.
+pub fn export_with(path: &Path, defines: &[String], deps: bool) -> Result<(Source, Vec<PathBuf>)> {
     crate::cli::model_file(path)?;
     for d in defines {
         if !d
@@ -42,8 +49,12 @@ pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
     };
     let dir = tempfile::tempdir().map_err(|e| Error::io("<temporary folder>", e))?;
     let out = dir.path().join("export.csg");
+    let deps_file = dir.path().join("export.d");
     let mut cmd = std::process::Command::new(&openscad);
     cmd.arg("-o").arg(&out);
+    if deps {
+        cmd.arg("-d").arg(&deps_file);
+    }
     for d in defines {
         cmd.arg("-D").arg(d);
     }
@@ -76,5 +87,66 @@ pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
     let text = crate::cli::read_source(&out)?.text;
     let mut name = path.as_os_str().to_owned();
     name.push(".csg");
-    Ok(Source::new(PathBuf::from(name).display().to_string(), text))
+    let mut files = Vec::new();
+    if deps {
+        // A missing or unreadable list leaves the program itself.
+        let said = std::fs::read_to_string(&deps_file).unwrap_or_default();
+        files = make_deps(&said);
+        if !files.iter().any(|f| f.file_name() == path.file_name()) {
+            files.push(path.to_path_buf());
+        }
+    }
+    Ok((
+        Source::new(PathBuf::from(name).display().to_string(), text),
+        files,
+    ))
+}
+
+/// The prerequisites of a Make rule as OpenSCAD writes it (`target: a \
+/// b\ c`): backslash-newline continues the line, `\ ` is a space in a
+/// name.
+pub fn make_deps(text: &str) -> Vec<PathBuf> {
+    let joined = text.replace("\\\n", " ").replace("\\\r\n", " ");
+    let Some((_, list)) = joined.split_once(": ") else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut chars = list.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '\\' if chars.peek() == Some(&' ') => {
+                cur.push(' ');
+                chars.next();
+            }
+            c if c.is_whitespace() => {
+                if !cur.is_empty() {
+                    out.push(PathBuf::from(std::mem::take(&mut cur)));
+                }
+            }
+            c => cur.push(c),
+        }
+    }
+    if !cur.is_empty() {
+        out.push(PathBuf::from(cur));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    /// OpenSCAD 2021.01's `-d` output for a program that includes a file
+    /// with a space in its name, verbatim.
+    #[test]
+    fn make_deps_reads_openscads_list() {
+        let said =
+            "out.csg: \\\n\t/tmp/dep/other.scad \\\n\t/tmp/dep/lib\\ a.scad \\\n\tmain.scad\n";
+        let got = super::make_deps(said);
+        let want: Vec<std::path::PathBuf> =
+            ["/tmp/dep/other.scad", "/tmp/dep/lib a.scad", "main.scad"]
+                .iter()
+                .map(Into::into)
+                .collect();
+        assert_eq!(got, want);
+    }
 }
