@@ -102,7 +102,7 @@ def silhouette_mismatch(a, scene):
     w, h = a.size.split("x")
     with tempfile.TemporaryDirectory() as work:
         mask, img, pov, pimg = (os.path.join(work, f) for f in ("m.png", "c.png", "s.pov", "p.png"))
-        subprocess.run([a.csgrt, scene, "--size", a.size, "--mask", mask,
+        subprocess.run([a.csgrt, scene, "--size", a.size, "--spp", "1", "--mask", mask,
                         "-o", img, "--export-pov", pov, "-q"], check=True)
         subprocess.run(["povray", f"+I{pov}", f"+O{pimg}", f"+W{w}", f"+H{h}", "+FN", "-D", "-A",
                         "File_Gamma=1.0"], check=True, capture_output=True)
