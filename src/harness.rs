@@ -53,13 +53,20 @@ pub fn exercise(data: &[u8]) {
     let _ = pov::scene_sdl(&scene, &cam, s.width, s.height, s.max_depth);
 }
 
-/// Any bytes as a DXF drawing (`import`), then as a font (`text`): an error
-/// or a drawing, a layout or the fallback, never a panic.
+/// Any bytes as a DXF drawing (`import`), then as a font (`text`), then as
+/// OpenSCAD's dependency list: an error or a drawing, a layout or the
+/// fallback, a list of names, never a panic.
 pub fn exercise_readers(data: &[u8]) {
     if let Ok(d) = crate::drawing::read(data, "", glam::DVec2::ZERO, 1.0) {
         assert!(d.paths.iter().all(|p| p.pts.len() == p.arcs.len()));
     }
     let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
+    // And as OpenSCAD's `-d` dependency list (`--watch` of a `.scad`).
+    let deps = crate::scad::make_deps(&String::from_utf8_lossy(data));
+    assert!(
+        deps.iter().all(|p| !p.as_os_str().is_empty()),
+        "an empty name"
+    );
 }
 
 /// Any bytes as an SVG drawing (`fuzz/fuzz_targets/svg.rs`), imported by a

@@ -1,0 +1,4 @@
+out.csg: \
+	/tmp/dep/other.scad \
+	/tmp/dep/lib\ a.scad \
+	main.scad
