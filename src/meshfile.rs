@@ -27,11 +27,15 @@ use std::collections::HashMap;
 /// bring.
 pub const MAX_POINTS: usize = 1 << 26;
 
+/// A face's point indices: a triangle's three are kept inline, with no
+/// allocation of their own (a mesh file may bring millions).
+pub type Face = smallvec::SmallVec<[u32; 3]>;
+
 /// Points and faces (index lists, at least 3 each).
 #[derive(Debug, Default)]
 pub struct MeshFile {
     pub points: Vec<DVec3>,
-    pub faces: Vec<Vec<u32>>,
+    pub faces: Vec<Face>,
 }
 
 /// What is wrong with a file, and on which of its lines (1-based) when
@@ -145,21 +149,7 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
             if 3 * n > MAX_POINTS {
                 return Err(err(None, format!("more than {MAX_POINTS} points")));
             }
-            let mut m = MeshFile::default();
-            m.faces.reserve_exact(n);
-            // A closed mesh's corner is in six facets or so.
-            let mut merger = Merger::new(n / 2 + 16);
-            for k in 0..n {
-                let r = &bytes[84 + 50 * k..84 + 50 * (k + 1)];
-                let f = |i: usize| f32::from_le_bytes([r[i], r[i + 1], r[i + 2], r[i + 3]]) as f64;
-                let mut face = Vec::with_capacity(3);
-                for v in 0..3 {
-                    let at = 12 + 12 * v;
-                    face.push(merger.add(&mut m, DVec3::new(f(at), f(at + 4), f(at + 8))));
-                }
-                m.faces.push(face);
-            }
-            return finite(m);
+            return finite(binary_stl(&bytes[84..], n));
         }
     }
     if !bytes.starts_with(b"solid") {
@@ -201,13 +191,61 @@ fn stl(bytes: &[u8]) -> Result<MeshFile, FileError> {
                 corners[pending] = merger.add(&mut m, DVec3::from_array(xyz));
                 pending += 1;
                 if pending == 3 {
-                    m.faces.push(corners.to_vec());
+                    m.faces.push(Face::from_slice(&corners));
                 }
             }
             _ => {}
         }
     }
     finite(m)
+}
+
+/// The `n` facets of a binary STL (`body`: 50 bytes each), corners merged
+/// as they are read. STL's coordinates are `f32`: they are kept so, and
+/// the table that merges them holds indices only (a corner's coordinates
+/// are looked up in the points), about 5 bytes a point, so that reading
+/// needs little beyond the file itself and the faces.
+fn binary_stl(body: &[u8], n: usize) -> MeshFile {
+    let mut faces: Vec<Face> = Vec::with_capacity(n);
+    // A closed mesh has about half as many points as facets.
+    let mut points: Vec<[f32; 3]> = Vec::with_capacity(n / 2 + 16);
+    let mut table: hashbrown::HashTable<u32> = hashbrown::HashTable::with_capacity(n / 2 + 16);
+    // −0 as 0 (adding +0 does it), then the bits.
+    let bits = |p: &[f32; 3]| p.map(|c| (c + 0.0).to_bits());
+    let hash = |b: [u32; 3]| {
+        use std::hash::Hasher;
+        let mut h = Mix::default();
+        h.write_u64(u64::from(b[0]) | u64::from(b[1]) << 32);
+        h.write_u64(u64::from(b[2]));
+        h.finish()
+    };
+    for r in body.chunks_exact(50).take(n) {
+        let f = |i: usize| f32::from_le_bytes([r[i], r[i + 1], r[i + 2], r[i + 3]]);
+        let mut face = Face::new();
+        for v in 0..3 {
+            let at = 12 + 12 * v;
+            let p = [f(at), f(at + 4), f(at + 8)];
+            let key = bits(&p);
+            let h = hash(key);
+            let id = match table.find(h, |&i| bits(&points[i as usize]) == key) {
+                Some(&i) => i,
+                None => {
+                    let i = points.len() as u32;
+                    points.push(p);
+                    table.insert_unique(h, i, |&j| hash(bits(&points[j as usize])));
+                    i
+                }
+            };
+            face.push(id);
+        }
+        faces.push(face);
+    }
+    drop(table);
+    let points = points
+        .iter()
+        .map(|p| DVec3::new(p[0] as f64, p[1] as f64, p[2] as f64))
+        .collect();
+    MeshFile { points, faces }
 }
 
 /// The file as text, or the line of its first byte that is not UTF-8.
@@ -329,7 +367,7 @@ fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
             }
             f.push(i as u32);
         }
-        m.faces.push(f);
+        m.faces.push(Face::from_vec(f));
     }
     Ok(m)
 }
@@ -363,7 +401,7 @@ fn obj(bytes: &[u8]) -> Result<MeshFile, FileError> {
             let f: Vec<u32> = mesh.indices[at..at + k].iter().map(|&i| base + i).collect();
             at += k;
             if f.len() >= 3 {
-                m.faces.push(f);
+                m.faces.push(Face::from_vec(f));
             }
         }
         if m.points.len() > MAX_POINTS {
@@ -520,8 +558,12 @@ pub fn surface_mesh(h: &Heights, center: bool) -> MeshFile {
             let c = point(&mut m, x0, y1, v3);
             let d = point(&mut m, x1, y1, v4);
             let e = point(&mut m, x0 + 0.5, y0 + 0.5, vx);
-            m.faces
-                .extend([vec![a, b, e], vec![b, d, e], vec![d, c, e], vec![c, a, e]]);
+            m.faces.extend([
+                smallvec::smallvec![a, b, e],
+                smallvec::smallvec![b, d, e],
+                smallvec::smallvec![d, c, e],
+                smallvec::smallvec![c, a, e],
+            ]);
         }
     }
     // The rim, counter-clockwise seen from above: (x, y) grid corners.
@@ -542,8 +584,8 @@ pub fn surface_mesh(h: &Heights, center: bool) -> MeshFile {
         let ph = point(&mut m, p.1 as f64, p.0 as f64, z(p.0, p.1));
         let ql = point(&mut m, q.1 as f64, q.0 as f64, low);
         let qh = point(&mut m, q.1 as f64, q.0 as f64, z(q.0, q.1));
-        m.faces.push(vec![pl, ql, qh, ph]);
-        m.faces.push(vec![centre, ql, pl]);
+        m.faces.push(smallvec::smallvec![pl, ql, qh, ph]);
+        m.faces.push(smallvec::smallvec![centre, ql, pl]);
     }
     merge(&mut m);
     m
@@ -629,7 +671,7 @@ fn amf(bytes: &[u8]) -> Result<MeshFile, FileError> {
                     }
                     f.push(base + i as u32);
                 }
-                m.faces.push(f);
+                m.faces.push(Face::from_vec(f));
             }
         }
     }

@@ -449,6 +449,20 @@ impl Solid for Mesh {
 /// non-convex faces; a face whose outline crosses itself is finished as a
 /// fan once no ear is left). A face with no area gives no triangle.
 pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
+    let mut out = Vec::new();
+    triangulate_into(points, face, &mut out);
+    out
+}
+
+/// [`triangulate`], the triangles added to `out`; a triangle (the common
+/// face) with no allocation: itself, unless two of its corners are one.
+pub fn triangulate_into(points: &[DVec3], face: &[u32], out: &mut Vec<[u32; 3]>) {
+    if let [a, b, c] = *face {
+        if a != b && b != c && c != a {
+            out.push([a, b, c]);
+        }
+        return;
+    }
     let mut f: Vec<u32> = Vec::with_capacity(face.len());
     for &i in face {
         if f.last() != Some(&i) {
@@ -459,10 +473,11 @@ pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
         f.pop();
     }
     if f.len() < 3 {
-        return Vec::new();
+        return;
     }
     if f.len() == 3 {
-        return vec![[f[0], f[1], f[2]]];
+        out.push([f[0], f[1], f[2]]);
+        return;
     }
     // Newell's normal: the face's mean plane, whatever its shape.
     let mut n = DVec3::ZERO;
@@ -491,7 +506,7 @@ pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
     let cross = |a: (f64, f64), b: (f64, f64), c: (f64, f64)| {
         sign * ((b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0))
     };
-    let mut out = Vec::with_capacity(f.len() - 2);
+    out.reserve(f.len() - 2);
     let mut ring = f;
     while ring.len() > 3 {
         let m = ring.len();
@@ -520,7 +535,6 @@ pub fn triangulate(points: &[DVec3], face: &[u32]) -> Vec<[u32; 3]> {
     for k in 1..ring.len() - 1 {
         out.push([ring[0], ring[k], ring[k + 1]]);
     }
-    out
 }
 
 /// How a mesh's edges are shared: (edges of one face only, edges of three

@@ -419,11 +419,11 @@ impl Resolver<'_> {
         s: &Statement,
         place: crate::error::TextRange,
         pts: Vec<DVec3>,
-        faces: Vec<Vec<u32>>,
+        faces: Vec<impl AsRef<[u32]>>,
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        use crate::geometry::mesh::{edge_use, triangulate, Mesh, MeshData, MAX_TRIANGLES};
+        use crate::geometry::mesh::{edge_use, triangulate_into, Mesh, MeshData, MAX_TRIANGLES};
         use crate::geometry::mesh_bvh::{too_far, MAX_COORD};
         if let Some(p) = too_far(&pts) {
             return Err(self.src.error(
@@ -434,7 +434,7 @@ impl Resolver<'_> {
         }
         let mut tris = Vec::with_capacity(faces.len());
         for f in &faces {
-            tris.extend(triangulate(&pts, f));
+            triangulate_into(&pts, f.as_ref(), &mut tris);
             if tris.len() > MAX_TRIANGLES {
                 return Err(self.src.error(
                     place,
