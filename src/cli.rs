@@ -341,9 +341,10 @@ fn with_stem_suffix(path: &Path, suffix: &str) -> PathBuf {
     path.with_file_name(name)
 }
 
-/// The images the command line asks for, checked before anything is read:
-/// options that name one file need one model, `-D` and `--animate` a
-/// `.scad` one, and no two images may share a name.
+/// The images the command line asks for, checked before anything is read
+/// or created: options that name one file need one model, `-D` and
+/// `--animate` a `.scad` one, `--watch` one image file, and no two images
+/// may share a name.
 fn jobs(cli: &Cli) -> Result<Vec<Job>> {
     let several = cli.model.len() > 1;
     if several || cli.animate.is_some() {
@@ -424,6 +425,18 @@ fn jobs(cli: &Cli) -> Result<Vec<Job>> {
             }
         }
     }
+    if cli.watch {
+        if out.len() != 1 {
+            return Err(Error::Usage(
+                "--watch renders one image; give one model and no --animate".into(),
+            ));
+        }
+        if cli.trace_rays.is_some() || out[0].output == Path::new("-") {
+            return Err(Error::Usage(
+                "--watch writes image files; it cannot be used with --trace-rays or -o -".into(),
+            ));
+        }
+    }
     let mut seen = std::collections::HashMap::new();
     for j in &out {
         if let Some(first) = seen.insert(j.output.clone(), &j.model) {
@@ -450,20 +463,10 @@ pub fn run(cli: &Cli) -> Result<()> {
     if let Some(dir) = &cli.output_dir {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     }
-    if cli.watch {
-        let [job] = &jobs[..] else {
-            return Err(Error::Usage(
-                "--watch renders one image; give one model and no --animate".into(),
-            ));
-        };
-        if cli.trace_rays.is_some() || job.output == Path::new("-") {
-            return Err(Error::Usage(
-                "--watch writes image files; it cannot be used with --trace-rays or -o -".into(),
-            ));
-        }
-        return pool.install(|| crate::watch::watch(cli, job));
-    }
     if let [job] = &jobs[..] {
+        if cli.watch {
+            return pool.install(|| crate::watch::watch(cli, job));
+        }
         let scene = scene_of(cli, job)?;
         return pool.install(|| match &cli.trace_rays {
             Some(input) => trace_rays(cli, job, &scene, input),

@@ -133,7 +133,7 @@ pub fn scene_sdl(
             let _ = writeln!(
                 out,
                 "camera {{ orthographic location {} sky {} right -x*{:?} up y*{:?} look_at {} }}",
-                v(cam.eye - 100.0 * look),
+                v(cam.eye - crate::render::camera::ORTHO_BACK * look),
                 v(cam.up),
                 wide,
                 wide * height as f64 / width as f64,

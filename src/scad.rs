@@ -89,12 +89,11 @@ pub fn export_with(path: &Path, defines: &[String], deps: bool) -> Result<(Sourc
     name.push(".csg");
     let mut files = Vec::new();
     if deps {
-        // A missing or unreadable list leaves the program itself.
+        // The program itself, whatever the list says (a missing or
+        // unreadable list leaves it alone; a repeat is harmless).
         let said = std::fs::read_to_string(&deps_file).unwrap_or_default();
         files = make_deps(&said);
-        if !files.iter().any(|f| f.file_name() == path.file_name()) {
-            files.push(path.to_path_buf());
-        }
+        files.push(path.to_path_buf());
     }
     Ok((
         Source::new(PathBuf::from(name).display().to_string(), text),

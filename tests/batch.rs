@@ -121,14 +121,7 @@ fn several_models_refuse_single_file_options_and_clashing_names() {
             "cannot be used with",
         ),
     ] {
-        let r = csgrt(dir.path(), args);
-        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
-        assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
-        assert_eq!(
-            common::files(dir.path()),
-            ["a.csg", "b.csg", "file", "sub"],
-            "{args:?}"
-        );
+        common::refused(dir.path(), args, says, &["a.csg", "b.csg", "file", "sub"]);
     }
 }
 
@@ -230,9 +223,6 @@ fn animate_needs_a_scad_model_and_one_image_per_frame() {
         ),
         (&["a.scad", "--animate", "0"], "--animate"),
     ] {
-        let r = csgrt(dir.path(), args);
-        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
-        assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
-        assert_eq!(common::files(dir.path()), ["a.csg", "a.scad"], "{args:?}");
+        common::refused(dir.path(), args, says, &["a.csg", "a.scad"]);
     }
 }

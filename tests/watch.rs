@@ -146,9 +146,9 @@ fn watch_takes_one_image() {
         &["a.csg", "b.csg", "--watch"][..],
         &["a.csg", "--watch", "-o", "-"],
         &["a.csg", "--watch", "--trace-rays", "-"],
+        // Refused before the folder is made.
+        &["a.csg", "b.csg", "--watch", "-O", "out"],
     ] {
-        let r = common::csgrt(dir.path(), args);
-        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
-        assert!(r.stderr.contains("--watch"), "{}", r.stderr);
+        common::refused(dir.path(), args, "--watch", &["a.csg", "b.csg"]);
     }
 }

@@ -16,6 +16,10 @@ use crate::geometry::Ray;
 use crate::scene::{CameraSpec, Projection};
 use glam::DVec3;
 
+/// How many `|lookat − eye|` behind the eye orthographic rays start
+/// (OpenSCAD's `glOrtho` near plane).
+pub const ORTHO_BACK: f64 = 100.0;
+
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
     pub eye: DVec3,
@@ -44,7 +48,7 @@ impl Camera {
             // World units per pixel: the perspective view's at `lookat`.
             let s = look.length() / fl;
             return Camera {
-                eye: spec.eye - 100.0 * look,
+                eye: spec.eye - ORTHO_BACK * look,
                 du: s * du,
                 dv: s * dv,
                 vp: -0.5 * s * (w * du + h * dv),

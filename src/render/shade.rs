@@ -55,21 +55,22 @@ impl<'a> Shader<'a> {
 
     /// The colour seen along `ray` (t > 0), clamped to [0, 1].
     pub fn trace(&self, ray: &Ray, depth: u32, weight: f64, st: &mut Stats) -> DVec3 {
-        match self.scene.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
-            Some(b) => self
-                .shade(ray, &b, depth, weight, st)
-                .clamp(DVec3::ZERO, DVec3::ONE),
-            None => self.scene.background,
-        }
+        self.unclamped(ray, depth, weight, st).0
     }
 
     /// For a camera ray: the colour [`Shader::trace`] gives, and the
     /// radiance before its last clamp (every deeper level clamped as
     /// always), for linear HDR and EXR files.
     pub fn primary(&self, ray: &Ray, st: &mut Stats) -> (DVec3, DVec3) {
+        self.unclamped(ray, 0, 1.0, st)
+    }
+
+    /// The colour along `ray`, clamped to [0, 1] if it hits, and before
+    /// that clamp; the background as it is given for a miss.
+    fn unclamped(&self, ray: &Ray, depth: u32, weight: f64, st: &mut Stats) -> (DVec3, DVec3) {
         match self.scene.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
             Some(b) => {
-                let c = self.shade(ray, &b, 0, 1.0, st);
+                let c = self.shade(ray, &b, depth, weight, st);
                 (c.clamp(DVec3::ZERO, DVec3::ONE), c)
             }
             None => (self.scene.background, self.scene.background),

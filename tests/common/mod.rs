@@ -73,6 +73,16 @@ pub fn fake_openscad(body: &str) -> tempfile::TempDir {
     bin
 }
 
+/// Runs csgrt in `dir` with `args` and checks that it refused them: exit
+/// status 2, `says` in its message, and `dir` holding exactly `files`
+/// (sorted) afterwards.
+pub fn refused(dir: &Path, args: &[&str], says: &str, files_after: &[&str]) {
+    let r = csgrt(dir, args);
+    assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
+    assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
+    assert_eq!(files(dir), files_after, "{args:?}");
+}
+
 /// A fresh scratch folder holding `name` with `text`.
 pub fn scene(name: &str, text: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
