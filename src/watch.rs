@@ -29,12 +29,19 @@ fn absolute(path: &Path) -> Option<PathBuf> {
     Some(dir.canonicalize().ok()?.join(path.file_name()?))
 }
 
+/// The watcher's failure at `what`, as the system's (exit status 1).
+fn failed(
+    what: impl Into<PathBuf>,
+    e: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+) -> Error {
+    Error::io(what, std::io::Error::other(e))
+}
+
 /// Renders `job` until the process is stopped; returns only if watching
 /// cannot start or stops working.
 pub(crate) fn watch(cli: &Cli, job: &Job) -> Result<()> {
     let (tx, rx) = mpsc::channel();
-    let mut watcher = notify::recommended_watcher(tx)
-        .map_err(|e| Error::io("<file watcher>", std::io::Error::other(e)))?;
+    let mut watcher = notify::recommended_watcher(tx).map_err(|e| failed("<file watcher>", e))?;
     let mut folders = HashSet::new();
     let mut files: HashSet<PathBuf> = HashSet::new();
     loop {
@@ -55,7 +62,7 @@ pub(crate) fn watch(cli: &Cli, job: &Job) -> Result<()> {
             if folders.insert(dir.clone()) {
                 watcher
                     .watch(&dir, RecursiveMode::NonRecursive)
-                    .map_err(|e| Error::io(&dir, std::io::Error::other(e)))?;
+                    .map_err(|e| failed(&dir, e))?;
             }
         }
         if !cli.quiet && files != before {
@@ -74,9 +81,7 @@ pub(crate) fn watch(cli: &Cli, job: &Job) -> Result<()> {
                     && e.paths.iter().any(|p| files.contains(p))
             })
         };
-        let lost = |_: mpsc::RecvError| {
-            Error::io("<file watcher>", std::io::Error::other("the watch stopped"))
-        };
+        let lost = |_: mpsc::RecvError| failed("<file watcher>", "the watch stopped");
         while !changed(&rx.recv().map_err(lost)?) {}
         let mut last = Instant::now();
         loop {
