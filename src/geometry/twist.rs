@@ -221,9 +221,21 @@ impl Twisted {
     fn crossings(&self, o: DVec3, d: DVec3, t0: f64, t1: f64) -> SmallVec<[(f64, Part); 16]> {
         let mut cuts = SmallVec::new();
         let mut roots: SmallVec<[f64; 8]> = SmallVec::new();
+        // The polynomials about the point of the line nearest the axis
+        // within the slab: their terms are then of the section's size, not
+        // of the line's length (quartics about a far origin cancel to 10⁴
+        // ulps; the sides' quadratics about a camera 600 units out put its
+        // hits 2·10⁻¹¹ off the surface, more than a shadow ray's start is
+        // moved, and the sides shadowed themselves in specks).
+        let dxy = d.truncate().length_squared();
+        let near = if dxy > 0.0 {
+            -o.truncate().dot(d.truncate()) / dxy
+        } else {
+            0.5 * (t0 + t1)
+        };
+        let path = Path::new(self, o, d, t0, t1, near.clamp(t0, t1));
         match &self.section {
             Section::Region(region) => {
-                let path = Path::new(self, o, d, t0, t1, 0.0);
                 for (e, &(a, b)) in region.edges.iter().enumerate() {
                     let n = region.normals[e];
                     let c = n.dot(a);
@@ -250,17 +262,6 @@ impl Twisted {
                 }
             }
             Section::Ellipse(e) => {
-                // The polynomials about the point of the line nearest the
-                // axis within the slab: their terms are then of the
-                // section's size, not of the line's length (quartics
-                // about a far origin cancel to 10⁴ ulps).
-                let dxy = d.truncate().length_squared();
-                let near = if dxy > 0.0 {
-                    -o.truncate().dot(d.truncate()) / dxy
-                } else {
-                    0.5 * (t0 + t1)
-                };
-                let path = Path::new(self, o, d, t0, t1, near.clamp(t0, t1));
                 let side = path.ellipse(&Form::of(e), self.scale.x == self.scale.y);
                 let rho1 = self.section.reach();
                 let rho0 = (e.translation.length() - largest_stretch(e.matrix2)).max(0.0);
