@@ -29,6 +29,7 @@ pub const NAMES: &[&str] = &[
     "hull_gjk_normals",
     "minkowski_moved_twice",
     "offset_one_side",
+    "hull_arc_caps_dropped",
 ];
 
 /// Whether the fault `name` is switched on.

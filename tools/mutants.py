@@ -55,6 +55,7 @@ MUTANTS = {
     "hull_gjk_normals": ([], ["hull_spheres", "rounded_box"]),
     "minkowski_moved_twice": (["tests/openscad/minkowski.csg"], False),
     "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
+    "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

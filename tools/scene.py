@@ -221,8 +221,8 @@ PARAMS = {
     "minkowski": ["convexity"],
     "import": ["file", "layer", "convexity", "origin", "scale", "width", "height", "filename", "layername", "center", "dpi", "id", "timestamp"],
     "text": ["text", "size", "font", "halign", "valign", "spacing", "direction", "language", "script"],
-    "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin"],
-    "rotate_extrude": ["angle", "convexity", "file", "layer", "origin"],
+    "linear_extrude": ["height", "center", "convexity", "twist", "slices", "scale", "file", "layer", "origin", "timestamp"],
+    "rotate_extrude": ["angle", "convexity", "file", "layer", "origin", "scale", "timestamp"],
     "translate": ["v"],
     "rotate": ["a", "v"],
     "scale": ["v"],
@@ -505,10 +505,13 @@ class Reader:
             return self.leaf(s, "polyhedron", dict(points=pts, faces=faces), xf, mat)
         if k == "polyhedron":
             pts = a.get("points")
+            faces = a.get("faces", a.get("triangles"))
+            if pts is None or pts == [] or faces is None or faces == []:
+                # (nothing, in OpenSCAD: a function that found none)
+                return None
             if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) != 3 for p in pts):
                 raise self.err(s, "points of polyhedron must be a list of 3-D points")
             pts = np.array(pts, dtype=float)
-            faces = a.get("faces", a.get("triangles"))
             if not isinstance(faces, list):
                 raise self.err(s, "polyhedron needs faces")
             out = []
@@ -812,28 +815,41 @@ class Reader:
         if k == "import":
             f = import_2d(self, s, a)
             return None if f is None else flat_moved(f, m)
+        # OpenSCAD 2021.01 (PolygonNode) leaves out a polygon without
+        # points or with a point that is not numbers, and one of fewer than
+        # 3 points; it drops an index out of range from its path (a
+        # fraction cut to a whole number) and a path left with fewer than 3
+        # points adds nothing.
         pts = a.get("points")
-        if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) for p in pts):
-            raise self.err(s, "points of polygon must be a list of 2-D points")
-        pts = np.array([p[:2] for p in pts], dtype=float)
+        number = lambda x: isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+        if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) or not all(map(number, p)) for p in pts):
+            return None
+        pts = np.array([p[:2] for p in pts], dtype=float).reshape(-1, 2)
         paths = a.get("paths")
         if paths is None:
             if len(pts) < 3:
-                raise self.err(s, "a polygon needs at least 3 points")
+                return None
             paths = [list(range(len(pts)))]
         loops = []
         for path in paths:
-            idx = [int(i) for i in path]
-            if len(idx) < 3 or any(i != j or i < 0 or i >= len(pts) for i, j in zip(idx, path)):
-                raise self.err(s, "a path of polygon has fewer than 3 points or an index out of range")
-            loops.append(place(pts[idx]))
-        return ("poly", loops)
+            if not isinstance(path, list) or not all(map(number, path)):
+                raise self.err(s, "paths of polygon must be lists of indices")
+            idx = [int(i) for i in path if 0 <= int(i) < len(pts) and i >= 0]
+            if len(idx) >= 3:
+                loops.append(place(pts[idx]))
+        return ("poly", loops) if loops else None
 
     def extrusion(self, s, a, xf, mat):
-        for key in ("file", "layer", "origin"):
-            if key in a:
-                raise self.err(s, f"{key} of {s.name} is not in the oracle")
-        f = self.flat_kids(s, "union", np.eye(3))
+        if "file" in a:
+            # OpenSCAD 2021.01's deprecated form: the drawing imported, its
+            # children ignored; a linear extrusion scales the drawing by
+            # the first number of its scale, a turn by its own scale.
+            d = {k: a[k] for k in ("file", "layer", "origin", "convexity") if k in a}
+            sc = a.get("scale", 1.0)
+            d["scale"] = sc[0] if isinstance(sc, list) else sc
+            f = import_2d(self, s, d)
+        else:
+            f = self.flat_kids(s, "union", np.eye(3))
         if has_section(f):
             if s.name == "rotate_extrude":
                 raise self.err(s, "turning a projection is not in the oracle")
@@ -2949,6 +2965,95 @@ def largest_stretch(A):
     return math.sqrt(0.5 * (f + math.sqrt(max(f * f - 4 * det * det, 0.0))))
 
 
+def flat_inside(f, p):
+    """Whether p is in a 2-D tree of polygons, ellipses and their
+    combinations (None for any other part)."""
+    if f[0] == "poly":
+        return even_odd_inside(f[1], p)
+    if f[0] == "ellipse":
+        q = np.linalg.solve(f[1], np.asarray(p) - f[2])
+        return q @ q <= 1.0
+    if f[0] != "op" or len(f) != 3:
+        return None
+    ins = [flat_inside(k, p) for k in f[2]]
+    if any(i is None for i in ins):
+        return None
+    if f[1] == "union":
+        return any(ins)
+    if f[1] == "intersection":
+        return all(ins)
+    if f[1] == "difference":
+        return ins[0] and not any(ins[1:])
+    return None
+
+
+def hull_polygon(f):
+    """A 2-D hull of polygons, circles and their combinations as a polygon
+    that frames as the hull does: the hull of the points of its children's
+    boundaries that can be extreme along an axis or in distance from the
+    origin (corners, points where two boundaries cross, each circle's
+    points along the axes and farthest from the origin), those in the
+    closed region (within 1e-9 of its size). None for other children (they
+    frame by their boxes)."""
+    segs, circles = [], []
+
+    def leaves(g):
+        if g[0] == "poly":
+            segs.extend((l[i], l[(i + 1) % len(l)]) for l in g[1] for i in range(len(l)))
+            return True
+        if g[0] == "ellipse":
+            if not is_circle(g[1]):
+                return False
+            circles.append((np.asarray(g[2], float), float(np.linalg.norm(g[1][:, 0]))))
+            return True
+        return g[0] == "op" and len(g) == 3 and g[1] != "xor" and all(leaves(k) for k in g[2])
+
+    pts = []
+    for kid in f[2]:
+        segs.clear()
+        circles.clear()
+        if not leaves(kid) or flat_inside(kid, np.zeros(2)) is None:
+            return None
+        cand = [np.asarray(a, float) for a, _ in segs]
+        for c, r in circles:
+            cand += [c + r * np.array(v, float) for v in ((1, 0), (0, 1), (-1, 0), (0, -1))]
+            if np.any(c):
+                cand.append(c + r * c / np.linalg.norm(c))
+        for i, (a, b) in enumerate(segs):
+            a, b = np.asarray(a, float), np.asarray(b, float)
+            d = b - a
+            for p0, q0 in segs[i + 1 :]:
+                e = np.asarray(q0, float) - p0
+                den = d[0] * e[1] - d[1] * e[0]
+                if den != 0:
+                    w = np.asarray(p0, float) - a
+                    u, v = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+                    if 0 <= u <= 1 and 0 <= v <= 1:
+                        cand.append(a + u * d)
+            for c, r in circles:
+                A, B, C = d @ d, 2 * (a - c) @ d, (a - c) @ (a - c) - r * r
+                disc = B * B - 4 * A * C
+                if A > 0 and disc >= 0:
+                    cand += [a + u * d for u in ((-B - math.sqrt(disc)) / (2 * A), (-B + math.sqrt(disc)) / (2 * A)) if 0 <= u <= 1]
+        for i, (c1, r1) in enumerate(circles):
+            for c2, r2 in circles[i + 1 :]:
+                dd = c2 - c1
+                l = float(np.linalg.norm(dd))
+                if 0 < l <= r1 + r2 and l >= abs(r1 - r2):
+                    x = (r1 * r1 - r2 * r2 + l * l) / (2 * l)
+                    h = math.sqrt(max(r1 * r1 - x * x, 0.0))
+                    mid, perp = c1 + dd * x / l, np.array([-dd[1], dd[0]]) / l
+                    cand += [mid + h * perp, mid - h * perp]
+        size = max(float(np.abs(q).max()) for q in cand) if cand else 1.0
+        eps = 1e-9 * max(size, 1e-300)
+        dirs = [np.array([math.cos(t), math.sin(t)]) for t in 2 * math.pi * np.arange(16) / 16]
+        pts += [q for q in cand if flat_inside(kid, q) or any(flat_inside(kid, q + eps * v) for v in dirs)]
+    if len(pts) < 3:
+        return None
+    h = convex_hull_2d(np.array(pts))
+    return ("poly", [np.asarray(h, float)]) if len(h) >= 3 else None
+
+
 def is_circle(A):
     """Whether A maps the unit circle to a circle (as csgrt decides)."""
     x, y = A[:, 0], A[:, 1]
@@ -2984,6 +3089,8 @@ def extrusion_box(leaf):
         grow = np.array([max(1.0, sx), max(1.0, sy)])
 
         def rec(f):
+            if f[0] == "op" and f[1] == "hull" and (hp := hull_polygon(f)) is not None:
+                return rec(hp)
             if f[0] == "poly":
                 pts = np.concatenate(f[1])
                 if p["twist"] == 0:
@@ -3014,6 +3121,8 @@ def extrusion_box(leaf):
         h, z0, s = p["h"], p["z0"], p["scale"]
 
         def rec(f):
+            if f[0] == "op" and f[1] == "hull" and (hp := hull_polygon(f)) is not None:
+                return rec(hp)
             if f[0] == "framed":
                 return corner_box(m, np.array([f[2][0], f[2][1], z0]), np.array([f[3][0], f[3][1], z0 + h]))
             if f[0] in ("poly", "curves"):
@@ -3032,6 +3141,8 @@ def extrusion_box(leaf):
     f, flip = revolve_setup(p)
 
     def rec(f):
+        if f[0] == "op" and f[1] == "hull" and (hp := hull_polygon(f)) is not None:
+            return rec(hp)
         if f[0] == "curves":
             # Wholly at x >= 0 (the axis rule): its exact box, turned.
             lo, hi = curve_extent(f)

@@ -10,6 +10,13 @@ use glam::DVec3;
 /// smoothness setting.
 pub const MAX_SHAPE_FACETS: usize = 8;
 
+/// One list of `faces` or `paths` as written: its numbers with their
+/// places, and its own place.
+pub struct NumberList {
+    pub span: TextRange,
+    pub items: Vec<(f64, TextRange)>,
+}
+
 pub struct Args<'a> {
     src: &'a Source,
     stmt: &'a Statement,
@@ -354,15 +361,10 @@ impl<'a> Args<'a> {
         Ok(Some(out))
     }
 
-    /// Lists of indices into `count` points (OpenSCAD's `faces` or
-    /// `paths`), each at least `min_len` long; an index out of range, not
-    /// a whole number, or a list too short is an error at its place.
-    pub fn index_lists(
-        &self,
-        name: &str,
-        count: usize,
-        min_len: usize,
-    ) -> Result<Option<Vec<Vec<u32>>>> {
+    /// Lists of numbers (OpenSCAD's `faces` or `paths`) as they are
+    /// written, each number and each list with its place: only their types
+    /// are checked here.
+    pub fn number_lists(&self, name: &str) -> Result<Option<Vec<NumberList>>> {
         let Some(v) = self.get(name) else {
             return Ok(None);
         };
@@ -374,39 +376,71 @@ impl<'a> Args<'a> {
             let ValueKind::Vector(ix) = &l.kind else {
                 return Err(self.wrong_type(name, l, "a list of indices"));
             };
-            if ix.len() < min_len {
+            let mut items = Vec::with_capacity(ix.len());
+            for i in ix {
+                let ValueKind::Number(n) = i.kind else {
+                    return Err(self.wrong_type(name, i, "an index"));
+                };
+                items.push((n, i.span));
+            }
+            out.push(NumberList {
+                span: l.span,
+                items,
+            });
+        }
+        Ok(Some(out))
+    }
+
+    /// Lists of indices into `count` points (OpenSCAD's `faces` or
+    /// `paths`), each at least `min_len` long; an index out of range, not
+    /// a whole number, or a list too short is an error at its place.
+    pub fn index_lists(
+        &self,
+        name: &str,
+        count: usize,
+        min_len: usize,
+    ) -> Result<Option<Vec<Vec<u32>>>> {
+        let Some(lists) = self.number_lists(name)? else {
+            return Ok(None);
+        };
+        let mut out = Vec::with_capacity(lists.len());
+        for l in lists {
+            if l.items.len() < min_len {
                 return Err(self.src.error(
                     l.span,
                     format!(
                         "a list in `{name}` of `{}` has fewer than {min_len} indices",
                         self.stmt.name
                     ),
-                    format!("expected {min_len} or more, found {}", ix.len()),
+                    format!("expected {min_len} or more, found {}", l.items.len()),
                 ));
             }
-            let mut row = Vec::with_capacity(ix.len());
-            for i in ix {
-                let ValueKind::Number(n) = i.kind else {
-                    return Err(self.wrong_type(name, i, "an index"));
-                };
+            let mut row = Vec::with_capacity(l.items.len());
+            for (n, span) in l.items {
                 if n.fract() != 0.0 || n < 0.0 || n >= count as f64 {
-                    return Err(self.src.error(
-                        i.span,
-                        format!(
-                            "index {n} in `{name}` of `{}` is out of range",
-                            self.stmt.name
-                        ),
-                        format!(
-                            "expected a whole number from 0 to {}",
-                            count.saturating_sub(1)
-                        ),
-                    ));
+                    return Err(self.index_range(name, n, span, count));
                 }
                 row.push(n as u32);
             }
             out.push(row);
         }
         Ok(Some(out))
+    }
+
+    /// The message for index `n` at `span`, not a whole number from 0 to
+    /// `count` − 1.
+    pub fn index_range(&self, name: &str, n: f64, span: TextRange, count: usize) -> Error {
+        self.src.error(
+            span,
+            format!(
+                "index {n} in `{name}` of `{}` is out of range",
+                self.stmt.name
+            ),
+            format!(
+                "expected a whole number from 0 to {}",
+                count.saturating_sub(1)
+            ),
+        )
     }
 
     /// The span of an argument's value (for semantic errors about it).

@@ -111,25 +111,6 @@ impl Flat {
     }
 
     /// The disc of radius r about c.
-    /// Adds its circles and its polygons' corners (as discs of radius
-    /// zero) to `out`, the points its hull is the hull of; false for a
-    /// shape that has others (an ellipse, a curve, a projection), or
-    /// a combination other than a union.
-    pub(super) fn discs(&self, out: &mut Vec<(DVec2, f64)>) -> bool {
-        match self {
-            Flat::Ellipse(e) if is_circle(e.matrix2) => {
-                out.push((e.translation, e.matrix2.x_axis.length()));
-                true
-            }
-            Flat::Polygon(o) if !o.curved() => {
-                out.extend(o.loops.iter().flatten().map(|&p| (p, 0.0)));
-                true
-            }
-            Flat::Op(Op::Union, kids) | Flat::Hull(kids) => kids.iter().all(|k| k.discs(out)),
-            _ => false,
-        }
-    }
-
     pub(super) fn disc(c: DVec2, r: f64) -> Flat {
         Flat::Ellipse(DAffine2::from_scale_angle_translation(
             DVec2::splat(r),
@@ -465,14 +446,19 @@ impl Resolver<'_> {
             if kids.is_empty() {
                 return Ok(None);
             }
-            // Circles and polygons: the polygon through the tangent points
-            // with the circles on it, exact and an ordinary 2-D tree.
-            let mut discs = Vec::new();
-            if kids.iter().all(|k| k.discs(&mut discs)) {
-                if let Some((poly, on)) = super::rounded::disc_hull(&discs) {
+            // Circles, polygons and their combinations: the polygon
+            // through the tangent points with the circles and arcs on it,
+            // exact and an ordinary 2-D tree.
+            let mut sites = Vec::new();
+            if kids.iter().all(|k| super::sites::sites(k, &mut sites)) {
+                if let Some((poly, on)) = super::rounded::arc_hull(&sites) {
                     let mut parts: Vec<Flat> = on
                         .into_iter()
-                        .map(|i| Flat::disc(discs[i].0, discs[i].1))
+                        .filter(|&i| {
+                            sites[i].arc.is_none()
+                                || !crate::mutant::active("hull_arc_caps_dropped")
+                        })
+                        .map(|i| sites[i].cap())
                         .collect();
                     if poly.len() >= 3 {
                         parts.push(Flat::Polygon(Outlines::polygons(vec![poly])));
@@ -585,30 +571,71 @@ impl Resolver<'_> {
                 }))
             }
             "text" => self.text(s, m),
-            _ => {
-                let a = Args::bind(self.src, s, &["points", "paths", "convexity"])?;
-                let pts = a.points("points", &[2, 3], 0)?;
-                let pts = a.require("points", pts)?;
-                let paths = match a.index_lists("paths", pts.len(), 3)? {
-                    Some(p) => p,
-                    None => {
-                        if pts.len() < 3 {
-                            return Err(a.error(
-                                a.span_of("points"),
-                                "a polygon needs at least 3 points",
-                                format!("expected 3 or more points, found {}", pts.len()),
-                            ));
-                        }
-                        vec![(0..pts.len() as u32).collect()]
-                    }
-                };
-                let loops = paths
-                    .iter()
-                    .map(|p| p.iter().map(|&i| pts[i as usize].truncate()).collect())
-                    .collect();
-                Ok(Some(Flat::Polygon(moved(Outlines::polygons(loops)))))
-            }
+            _ => Ok(self.polygon(s)?.map(|o| Flat::Polygon(moved(o)))),
         }
+    }
+
+    /// `polygon(points, paths)` read as OpenSCAD 2021.01 reads it
+    /// (`PolygonNode`): a polygon it cannot read is left out of the model
+    /// and the rest rendered, so here too, with a warning at the place. No
+    /// points (`undef`) or fewer than 3, or a point that is not 2 numbers
+    /// (OpenSCAD's error "Unable to convert points[i]"), leave the whole
+    /// polygon out; an index out of range is dropped from its path
+    /// (OpenSCAD's warning "Point index is out of bounds"), a fraction cut
+    /// to a whole number as OpenSCAD's `size_t` does, and a path left with
+    /// fewer than 3 points, which has no area, adds nothing.
+    fn polygon(&mut self, s: &Statement) -> Result<Option<Outlines>> {
+        let a = Args::bind(self.src, s, &["points", "paths", "convexity"])?;
+        let pts = match a.points("points", &[2, 3], 0) {
+            Ok(Some(p)) => p,
+            Ok(None) => {
+                self.empty(s, "it has no `points` (as in OpenSCAD, it is left out)")?;
+                return Ok(None);
+            }
+            Err(e) => {
+                self.go_on(e, "the polygon is left out, as in OpenSCAD")?;
+                return Ok(None);
+            }
+        };
+        let paths = match a.number_lists("paths")? {
+            Some(lists) => lists,
+            None if pts.len() < 3 => {
+                let found = format!("expected 3 or more points, found {}", pts.len());
+                self.warn(
+                    a.span_of("points"),
+                    "a polygon needs at least 3 points",
+                    &found,
+                );
+                return Ok(None);
+            }
+            None => {
+                let loops = vec![pts.iter().map(|p| p.truncate()).collect()];
+                return Ok(Some(Outlines::polygons(loops)));
+            }
+        };
+        let mut loops = Vec::new();
+        for l in paths {
+            let mut path = Vec::with_capacity(l.items.len());
+            for (n, span) in l.items {
+                let i = n.trunc();
+                if !(i >= 0.0 && i < pts.len() as f64) {
+                    let e = a.index_range("paths", n, span, pts.len());
+                    self.go_on(e, "it is dropped from its path, as in OpenSCAD")?;
+                    continue;
+                }
+                path.push(pts[i as usize].truncate());
+            }
+            if path.len() < 3 {
+                let found = format!("expected 3 or more points, found {}", path.len());
+                self.warn(l.span, "a path of fewer than 3 points adds nothing", &found);
+                continue;
+            }
+            loops.push(path);
+        }
+        if loops.is_empty() {
+            return Ok(None);
+        }
+        Ok(Some(Outlines::polygons(loops)))
     }
 
     /// `text` under `m`: the union of its glyphs.
@@ -1101,9 +1128,10 @@ impl Resolver<'_> {
                 "file",
                 "layer",
                 "origin",
+                "timestamp",
             ],
         )?;
-        no_file(&a, s)?;
+        let legacy = file_child(s, a.get("scale"));
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
         let twist_deg = a.number("twist")?.unwrap_or(0.0);
@@ -1117,7 +1145,11 @@ impl Resolver<'_> {
                 .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
         }
         .max(DVec2::ZERO);
-        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+        let f = match &legacy {
+            Some(child) => self.flat(child, DAffine2::IDENTITY, depth + 1)?,
+            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)?,
+        };
+        let Some(f) = f else {
             return Ok(None);
         };
         if h <= 0.0 {
@@ -1152,14 +1184,26 @@ impl Resolver<'_> {
         let a = Args::bind(
             self.src,
             s,
-            &["angle", "convexity", "file", "layer", "origin"],
+            &[
+                "angle",
+                "convexity",
+                "file",
+                "layer",
+                "origin",
+                "scale",
+                "timestamp",
+            ],
         )?;
-        no_file(&a, s)?;
+        let legacy = file_child(s, a.get("scale"));
         let mut angle = a.number("angle")?.unwrap_or(360.0);
         if angle <= -360.0 || angle > 360.0 {
             angle = 360.0;
         }
-        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+        let f = match &legacy {
+            Some(child) => self.flat(child, DAffine2::IDENTITY, depth + 1)?,
+            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)?,
+        };
+        let Some(f) = f else {
             return Ok(None);
         };
         if angle == 0.0 {
@@ -1303,19 +1347,53 @@ impl Resolver<'_> {
     }
 }
 
-/// OpenSCAD's deprecated `file`, `layer` and `origin` of an extrusion: an
-/// error at the argument (a drawing is imported as a child instead).
-fn no_file(a: &Args, s: &Statement) -> Result<()> {
-    for key in ["file", "layer", "origin"] {
-        if a.has(key) {
-            return Err(a.error(
-                a.span_of(key),
-                format!("`{key}` of `{}` is not supported yet", s.name),
-                "import the drawing as a child instead",
-            ));
-        }
+/// OpenSCAD's deprecated `file`, `layer` and `origin` of an extrusion
+/// (still read by 2021.01, with a deprecation message, and written by its
+/// CSG export with a `timestamp`): the drawing as the extrusion's one
+/// child, `import(file, layer, origin, convexity)` — its children are
+/// ignored, as OpenSCAD ignores them. OpenSCAD scales a linear
+/// extrusion's drawing by the first number of its `scale` (`lf.scad`
+/// with `scale = [2, 3]`: the bottom twice the drawing, the top [2, 3]
+/// times that), and a turned one by its own `scale`; `drawing_scale`
+/// is that number's argument.
+fn file_child(
+    s: &Statement,
+    drawing_scale: Option<&crate::syntax::ast::Value>,
+) -> Option<Statement> {
+    let named =
+        |a: &crate::syntax::ast::Arg, key: &str| a.name.as_ref().is_some_and(|(n, _)| n == key);
+    s.args.iter().find(|a| named(a, "file"))?;
+    let mut args: Vec<crate::syntax::ast::Arg> = s
+        .args
+        .iter()
+        .filter(|a| {
+            ["file", "layer", "origin", "convexity", "timestamp"]
+                .iter()
+                .any(|k| named(a, k))
+                || a.name.as_ref().is_some_and(|(n, _)| n.starts_with('$'))
+        })
+        .cloned()
+        .collect();
+    if let Some(v) = drawing_scale {
+        let k = match &v.kind {
+            crate::syntax::ast::ValueKind::Vector(xs) if !xs.is_empty() => xs[0].clone(),
+            _ => v.clone(),
+        };
+        args.push(crate::syntax::ast::Arg {
+            name: Some(("scale".to_string(), k.span)),
+            span: k.span,
+            value: k,
+        });
     }
-    Ok(())
+    Some(Statement {
+        modifiers: Default::default(),
+        name: "import".to_string(),
+        name_span: s.name_span,
+        args,
+        args_span: s.args_span,
+        children: Vec::new(),
+        span: s.span,
+    })
 }
 
 /// The most convex pieces a 2-D Minkowski sum is the union of, and the

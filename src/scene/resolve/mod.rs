@@ -13,6 +13,7 @@ mod offset;
 mod resize;
 mod rounded;
 mod shadow;
+mod sites;
 mod solids;
 mod statements;
 mod svg;
@@ -405,6 +406,21 @@ impl Resolver<'_> {
             "it has no volume and is left out, as in OpenSCAD",
         );
         None
+    }
+
+    /// A problem OpenSCAD reports and goes on past: the same message as a
+    /// warning, with what is done instead. Anything but a problem in the
+    /// file stays an error.
+    pub(super) fn go_on(&mut self, e: crate::Error, instead: &str) -> Result<()> {
+        match e {
+            crate::Error::Scene(mut d) => {
+                d.severity = crate::error::Severity::Warning;
+                d.message = format!("{}; {instead}", d.message);
+                self.b.warnings.push(*d);
+                Ok(())
+            }
+            e => Err(e),
+        }
     }
 
     pub(super) fn empty(&mut self, s: &Statement, why: &str) -> Result<Option<u32>> {

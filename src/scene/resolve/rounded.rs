@@ -20,6 +20,8 @@ use crate::geometry::convex::Part;
 use crate::geometry::mesh::{Mesh, MeshData};
 use crate::geometry::{Cone, Convex, Cuboid, Shape, Sphere};
 
+use super::sites::Site;
+
 /// The most points whose hull is found (by every triple: n⁴ tests).
 pub const MAX_POINTS: usize = 48;
 
@@ -366,18 +368,48 @@ pub(super) fn hull_indices_2d(q: &[DVec2], tol: f64) -> Vec<usize> {
 /// its boundary — the hull is that polygon with those discs. `None` for a
 /// hull with no area (points on a line), or past [`MAX_POINTS`] discs.
 pub fn disc_hull(discs: &[(DVec2, f64)]) -> Option<(Vec<DVec2>, Vec<usize>)> {
-    if discs.len() > 8 * MAX_POINTS {
+    let sites: Vec<Site> = discs.iter().map(|&(c, r)| Site::disc(c, r)).collect();
+    arc_hull(&sites)
+}
+
+/// The convex hull of [`Site`]s, points, discs and arcs: its polygon
+/// through the points where the boundary leaves and meets the discs and
+/// arcs, counter-clockwise, and the sites on its boundary. The hull is that
+/// polygon with those sites' caps (see [`super::sites`]). `None` for a hull
+/// with no area (points on a line), or past [`MAX_POINTS`] sites once
+/// those inside a disc, and points inside the other points' hull, are
+/// left out.
+pub fn arc_hull(sites: &[Site]) -> Option<(Vec<DVec2>, Vec<usize>)> {
+    if sites.len() > 64 * MAX_POINTS {
         return None;
     }
-    // Discs inside others add nothing.
-    let keep: Vec<usize> = (0..discs.len())
+    let scale = sites
+        .iter()
+        .fold(0.0f64, |a, s| a.max(s.c.abs().max_element() + s.r));
+    let tol = 1e-12 * scale;
+    // Points inside the hull of the points add nothing.
+    let points: Vec<usize> = (0..sites.len()).filter(|&i| sites[i].r == 0.0).collect();
+    let q: Vec<DVec2> = points.iter().map(|&i| sites[i].c).collect();
+    let corner: Vec<usize> = hull_indices_2d(&q, 0.0)
+        .into_iter()
+        .map(|k| points[k])
+        .collect();
+    let candidates: Vec<usize> = (0..sites.len())
+        .filter(|&i| sites[i].r > 0.0 || corner.contains(&i) || q.len() < 3)
+        .collect();
+    // Sites inside a whole disc add nothing.
+    let keep: Vec<usize> = candidates
+        .iter()
+        .copied()
         .filter(|&i| {
-            !(0..discs.len()).any(|j| {
-                let (ci, ri) = discs[i];
-                let (cj, rj) = discs[j];
+            !candidates.iter().any(|&j| {
+                let (si, sj) = (sites[i], sites[j]);
                 j != i
-                    && (ci - cj).length() + ri <= rj
-                    && (ri < rj || (ri == rj && ci == cj && j < i))
+                    && sj.arc.is_none()
+                    && (si.c - sj.c).length() + si.r <= sj.r
+                    && (si.r < sj.r
+                        || (si.r == sj.r && si.c == sj.c && si.arc.is_some())
+                        || (si == sj && j < i))
             })
         })
         .collect();
@@ -385,36 +417,38 @@ pub fn disc_hull(discs: &[(DVec2, f64)]) -> Option<(Vec<DVec2>, Vec<usize>)> {
         return None;
     }
     if let [one] = keep[..] {
-        return (discs[one].1 > 0.0).then(|| (Vec::new(), vec![one]));
+        return (sites[one].r > 0.0 && sites[one].arc.is_none()).then(|| (Vec::new(), vec![one]));
     }
-    let scale = keep.iter().fold(0.0f64, |a, &i| {
-        a.max(discs[i].0.abs().max_element() + discs[i].1)
-    });
-    let tol = 1e-12 * scale;
-    // Each outer common tangent with every disc on its inner side: an edge
-    // from disc i to disc j, the outward normal n at angle φ past the
-    // right of i → j with sin φ = (rᵢ − rⱼ)/|cⱼ − cᵢ|.
+    // Each outer common tangent with every site on its inner side: an edge
+    // from site i to site j, the outward normal n at angle φ past the
+    // right of i → j with sin φ = (rᵢ − rⱼ)/|cⱼ − cᵢ|, where both sites
+    // have that normal (an arc, only its own).
+    let atol = 1e-12;
     let mut edges: Vec<(f64, usize, usize, DVec2)> = Vec::new();
     for &i in &keep {
         for &j in &keep {
-            let ((ci, ri), (cj, rj)) = (discs[i], discs[j]);
-            let d = cj - ci;
+            let (si, sj) = (sites[i], sites[j]);
+            let d = sj.c - si.c;
             let l = d.length();
             if i == j || l == 0.0 {
                 continue;
             }
-            let sin = (ri - rj) / l;
+            let sin = (si.r - sj.r) / l;
             if sin.abs() >= 1.0 {
                 continue;
             }
             let (along, right) = (d / l, DVec2::new(d.y, -d.x) / l);
             let n = right * (1.0 - sin * sin).sqrt() + along * sin;
-            let h = n.dot(ci) + ri;
-            if keep
-                .iter()
-                .all(|&k| n.dot(discs[k].0) + discs[k].1 <= h + tol)
-            {
-                edges.push((n.y.atan2(n.x), i, j, n));
+            let angle = n.y.atan2(n.x);
+            if !si.faces(angle, atol) || !sj.faces(angle, atol) {
+                continue;
+            }
+            let h = n.dot(si.c) + si.r;
+            if keep.iter().all(|&k| {
+                let sk = sites[k];
+                !sk.faces(angle, -atol) || n.dot(sk.c) + sk.r <= h + tol
+            }) {
+                edges.push((angle, i, j, n));
             }
         }
     }
@@ -423,11 +457,11 @@ pub fn disc_hull(discs: &[(DVec2, f64)]) -> Option<(Vec<DVec2>, Vec<usize>)> {
     let mut on: Vec<usize> = Vec::new();
     for &(_, i, j, n) in &edges {
         for k in [i, j] {
-            let p = discs[k].0 + n * discs[k].1;
+            let p = sites[k].c + n * sites[k].r;
             if poly.last().map_or(true, |q| (*q - p).length() > tol) {
                 poly.push(p);
             }
-            if discs[k].1 > 0.0 && !on.contains(&k) {
+            if sites[k].r > 0.0 && !on.contains(&k) {
                 on.push(k);
             }
         }
@@ -447,13 +481,42 @@ pub fn disc_hull(discs: &[(DVec2, f64)]) -> Option<(Vec<DVec2>, Vec<usize>)> {
             corners.push(b);
         }
     }
-    if corners.len() < 3 && on.is_empty() {
-        return None;
-    }
     if corners.len() < 3 {
         corners.clear();
     }
+    // An arc the boundary follows from one of its own ends to the other
+    // meets no tangent: it is on the hull where it leaves the polygon.
+    for &k in &keep {
+        if sites[k].arc.is_some() && !on.contains(&k) && leaves(&sites[k], &corners, tol) {
+            on.push(k);
+        }
+    }
+    if corners.is_empty() && on.is_empty() {
+        return None;
+    }
     Some((corners, on))
+}
+
+/// Whether any of an arc is outside the convex polygon `poly`
+/// (counter-clockwise; any, when it has no corners) by more than `tol`.
+fn leaves(site: &Site, poly: &[DVec2], tol: f64) -> bool {
+    let Some((from, span)) = site.arc else {
+        return true;
+    };
+    if poly.is_empty() {
+        return true;
+    }
+    let ends = [from, from + span].map(|a| site.c + DVec2::from_angle(a) * site.r);
+    (0..poly.len()).any(|i| {
+        let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+        let m = DVec2::new(b.y - a.y, a.x - b.x).normalize();
+        let far = if site.faces(m.y.atan2(m.x), 0.0) {
+            m.dot(site.c) + site.r
+        } else {
+            m.dot(ends[0]).max(m.dot(ends[1]))
+        };
+        far > m.dot(a) + tol
+    })
 }
 
 /// A hull of straight cylinders with parallel axes over one range along

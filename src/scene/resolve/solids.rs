@@ -328,11 +328,22 @@ fn polyhedron(
 ) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["points", "faces", "convexity", "triangles"])?;
     let pts = a.points("points", &[3], 0)?;
-    let pts = a.require("points", pts)?;
     let key = if a.has("faces") { "faces" } else { "triangles" };
-    let faces = a.index_lists(key, pts.len(), 3)?;
-    let faces = a.require("faces", faces)?;
-    res.mesh_leaf(s, a.span_of(key), pts, faces, xf, mat)
+    let faces = match pts {
+        Some(ref p) => a.index_lists(key, p.len(), 3)?,
+        None => None,
+    };
+    // OpenSCAD makes nothing of a polyhedron without points or faces
+    // (`undef`, as a function that found none returns) and goes on.
+    match (pts, faces) {
+        (Some(pts), Some(faces)) if !pts.is_empty() && !faces.is_empty() => {
+            res.mesh_leaf(s, a.span_of(key), pts, faces, xf, mat)
+        }
+        _ => res.empty(
+            s,
+            "it has no points or no faces (as in OpenSCAD, it is left out)",
+        ),
+    }
 }
 
 /// `import(file, ...)` where a solid stands: a mesh file, or a drawing

@@ -1,0 +1,398 @@
+//! What a 2-D hull is the hull of: points, discs and arcs of circles.
+//!
+//! A hull of straight polygons and circles, and of their unions,
+//! intersections and differences, is a convex region whose boundary runs
+//! straight between points of the shapes' boundaries and along arcs of
+//! their circles. The hull of a region is the hull of its boundary, so a
+//! combination is read as the pieces of its boundary: every polygon edge
+//! and every circle, cut where it crosses another, each piece kept where
+//! the combination lies on one side of it and not on the other (tested just
+//! off its middle, on both sides, so a piece on an edge of another shape is
+//! judged by what is really there). A kept piece gives its ends as points;
+//! a kept arc with the region on the centre's side (a convex arc) is also a
+//! [`Site`] of the hull, as a piece of a circle that the hull's boundary
+//! can follow.
+//!
+//! The hull is then [`super::rounded::arc_hull`]'s polygon through the
+//! points where its boundary leaves and meets the arcs, with each arc's
+//! own cap (the disc beyond the arc's chord) joined to it: the part of the
+//! hull outside the polygon is the caps of the arcs it follows, and each
+//! cap lies in the hull, as the hull of its arc.
+
+use super::flat::{is_circle, Flat};
+use crate::csg::spans::Op;
+use glam::DVec2;
+use std::f64::consts::TAU;
+
+/// A piece of what a hull is the hull of: the disc of radius r about c
+/// (r = 0: a point), or only its arc whose outward normals run from the
+/// angle `from` over `span` radians.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Site {
+    pub c: DVec2,
+    pub r: f64,
+    pub arc: Option<(f64, f64)>,
+}
+
+impl Site {
+    pub fn point(p: DVec2) -> Site {
+        Site {
+            c: p,
+            r: 0.0,
+            arc: None,
+        }
+    }
+
+    pub fn disc(c: DVec2, r: f64) -> Site {
+        Site { c, r, arc: None }
+    }
+
+    /// Whether the outward normal at angle `a` is one of the site's (any is
+    /// a whole disc's), within `tol` radians.
+    pub fn faces(&self, a: f64, tol: f64) -> bool {
+        match self.arc {
+            None => true,
+            Some((from, span)) => {
+                let past = (a - from).rem_euclid(TAU);
+                past <= span + tol || past >= TAU - tol
+            }
+        }
+    }
+
+    /// The arc's cap, the part of the disc on the arc's side of its chord,
+    /// as the disc and the arc's box cut by the chord's line (the whole
+    /// disc for a circle). The cap is the hull of the arc, so it lies in
+    /// that box, and the box's every side touches the arc: the cap's box
+    /// is the arc's own, and a hull framed by its parts' boxes is framed
+    /// exactly.
+    pub fn cap(&self) -> Flat {
+        let disc = Flat::disc(self.c, self.r);
+        let Some((from, span)) = self.arc else {
+            return disc;
+        };
+        let at = |a: f64| self.c + DVec2::from_angle(a) * self.r;
+        let (e0, e1) = (at(from), at(from + span));
+        let mut far = vec![e0, e1];
+        for k in 0..4 {
+            let a = k as f64 * TAU / 4.0;
+            if self.faces(a, 0.0) {
+                far.push(self.c + DVec2::from_angle(a) * self.r);
+            }
+        }
+        let lo = far.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
+        let hi = far.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+        let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+        // The box on the arc's side of the chord (Sutherland–Hodgman).
+        let m = DVec2::from_angle(from + span / 2.0);
+        let side = |p: DVec2| (p - e0).dot(m);
+        let mut poly = Vec::new();
+        for i in 0..4 {
+            let (a, b) = (corners[i], corners[(i + 1) % 4]);
+            let (sa, sb) = (side(a), side(b));
+            if sa >= 0.0 {
+                poly.push(a);
+            }
+            if (sa >= 0.0) != (sb >= 0.0) {
+                poly.push(a + (b - a) * (sa / (sa - sb)));
+            }
+        }
+        if poly.len() < 3 {
+            return disc;
+        }
+        Flat::Op(
+            Op::Intersection,
+            vec![
+                disc,
+                Flat::Polygon(crate::plane::Outlines::polygons(vec![poly])),
+            ],
+        )
+    }
+}
+
+/// The most boundary pieces (polygon edges and circles) a combination may
+/// have to be read here: each is cut at every other (n² tests).
+pub const MAX_PIECES: usize = 256;
+
+/// Adds to `out` the sites `f`'s hull is the hull of: its circles and its
+/// polygons' corners, or for a combination other than a union, the pieces
+/// of its boundary (above). False for a shape that has others (an ellipse,
+/// a curve, a projection, an offset) or too many pieces.
+pub(super) fn sites(f: &Flat, out: &mut Vec<Site>) -> bool {
+    match f {
+        Flat::Ellipse(e) if is_circle(e.matrix2) => {
+            out.push(Site::disc(e.translation, e.matrix2.x_axis.length()));
+            true
+        }
+        Flat::Polygon(o) if !o.curved() => {
+            out.extend(o.loops.iter().flatten().map(|&p| Site::point(p)));
+            true
+        }
+        Flat::Op(Op::Union, kids) | Flat::Hull(kids) => kids.iter().all(|k| sites(k, out)),
+        Flat::Op(..) => boundary(f, out),
+        _ => false,
+    }
+}
+
+/// A piece of a boundary: a straight edge, or a whole circle.
+#[derive(Clone, Copy)]
+enum Piece {
+    Edge(DVec2, DVec2),
+    Circle(DVec2, f64),
+}
+
+/// The edges and circles of the leaves of `f`; false for any other leaf.
+fn pieces(f: &Flat, out: &mut Vec<Piece>) -> bool {
+    match f {
+        Flat::Ellipse(e) if is_circle(e.matrix2) => {
+            out.push(Piece::Circle(e.translation, e.matrix2.x_axis.length()));
+            true
+        }
+        Flat::Polygon(o) if !o.curved() => {
+            for l in &o.loops {
+                for (i, &a) in l.iter().enumerate() {
+                    out.push(Piece::Edge(a, l[(i + 1) % l.len()]));
+                }
+            }
+            true
+        }
+        Flat::Op(_, kids) => kids.iter().all(|k| pieces(k, out)),
+        _ => false,
+    }
+}
+
+/// Whether p is in `f` (made of [`pieces`]' leaves only).
+fn inside(f: &Flat, p: DVec2) -> bool {
+    match f {
+        Flat::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
+        Flat::Polygon(o) => o.contains(p),
+        Flat::Op(Op::Union, kids) => kids.iter().any(|k| inside(k, p)),
+        Flat::Op(Op::Intersection, kids) => kids.iter().all(|k| inside(k, p)),
+        Flat::Op(Op::Difference, kids) => {
+            kids.first().is_some_and(|k| inside(k, p)) && !kids[1..].iter().any(|k| inside(k, p))
+        }
+        _ => false,
+    }
+}
+
+/// Where the line a + u·(b − a) meets the circle (c, r): the u of both
+/// points (none where it misses).
+fn line_circle(a: DVec2, b: DVec2, c: DVec2, r: f64) -> Vec<f64> {
+    let d = b - a;
+    let f = a - c;
+    let (qa, qb, qc) = (
+        d.length_squared(),
+        2.0 * f.dot(d),
+        f.length_squared() - r * r,
+    );
+    let disc = qb * qb - 4.0 * qa * qc;
+    if qa == 0.0 || disc < 0.0 {
+        return Vec::new();
+    }
+    let s = disc.sqrt();
+    // The root of larger size first, the other from the product.
+    let q = -0.5 * (qb + s.copysign(qb));
+    if q == 0.0 {
+        return vec![0.0];
+    }
+    vec![q / qa, qc / q]
+}
+
+/// Adds the pieces of `f`'s boundary (above) to `out` as sites.
+fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
+    let mut all = Vec::new();
+    if !pieces(f, &mut all) || all.len() > MAX_PIECES {
+        return false;
+    }
+    let scale = all.iter().fold(0.0f64, |s, p| match *p {
+        Piece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
+        Piece::Circle(c, r) => s.max(c.abs().max_element() + r),
+    });
+    let eps = 1e-9 * scale;
+    // Kept where the shape is on one side and not the other.
+    let kept = |p: DVec2, n: DVec2| {
+        let (out_side, in_side) = (inside(f, p + n * eps), inside(f, p - n * eps));
+        (out_side != in_side).then_some(in_side)
+    };
+    for (i, &piece) in all.iter().enumerate() {
+        match piece {
+            Piece::Edge(a, b) => {
+                let d = b - a;
+                if d == DVec2::ZERO {
+                    continue;
+                }
+                let mut cuts = vec![0.0, 1.0];
+                for (j, &other) in all.iter().enumerate() {
+                    if j == i {
+                        continue;
+                    }
+                    match other {
+                        Piece::Edge(p, q) => {
+                            let e = q - p;
+                            let den = d.perp_dot(e);
+                            if den != 0.0 {
+                                let u = (p - a).perp_dot(e) / den;
+                                let v = (p - a).perp_dot(d) / den;
+                                if (0.0..=1.0).contains(&v) {
+                                    cuts.push(u);
+                                }
+                            }
+                        }
+                        Piece::Circle(c, r) => cuts.extend(line_circle(a, b, c, r)),
+                    }
+                }
+                cuts.retain(|u| (0.0..=1.0).contains(u));
+                cuts.sort_by(f64::total_cmp);
+                let normal = d.perp().normalize();
+                for w in cuts.windows(2) {
+                    if w[1] > w[0] && kept(a + d * ((w[0] + w[1]) / 2.0), normal).is_some() {
+                        out.push(Site::point(a + d * w[0]));
+                        out.push(Site::point(a + d * w[1]));
+                    }
+                }
+            }
+            Piece::Circle(c, r) => {
+                let mut cuts = Vec::new();
+                for (j, &other) in all.iter().enumerate() {
+                    if j == i {
+                        continue;
+                    }
+                    let hits: Vec<DVec2> = match other {
+                        Piece::Edge(p, q) => line_circle(p, q, c, r)
+                            .into_iter()
+                            .filter(|u| (0.0..=1.0).contains(u))
+                            .map(|u| p + (q - p) * u)
+                            .collect(),
+                        Piece::Circle(c2, r2) => circle_circle(c, r, c2, r2),
+                    };
+                    cuts.extend(hits.iter().map(|h| (h.y - c.y).atan2(h.x - c.x)));
+                }
+                let at = |a: f64| c + DVec2::from_angle(a) * r;
+                if cuts.is_empty() {
+                    if kept(at(0.0), DVec2::X) == Some(true) {
+                        out.push(Site::disc(c, r));
+                    }
+                    continue;
+                }
+                cuts.sort_by(f64::total_cmp);
+                for (k, &from) in cuts.iter().enumerate() {
+                    let to = if k + 1 < cuts.len() {
+                        cuts[k + 1]
+                    } else {
+                        cuts[0] + TAU
+                    };
+                    if to <= from {
+                        continue;
+                    }
+                    let mid = (from + to) / 2.0;
+                    let Some(convex) = kept(at(mid), DVec2::from_angle(mid)) else {
+                        continue;
+                    };
+                    out.push(Site::point(at(from)));
+                    out.push(Site::point(at(to)));
+                    if convex {
+                        out.push(Site {
+                            c,
+                            r,
+                            arc: Some((from, to - from)),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    true
+}
+
+/// The points where two circles cross (none, or two).
+fn circle_circle(c1: DVec2, r1: f64, c2: DVec2, r2: f64) -> Vec<DVec2> {
+    let d = c2 - c1;
+    let l = d.length();
+    if l == 0.0 || l > r1 + r2 || l < (r1 - r2).abs() {
+        return Vec::new();
+    }
+    let a = (r1 * r1 - r2 * r2 + l * l) / (2.0 * l);
+    let h = (r1 * r1 - a * a).max(0.0).sqrt();
+    let m = c1 + d * (a / l);
+    let p = d.perp() * (h / l);
+    vec![m + p, m - p]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::plane::Outlines;
+
+    fn square(lo: DVec2, hi: DVec2) -> Flat {
+        Flat::Polygon(Outlines::polygons(vec![vec![
+            lo,
+            DVec2::new(hi.x, lo.y),
+            hi,
+            DVec2::new(lo.x, hi.y),
+        ]]))
+    }
+
+    /// A quarter disc: its corner, the two ends of its arc, and the arc of
+    /// normals from 0 to 90°.
+    #[test]
+    fn quarter_disc() {
+        let f = Flat::Op(
+            Op::Intersection,
+            vec![
+                Flat::disc(DVec2::ZERO, 2.0),
+                square(DVec2::ZERO, DVec2::splat(3.0)),
+            ],
+        );
+        let mut out = Vec::new();
+        assert!(sites(&f, &mut out));
+        let arcs: Vec<_> = out.iter().filter_map(|s| s.arc).collect();
+        assert_eq!(arcs.len(), 1);
+        let (from, span) = arcs[0];
+        assert!(
+            from.abs() < 1e-12 && (span - TAU / 4.0).abs() < 1e-12,
+            "{arcs:?}"
+        );
+        for p in [DVec2::ZERO, DVec2::new(2.0, 0.0), DVec2::new(0.0, 2.0)] {
+            assert!(
+                out.iter().any(|s| s.r == 0.0 && (s.c - p).length() < 1e-12),
+                "{p}"
+            );
+        }
+        // Nothing outside the quarter disc.
+        assert!(out
+            .iter()
+            .all(|s| s.r > 0.0 || s.c.min_element() > -1e-12 && s.c.length() < 2.0 + 1e-12));
+    }
+
+    /// A square less its left half (the edges meet exactly): the right
+    /// half's corners only.
+    #[test]
+    fn difference_on_shared_edges() {
+        let f = Flat::Op(
+            Op::Difference,
+            vec![
+                square(DVec2::ZERO, DVec2::splat(2.0)),
+                square(DVec2::ZERO, DVec2::new(1.0, 2.0)),
+            ],
+        );
+        let mut out = Vec::new();
+        assert!(sites(&f, &mut out));
+        assert!(
+            out.iter().all(|s| s.r == 0.0 && s.c.x >= 1.0 - 1e-12),
+            "{out:?}"
+        );
+        assert!(out.iter().any(|s| s.c == DVec2::new(1.0, 0.0)));
+        assert!(out.iter().any(|s| s.c == DVec2::new(2.0, 2.0)));
+    }
+
+    /// A disc with a hole: the hole's circle is concave, not a site.
+    #[test]
+    fn ring() {
+        let f = Flat::Op(
+            Op::Difference,
+            vec![Flat::disc(DVec2::ZERO, 2.0), Flat::disc(DVec2::ZERO, 1.0)],
+        );
+        let mut out = Vec::new();
+        assert!(sites(&f, &mut out));
+        assert_eq!(out, vec![Site::disc(DVec2::ZERO, 2.0)]);
+    }
+}
