@@ -30,6 +30,7 @@ pub const NAMES: &[&str] = &[
     "minkowski_moved_twice",
     "offset_one_side",
     "hull_arc_caps_dropped",
+    "outline_first_loop_only",
 ];
 
 /// Whether the fault `name` is switched on.

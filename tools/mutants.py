@@ -56,6 +56,7 @@ MUTANTS = {
     "minkowski_moved_twice": (["tests/openscad/minkowski.csg"], False),
     "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
+    "outline_first_loop_only": (["tests/openscad/offsets.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

@@ -1332,6 +1332,31 @@ def even_odd_inside(loops, p):
     return inside
 
 
+def straight_loops(f):
+    """The loops of the boundary of a 2-D tree of straight polygons (union,
+    intersection, difference), by manifold's boolean (Clipper2's, on its
+    grid of 1e-8); None for a tree with other leaves."""
+
+    def straight(g):
+        return g[0] == "poly" or g[0] == "op" and len(g) == 3 and g[1] in ("union", "intersection", "difference") and all(map(straight, g[2]))
+
+    if not straight(f):
+        return None
+    import manifold3d as mf
+
+    def cs(g):
+        if g[0] == "poly":
+            return mf.CrossSection([l.tolist() for l in g[1]], mf.FillRule.EvenOdd)
+        kids = [cs(k) for k in g[2]]
+        if g[1] == "union":
+            return mf.CrossSection.batch_boolean(kids, mf.OpType.Add)
+        if g[1] == "intersection":
+            return mf.CrossSection.batch_boolean(kids, mf.OpType.Intersect)
+        return kids[0] - mf.CrossSection.batch_boolean(kids[1:], mf.OpType.Add)
+
+    return [np.asarray(l, dtype=float) for l in cs(f).to_polygons()]
+
+
 def offset_pieces(f, join, d):
     """OpenSCAD's offset of a 2-D tree as the CSG of plain 2-D leaves it
     is (Clipper's joins: round = the disc of radius |d| at a corner, miter =
@@ -1352,7 +1377,12 @@ def offset_pieces(f, join, d):
                 return None
             parts = [p for p in parts if p is not None]
             return None if not parts else parts[0] if len(parts) == 1 else ("op", f[1], parts)
-        raise ValueError(f"offset of a 2-D {f[1]} by {d:g} is not in the oracle")
+        loops = straight_loops(f)
+        if loops is None:
+            raise ValueError(f"offset of a 2-D {f[1]} by {d:g} is not in the oracle")
+        # Any other combination of straight polygons: its boundary's loops
+        # (manifold's boolean), offset as one polygon.
+        return offset_pieces(("poly", loops), join, d) if loops else None
     if f[0] == "ellipse":
         A = f[1]
         r = math.hypot(A[0, 0], A[1, 0])

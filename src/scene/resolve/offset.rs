@@ -25,8 +25,10 @@
 //! grows to the circle of radius R + d. Curved outlines offset as one leaf
 //! of their own ([`crate::plane::offset`]). What needs the boundary of a
 //! combination — shrinking a union whose parts' boxes meet, growing an
-//! intersection, either of a difference — ellipses and self-crossing
-//! polygons are not supported yet.
+//! intersection, either of a difference — is done on the loops of its
+//! boundary when it is made of straight polygons
+//! ([`super::sites::outline`]); with circles, and ellipses and
+//! self-crossing polygons, not yet.
 
 use super::flat::{is_circle, Flat};
 use crate::csg::spans::Op;
@@ -86,16 +88,21 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
             }
             Ok(Some(Flat::Op(Op::Intersection, out)))
         }
-        Flat::Op(op, _) => Err(format!(
-            "{} a 2-D {} is not supported yet",
-            if d > 0.0 { "growing" } else { "shrinking" },
-            match op {
-                Op::Union => "union whose parts' boxes meet",
-                Op::Intersection => "intersection",
-                Op::Difference => "difference",
-                Op::Xor => "drawing's even-odd paths",
-            }
-        )),
+        // Any other combination of straight polygons: the loops of its
+        // boundary, offset as one polygon.
+        Flat::Op(op, kids) => match super::sites::outline(&Flat::Op(op, kids)) {
+            Some(o) => polygon(o, join, d),
+            None => Err(format!(
+                "{} a 2-D {} is not supported yet",
+                if d > 0.0 { "growing" } else { "shrinking" },
+                match op {
+                    Op::Union => "union whose parts' boxes meet",
+                    Op::Intersection => "intersection",
+                    Op::Difference => "difference",
+                    Op::Xor => "drawing's even-odd paths",
+                }
+            )),
+        },
         Flat::Ellipse(e) => {
             if !is_circle(e.matrix2) {
                 return Err("offsetting an ellipse is not supported yet".into());

@@ -155,6 +155,7 @@ fn pieces(f: &Flat, out: &mut Vec<Piece>) -> bool {
             }
             true
         }
+        Flat::Op(Op::Xor, _) => false,
         Flat::Op(_, kids) => kids.iter().all(|k| pieces(k, out)),
         _ => false,
     }
@@ -203,11 +204,7 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
     if !pieces(f, &mut all) || all.len() > MAX_PIECES {
         return false;
     }
-    let scale = all.iter().fold(0.0f64, |s, p| match *p {
-        Piece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
-        Piece::Circle(c, r) => s.max(c.abs().max_element() + r),
-    });
-    let eps = 1e-9 * scale;
+    let eps = 1e-9 * size(&all);
     // Kept where the shape is on one side and not the other.
     let kept = |p: DVec2, n: DVec2| {
         let (out_side, in_side) = (inside(f, p + n * eps), inside(f, p - n * eps));
@@ -220,28 +217,7 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
                 if d == DVec2::ZERO {
                     continue;
                 }
-                let mut cuts = vec![0.0, 1.0];
-                for (j, &other) in all.iter().enumerate() {
-                    if j == i {
-                        continue;
-                    }
-                    match other {
-                        Piece::Edge(p, q) => {
-                            let e = q - p;
-                            let den = d.perp_dot(e);
-                            if den != 0.0 {
-                                let u = (p - a).perp_dot(e) / den;
-                                let v = (p - a).perp_dot(d) / den;
-                                if (0.0..=1.0).contains(&v) {
-                                    cuts.push(u);
-                                }
-                            }
-                        }
-                        Piece::Circle(c, r) => cuts.extend(line_circle(a, b, c, r)),
-                    }
-                }
-                cuts.retain(|u| (0.0..=1.0).contains(u));
-                cuts.sort_by(f64::total_cmp);
+                let cuts = edge_cuts(i, a, b, &all);
                 let normal = d.perp().normalize();
                 for w in cuts.windows(2) {
                     if w[1] > w[0] && kept(a + d * ((w[0] + w[1]) / 2.0), normal).is_some() {
@@ -301,6 +277,123 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
         }
     }
     true
+}
+
+/// Where the edge a → b (piece i of `all`) crosses the other pieces, as
+/// sorted parameters in [0, 1] with both ends.
+fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece]) -> Vec<f64> {
+    let d = b - a;
+    let mut cuts = vec![0.0, 1.0];
+    for (j, &other) in all.iter().enumerate() {
+        if j == i {
+            continue;
+        }
+        match other {
+            Piece::Edge(p, q) => {
+                let e = q - p;
+                let den = d.perp_dot(e);
+                if den != 0.0 {
+                    let u = (p - a).perp_dot(e) / den;
+                    let v = (p - a).perp_dot(d) / den;
+                    if (0.0..=1.0).contains(&v) {
+                        cuts.push(u);
+                    }
+                }
+            }
+            Piece::Circle(c, r) => cuts.extend(line_circle(a, b, c, r)),
+        }
+    }
+    cuts.retain(|u| (0.0..=1.0).contains(u));
+    cuts.sort_by(f64::total_cmp);
+    cuts
+}
+
+/// The largest coordinate (a circle's reach) of the pieces.
+fn size(all: &[Piece]) -> f64 {
+    all.iter().fold(0.0f64, |s, p| match *p {
+        Piece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
+        Piece::Circle(c, r) => s.max(c.abs().max_element() + r),
+    })
+}
+
+/// A combination of straight polygons as the loops of its boundary, each
+/// with the shape on its left: the kept pieces of [`boundary`]'s rule,
+/// chained end to start (ends within 10⁻⁹ of the shape's size are one
+/// point), and runs along one line merged. `None` for a combination with a
+/// circle or another leaf, past [`MAX_PIECES`] edges, or whose pieces do
+/// not close into loops.
+pub(super) fn outline(f: &Flat) -> Option<crate::plane::Outlines> {
+    let mut all = Vec::new();
+    if !pieces(f, &mut all) || all.len() > MAX_PIECES {
+        return None;
+    }
+    if all.iter().any(|p| matches!(p, Piece::Circle(..))) {
+        return None;
+    }
+    let tol = 1e-9 * size(&all);
+    let mut segs: Vec<(DVec2, DVec2)> = Vec::new();
+    for (i, &piece) in all.iter().enumerate() {
+        let Piece::Edge(a, b) = piece else { continue };
+        let d = b - a;
+        if d == DVec2::ZERO {
+            continue;
+        }
+        let cuts = edge_cuts(i, a, b, &all);
+        let normal = d.perp().normalize();
+        for w in cuts.windows(2) {
+            let (p, q) = (a + d * w[0], a + d * w[1]);
+            if (q - p).length() <= tol {
+                continue;
+            }
+            let mid = (p + q) / 2.0;
+            let (left, right) = (inside(f, mid + normal * tol), inside(f, mid - normal * tol));
+            match (left, right) {
+                (true, false) => segs.push((p, q)),
+                (false, true) => segs.push((q, p)),
+                _ => {}
+            }
+        }
+    }
+    // Chained: each segment's end to the start of the one that follows it
+    // (one only, or the boundary touches itself and is left to the caller).
+    let mut used = vec![false; segs.len()];
+    let mut loops = Vec::new();
+    for first in 0..segs.len() {
+        if used[first] {
+            continue;
+        }
+        used[first] = true;
+        let mut pts = vec![segs[first].0];
+        let mut end = segs[first].1;
+        loop {
+            if (end - pts[0]).length() <= tol {
+                break;
+            }
+            let next: Vec<usize> = (0..segs.len())
+                .filter(|&k| !used[k] && (segs[k].0 - end).length() <= tol)
+                .collect();
+            let [k] = next[..] else { return None };
+            used[k] = true;
+            pts.push(segs[k].0);
+            end = segs[k].1;
+        }
+        // Points where the boundary runs straight on are not corners.
+        let n = pts.len();
+        let corners: Vec<DVec2> = (0..n)
+            .filter(|&k| {
+                let (a, b, c) = (pts[(k + n - 1) % n], pts[k], pts[(k + 1) % n]);
+                (b - a).perp_dot(c - b).abs() > tol * (b - a).length().max((c - b).length())
+                    || (b - a).dot(c - b) < 0.0
+            })
+            .map(|k| pts[k])
+            .collect();
+        if corners.len() >= 3
+            && !(crate::mutant::active("outline_first_loop_only") && !loops.is_empty())
+        {
+            loops.push(corners);
+        }
+    }
+    (!loops.is_empty()).then(|| crate::plane::Outlines::polygons(loops))
 }
 
 /// The points where two circles cross (none, or two).
