@@ -212,18 +212,10 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
     };
     for (i, &piece) in all.iter().enumerate() {
         match piece {
-            Piece::Edge(a, b) => {
-                let d = b - a;
-                if d == DVec2::ZERO {
-                    continue;
-                }
-                let cuts = edge_cuts(i, a, b, &all);
-                let normal = d.perp().normalize();
-                for w in cuts.windows(2) {
-                    if w[1] > w[0] && kept(a + d * ((w[0] + w[1]) / 2.0), normal).is_some() {
-                        out.push(Site::point(a + d * w[0]));
-                        out.push(Site::point(a + d * w[1]));
-                    }
+            Piece::Edge(..) => {
+                for (p, q, _) in kept_edges(f, &all, i, eps) {
+                    out.push(Site::point(p));
+                    out.push(Site::point(q));
                 }
             }
             Piece::Circle(c, r) => {
@@ -308,6 +300,33 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece]) -> Vec<f64> {
     cuts
 }
 
+/// The stretches of edge piece i (none for a circle) that lie on the
+/// boundary of `f` — the shape on one side and not the other, tested `eps`
+/// off each stretch's middle — as (start, end, whether the shape is on
+/// the left).
+fn kept_edges(f: &Flat, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2, bool)> {
+    let Piece::Edge(a, b) = all[i] else {
+        return Vec::new();
+    };
+    let d = b - a;
+    if d == DVec2::ZERO {
+        return Vec::new();
+    }
+    let normal = d.perp().normalize();
+    let cuts = edge_cuts(i, a, b, all);
+    let mut out = Vec::new();
+    for w in cuts.windows(2) {
+        if w[1] > w[0] {
+            let mid = a + d * ((w[0] + w[1]) / 2.0);
+            let (left, right) = (inside(f, mid + normal * eps), inside(f, mid - normal * eps));
+            if left != right {
+                out.push((a + d * w[0], a + d * w[1], left));
+            }
+        }
+    }
+    out
+}
+
 /// The largest coordinate (a circle's reach) of the pieces.
 fn size(all: &[Piece]) -> f64 {
     all.iter().fold(0.0f64, |s, p| match *p {
@@ -332,25 +351,10 @@ pub(super) fn outline(f: &Flat) -> Option<crate::plane::Outlines> {
     }
     let tol = 1e-9 * size(&all);
     let mut segs: Vec<(DVec2, DVec2)> = Vec::new();
-    for (i, &piece) in all.iter().enumerate() {
-        let Piece::Edge(a, b) = piece else { continue };
-        let d = b - a;
-        if d == DVec2::ZERO {
-            continue;
-        }
-        let cuts = edge_cuts(i, a, b, &all);
-        let normal = d.perp().normalize();
-        for w in cuts.windows(2) {
-            let (p, q) = (a + d * w[0], a + d * w[1]);
-            if (q - p).length() <= tol {
-                continue;
-            }
-            let mid = (p + q) / 2.0;
-            let (left, right) = (inside(f, mid + normal * tol), inside(f, mid - normal * tol));
-            match (left, right) {
-                (true, false) => segs.push((p, q)),
-                (false, true) => segs.push((q, p)),
-                _ => {}
+    for i in 0..all.len() {
+        for (p, q, left) in kept_edges(f, &all, i, tol) {
+            if (q - p).length() > tol {
+                segs.push(if left { (p, q) } else { (q, p) });
             }
         }
     }
@@ -387,9 +391,8 @@ pub(super) fn outline(f: &Flat) -> Option<crate::plane::Outlines> {
             })
             .map(|k| pts[k])
             .collect();
-        if corners.len() >= 3
-            && !(crate::mutant::active("outline_first_loop_only") && !loops.is_empty())
-        {
+        let dropped = !loops.is_empty() && crate::mutant::active("outline_first_loop_only");
+        if corners.len() >= 3 && !dropped {
             loops.push(corners);
         }
     }
