@@ -1,5 +1,5 @@
 //! The fuzzing harness, shared by `fuzz/fuzz_targets/scene.rs` (libFuzzer,
-//! nightly) and `tests/fuzz_corpus.rs` (which replays the kept corpus on
+//! nightly) and `tests/it/fuzz_corpus.rs` (which replays the kept corpus on
 //! stable in the normal test line).
 
 use crate::error::Error;

@@ -398,7 +398,7 @@ fn lay_out_with(
     // TrueType driver rounds to whole pixels) and HarfBuzz's positions'
     // (÷1.024e5, at the em asked: hb-ft reads advances through
     // FT_Get_Advance and scales kerning by the face's requested size —
-    // measured against OpenSCAD's own layout, tests/vertical_text.rs, the
+    // measured against OpenSCAD's own layout, tests/it/vertical_text.rs, the
     // rounded em drifts 5e-5 of the size a glyph).
     let (k_outline, k_metric) = (em / upem / 1e5, NOMINAL_EM / upem / 1.024e5);
     struct Glyph {

@@ -12,7 +12,7 @@ either image.
 
 Needs `openscad` (Debian: apt-get install -y openscad xvfb). Not part of
 the CI line, which checks the same camera against OpenGL's pipeline written
-out in tests/camera.rs.
+out in tests/it/camera.rs.
 
 Usage: openscad_view.py [--csgrt BIN]   (exit 1 on any miss)
 """

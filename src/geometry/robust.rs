@@ -29,7 +29,7 @@ pub const GAMMA3: f64 = gamma(3);
 
 /// How many ulps of the coordinates a hit point may be off: the transforms
 /// into and out of object space, the root of the solve and the final
-/// `o + t·d` each add a few. Measured with `tests/self_intersection.rs`
+/// `o + t·d` each add a few. Measured with `tests/it/self_intersection.rs`
 /// (2000 random convex parts, sizes 1e-3 to 1e3, offsets to 1e6): it fails
 /// at 1 and passes at 4; 32 keeps an 8× margin while moving a secondary
 /// ray only 1.6e-8 off a surface a million units out.

@@ -9,7 +9,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
-mod common;
+use crate::common;
 
 /// A convex mesh: the octahedron of the unit axis points.
 fn octahedron() -> Shape {
@@ -140,7 +140,7 @@ proptest! {
 }
 
 /// A twisted or unevenly scaled extrusion: an ellipse anywhere in the
-/// plane, or the L region of `tests/common`.
+/// plane, or the L region of `tests/it/common`.
 fn twisted_shape() -> impl Strategy<Value = Shape> {
     use csgrt::geometry::{Section, Twisted};
     let ellipse = (

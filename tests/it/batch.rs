@@ -2,8 +2,8 @@
 //! `-O DIR`) and `--animate N` frames of a `.scad` model. Each image must be
 //! byte for byte the one a run of that model alone writes.
 
-mod common;
-use common::csgrt;
+use crate::common;
+use crate::common::csgrt;
 use std::path::Path;
 
 const CUBE: &str = "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\ncube(2, center = true);\n";

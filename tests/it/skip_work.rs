@@ -1,8 +1,7 @@
 //! csgrt skips work a scene does not need; the counters of --stats-json
 //! show it.
 
-mod common;
-use common::{csgrt, scene, stats};
+use crate::common::{csgrt, scene, stats};
 use std::path::Path;
 
 fn counters(text: &str, size: &str) -> serde_json::Value {

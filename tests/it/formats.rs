@@ -1,8 +1,8 @@
 //! The seed's display lists, format by extension, and the defaults a scene
 //! gets when it says nothing.
 
-mod common;
-use common::{csgrt, files, scene};
+use crate::common;
+use crate::common::{csgrt, files, scene};
 use glam::DVec3;
 use std::path::Path;
 

@@ -3,8 +3,7 @@
 //! mesh of the same file (`tests/facets/*.off`, printed to 6
 //! digits), ray by ray; and the exact surfaces are told apart from it.
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use csgrt::geometry::Ray;
 use csgrt::scene::Facets;
 use csgrt::stats::Stats;

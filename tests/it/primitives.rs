@@ -11,8 +11,7 @@ use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Torus, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 
-mod common;
-use common::{curved_lathe, curved_prism, l_lathe, l_offset, l_prism, l_twisted, Rng};
+use crate::common::{curved_lathe, curved_prism, l_lathe, l_offset, l_prism, l_twisted, Rng};
 
 fn shapes() -> Vec<(&'static str, Shape)> {
     vec![

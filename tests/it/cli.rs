@@ -1,7 +1,7 @@
 //! The command line: outputs, counters, determinism and whole error messages.
 
-mod common;
-use common::{csgrt, csgrt_stdin, fails, files, scene, stats};
+use crate::common;
+use crate::common::{csgrt, csgrt_stdin, fails, files, scene, stats};
 
 const SPHERE: &str = "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nsphere(1);\n";
 

@@ -6,8 +6,8 @@
 //! `openscad -o X.csg X.scad`. `current_format.csg` follows current
 //! OpenSCAD's node text, which Debian does not package.
 
-mod common;
-use common::{csgrt, files, stats};
+use crate::common;
+use crate::common::{csgrt, files, stats};
 use std::path::{Path, PathBuf};
 
 fn fixtures() -> PathBuf {

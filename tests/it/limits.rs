@@ -1,7 +1,7 @@
 //! Every limit and bad value ends in its own whole, placed message.
 
-mod common;
-use common::{csgrt, fails, files, scene};
+use crate::common;
+use crate::common::{csgrt, fails, files, scene};
 
 #[test]
 fn a_non_finite_number_where_a_finite_one_belongs() {

@@ -2,8 +2,8 @@
 //! test's promise — a line through a shared edge or vertex of a closed
 //! mesh crosses it exactly once each way.
 
-mod common;
-use common::Rng;
+use crate::common;
+use crate::common::Rng;
 use csgrt::geometry::mesh::{Mesh, MeshData};
 use csgrt::geometry::{Probe, Solid};
 use csgrt::stats::Stats;

@@ -12,8 +12,8 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
-mod common;
-use common::l_prism;
+use crate::common;
+use crate::common::l_prism;
 
 fn arb_shape() -> impl Strategy<Value = Shape> {
     prop_oneof![

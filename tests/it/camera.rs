@@ -12,8 +12,8 @@
 //! The same options were compared with OpenSCAD's own PNG export by
 //! `tools/openscad_view.py`.
 
-mod common;
-use common::csgrt;
+use crate::common;
+use crate::common::csgrt;
 
 const W: usize = 320;
 const H: usize = 240;

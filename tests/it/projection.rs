@@ -3,8 +3,7 @@
 //! the slice of a ball is a disc, of a turned box a rectangle — for rays
 //! in every direction, straight down (the foot is one point) included.
 
-mod common;
-use common::Rng;
+use crate::common::Rng;
 use csgrt::geometry::Ray;
 use csgrt::stats::Stats;
 use csgrt::{load_csg, Source};

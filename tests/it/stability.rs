@@ -1,8 +1,7 @@
 //! Numerical stability: coincident faces, A − A, deep nesting, degenerate
 //! transforms and parts a million units from the origin.
 
-mod common;
-use common::{csgrt, scene, stats, Rng};
+use crate::common::{csgrt, scene, stats, Rng};
 use csgrt::geometry::Ray;
 use csgrt::stats::Stats;
 use csgrt::{load_csg, Source};

@@ -2,7 +2,7 @@
 //! files OpenSCAD says it read; a broken save is reported and leaves the
 //! last image; the watch goes on.
 
-mod common;
+use crate::common;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};

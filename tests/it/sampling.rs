@@ -2,8 +2,8 @@
 //! (Radiance HDR, OpenEXR), checked against renders at fixed `--spp` and
 //! the 8-bit image, decoded by the `image` crate's readers.
 
-mod common;
-use common::csgrt;
+use crate::common;
+use crate::common::csgrt;
 use std::path::Path;
 
 const SCENE: &str = "camera(eye = [3, -6, 2], lookat = [0, 0, 0]);\n\

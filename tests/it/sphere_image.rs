@@ -2,8 +2,7 @@
 //! independently, from the seed lecture's formulas (slides 6, 7, 13, 28):
 //! within 2/255 per channel on every pixel.
 
-mod common;
-use common::{csgrt, scene};
+use crate::common::{csgrt, scene};
 use glam::DVec3;
 
 const SCENE: &str = "\

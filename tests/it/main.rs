@@ -1,0 +1,26 @@
+//! The integration tests, one crate (one link instead of one per file:
+//! a minute of CI), a module per file.
+
+mod batch;
+mod bvh;
+mod camera;
+mod cli;
+mod common;
+mod csg_properties;
+mod docs;
+mod facets;
+mod formats;
+mod fuzz_corpus;
+mod limits;
+mod meshes;
+mod openscad;
+mod primitives;
+mod projection;
+mod robustness;
+mod sampling;
+mod self_intersection;
+mod skip_work;
+mod sphere_image;
+mod stability;
+mod vertical_text;
+mod watch;
