@@ -822,9 +822,9 @@ class Reader:
         # points adds nothing.
         pts = a.get("points")
         number = lambda x: isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
-        if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) not in (2, 3) or not all(map(number, p)) for p in pts):
+        if not isinstance(pts, list) or any(not isinstance(p, list) or len(p) != 2 or not all(map(number, p)) for p in pts):
             return None
-        pts = np.array([p[:2] for p in pts], dtype=float).reshape(-1, 2)
+        pts = np.array(pts, dtype=float).reshape(-1, 2)
         paths = a.get("paths")
         if paths is None:
             if len(pts) < 3:

@@ -586,7 +586,7 @@ impl Resolver<'_> {
     /// fewer than 3 points, which has no area, adds nothing.
     fn polygon(&mut self, s: &Statement) -> Result<Option<Outlines>> {
         let a = Args::bind(self.src, s, &["points", "paths", "convexity"])?;
-        let pts = match a.points("points", &[2, 3], 0) {
+        let pts = match a.points("points", &[2], 0) {
             Ok(Some(p)) => p,
             Ok(None) => {
                 self.empty(s, "it has no `points` (as in OpenSCAD, it is left out)")?;
