@@ -480,6 +480,49 @@ mod tests {
         assert!(out.iter().any(|s| s.c == DVec2::new(2.0, 2.0)));
     }
 
+    /// A frame (a square less a square inside it): two loops, the outer
+    /// counter-clockwise and the hole clockwise (the shape on the left of
+    /// each), four corners each.
+    #[test]
+    fn frame_outline() {
+        let f = Flat::Op(
+            Op::Difference,
+            vec![
+                square(DVec2::ZERO, DVec2::splat(4.0)),
+                square(DVec2::ONE, DVec2::splat(3.0)),
+            ],
+        );
+        let o = outline(&f).expect("two loops");
+        assert_eq!(o.loops.len(), 2);
+        let area = |l: &Vec<DVec2>| {
+            (0..l.len())
+                .map(|i| l[i].perp_dot(l[(i + 1) % l.len()]))
+                .sum::<f64>()
+                / 2.0
+        };
+        let mut areas: Vec<f64> = o.loops.iter().map(area).collect();
+        areas.sort_by(f64::total_cmp);
+        assert_eq!(areas, vec![-4.0, 16.0]);
+        assert!(o.loops.iter().all(|l| l.len() == 4));
+    }
+
+    /// Two squares that overlap: one loop of 8 corners around their union,
+    /// where their edges cross; with a circle, none (not straight).
+    #[test]
+    fn union_outline() {
+        let two = vec![
+            square(DVec2::ZERO, DVec2::splat(2.0)),
+            square(DVec2::ONE, DVec2::splat(3.0)),
+        ];
+        let o = outline(&Flat::Op(Op::Union, two.clone())).expect("one loop");
+        assert_eq!(o.loops.len(), 1);
+        assert_eq!(o.loops[0].len(), 8);
+        assert!(o.loops[0].contains(&DVec2::new(2.0, 1.0)));
+        let mut with_disc = two;
+        with_disc.push(Flat::disc(DVec2::ZERO, 1.0));
+        assert!(outline(&Flat::Op(Op::Union, with_disc)).is_none());
+    }
+
     /// A disc with a hole: the hole's circle is concave, not a site.
     #[test]
     fn ring() {
