@@ -1131,7 +1131,7 @@ impl Resolver<'_> {
                 "timestamp",
             ],
         )?;
-        let legacy = file_child(s, a.get("scale"));
+        let legacy = file_child(s, &a);
         let h = a.number("height")?.unwrap_or(100.0);
         let center = a.boolean("center")?.unwrap_or(false);
         let twist_deg = a.number("twist")?.unwrap_or(0.0);
@@ -1145,11 +1145,7 @@ impl Resolver<'_> {
                 .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
         }
         .max(DVec2::ZERO);
-        let f = match &legacy {
-            Some(child) => self.flat(child, DAffine2::IDENTITY, depth + 1)?,
-            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)?,
-        };
-        let Some(f) = f else {
+        let Some(f) = self.extruded(s, legacy, depth)? else {
             return Ok(None);
         };
         if h <= 0.0 {
@@ -1194,16 +1190,12 @@ impl Resolver<'_> {
                 "timestamp",
             ],
         )?;
-        let legacy = file_child(s, a.get("scale"));
+        let legacy = file_child(s, &a);
         let mut angle = a.number("angle")?.unwrap_or(360.0);
         if angle <= -360.0 || angle > 360.0 {
             angle = 360.0;
         }
-        let f = match &legacy {
-            Some(child) => self.flat(child, DAffine2::IDENTITY, depth + 1)?,
-            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)?,
-        };
-        let Some(f) = f else {
+        let Some(f) = self.extruded(s, legacy, depth)? else {
             return Ok(None);
         };
         if angle == 0.0 {
@@ -1267,6 +1259,20 @@ impl Resolver<'_> {
         };
         let wedge = self.op(wedge_op, sides);
         Ok(self.op(Op::Intersection, vec![Some(body), wedge]))
+    }
+
+    /// What extrusion `s` sweeps: its `file` form's drawing ([`file_child`])
+    /// or the union of its children.
+    fn extruded(
+        &mut self,
+        s: &Statement,
+        legacy: Option<Statement>,
+        depth: usize,
+    ) -> Result<Option<Flat>> {
+        match legacy {
+            Some(child) => self.flat(&child, DAffine2::IDENTITY, depth + 1),
+            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth),
+        }
     }
 
     /// The full turn of `f` (all of it at x ≥ 0 but for leaves a
@@ -1354,27 +1360,24 @@ impl Resolver<'_> {
 /// ignored, as OpenSCAD ignores them. OpenSCAD scales a linear
 /// extrusion's drawing by the first number of its `scale` (`lf.scad`
 /// with `scale = [2, 3]`: the bottom twice the drawing, the top [2, 3]
-/// times that), and a turned one by its own `scale`; `drawing_scale`
-/// is that number's argument.
-fn file_child(
-    s: &Statement,
-    drawing_scale: Option<&crate::syntax::ast::Value>,
-) -> Option<Statement> {
-    let named =
-        |a: &crate::syntax::ast::Arg, key: &str| a.name.as_ref().is_some_and(|(n, _)| n == key);
-    s.args.iter().find(|a| named(a, "file"))?;
+/// times that), and a turned one by its own `scale`.
+fn file_child(s: &Statement, a: &Args) -> Option<Statement> {
+    if !a.has("file") {
+        return None;
+    }
+    // The drawing's own arguments, and OpenSCAD's special variables.
     let mut args: Vec<crate::syntax::ast::Arg> = s
         .args
         .iter()
-        .filter(|a| {
-            ["file", "layer", "origin", "convexity", "timestamp"]
-                .iter()
-                .any(|k| named(a, k))
-                || a.name.as_ref().is_some_and(|(n, _)| n.starts_with('$'))
+        .filter(|arg| {
+            arg.name.as_ref().is_some_and(|(n, _)| {
+                ["file", "layer", "origin", "convexity", "timestamp"].contains(&n.as_str())
+                    || n.starts_with('$')
+            })
         })
         .cloned()
         .collect();
-    if let Some(v) = drawing_scale {
+    if let Some(v) = a.get("scale") {
         let k = match &v.kind {
             crate::syntax::ast::ValueKind::Vector(xs) if !xs.is_empty() => xs[0].clone(),
             _ => v.clone(),

@@ -90,7 +90,7 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
         }
         // Any other combination of straight polygons: the loops of its
         // boundary, offset as one polygon.
-        Flat::Op(op, kids) => match super::sites::outline(&Flat::Op(op, kids)) {
+        ref combination @ Flat::Op(op, _) => match super::sites::outline(combination) {
             Some(o) => polygon(o, join, d),
             None => Err(format!(
                 "{} a 2-D {} is not supported yet",

@@ -390,12 +390,12 @@ pub fn arc_hull(sites: &[Site]) -> Option<(Vec<DVec2>, Vec<usize>)> {
     // Points inside the hull of the points add nothing.
     let points: Vec<usize> = (0..sites.len()).filter(|&i| sites[i].r == 0.0).collect();
     let q: Vec<DVec2> = points.iter().map(|&i| sites[i].c).collect();
-    let corner: Vec<usize> = hull_indices_2d(&q, 0.0)
-        .into_iter()
-        .map(|k| points[k])
-        .collect();
+    let mut corner = vec![q.len() < 3; sites.len()];
+    for k in hull_indices_2d(&q, 0.0) {
+        corner[points[k]] = true;
+    }
     let candidates: Vec<usize> = (0..sites.len())
-        .filter(|&i| sites[i].r > 0.0 || corner.contains(&i) || q.len() < 3)
+        .filter(|&i| sites[i].r > 0.0 || corner[i])
         .collect();
     // Sites inside a whole disc add nothing.
     let keep: Vec<usize> = candidates
@@ -506,7 +506,7 @@ fn leaves(site: &Site, poly: &[DVec2], tol: f64) -> bool {
     if poly.is_empty() {
         return true;
     }
-    let ends = [from, from + span].map(|a| site.c + DVec2::from_angle(a) * site.r);
+    let ends = [site.at(from), site.at(from + span)];
     (0..poly.len()).any(|i| {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
         let m = DVec2::new(b.y - a.y, a.x - b.x).normalize();

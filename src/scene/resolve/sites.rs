@@ -47,6 +47,11 @@ impl Site {
         Site { c, r, arc: None }
     }
 
+    /// The point of its circle whose outward normal is at angle `a`.
+    pub fn at(&self, a: f64) -> DVec2 {
+        self.c + DVec2::from_angle(a) * self.r
+    }
+
     /// Whether the outward normal at angle `a` is one of the site's (any is
     /// a whole disc's), within `tol` radians.
     pub fn faces(&self, a: f64, tol: f64) -> bool {
@@ -70,13 +75,12 @@ impl Site {
         let Some((from, span)) = self.arc else {
             return disc;
         };
-        let at = |a: f64| self.c + DVec2::from_angle(a) * self.r;
-        let (e0, e1) = (at(from), at(from + span));
+        let (e0, e1) = (self.at(from), self.at(from + span));
         let mut far = vec![e0, e1];
         for k in 0..4 {
             let a = k as f64 * TAU / 4.0;
             if self.faces(a, 0.0) {
-                far.push(self.c + DVec2::from_angle(a) * self.r);
+                far.push(self.at(a));
             }
         }
         let lo = far.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
@@ -200,11 +204,9 @@ fn line_circle(a: DVec2, b: DVec2, c: DVec2, r: f64) -> Vec<f64> {
 
 /// Adds the pieces of `f`'s boundary (above) to `out` as sites.
 fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
-    let mut all = Vec::new();
-    if !pieces(f, &mut all) || all.len() > MAX_PIECES {
+    let Some((all, eps)) = read(f) else {
         return false;
-    }
-    let eps = 1e-9 * size(&all);
+    };
     // Kept where the shape is on one side and not the other.
     let kept = |p: DVec2, n: DVec2| {
         let (out_side, in_side) = (inside(f, p + n * eps), inside(f, p - n * eps));
@@ -327,12 +329,19 @@ fn kept_edges(f: &Flat, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2,
     out
 }
 
-/// The largest coordinate (a circle's reach) of the pieces.
-fn size(all: &[Piece]) -> f64 {
-    all.iter().fold(0.0f64, |s, p| match *p {
+/// The pieces of `f`'s leaves, and how far off a piece its sides are
+/// tested (10⁻⁹ of the largest coordinate, a circle's reach); `None` for
+/// another leaf or past [`MAX_PIECES`].
+fn read(f: &Flat) -> Option<(Vec<Piece>, f64)> {
+    let mut all = Vec::new();
+    if !pieces(f, &mut all) || all.len() > MAX_PIECES {
+        return None;
+    }
+    let size = all.iter().fold(0.0f64, |s, p| match *p {
         Piece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
         Piece::Circle(c, r) => s.max(c.abs().max_element() + r),
-    })
+    });
+    Some((all, 1e-9 * size))
 }
 
 /// A combination of straight polygons as the loops of its boundary, each
@@ -342,14 +351,10 @@ fn size(all: &[Piece]) -> f64 {
 /// circle or another leaf, past [`MAX_PIECES`] edges, or whose pieces do
 /// not close into loops.
 pub(super) fn outline(f: &Flat) -> Option<crate::plane::Outlines> {
-    let mut all = Vec::new();
-    if !pieces(f, &mut all) || all.len() > MAX_PIECES {
-        return None;
-    }
+    let (all, tol) = read(f)?;
     if all.iter().any(|p| matches!(p, Piece::Circle(..))) {
         return None;
     }
-    let tol = 1e-9 * size(&all);
     let mut segs: Vec<(DVec2, DVec2)> = Vec::new();
     for i in 0..all.len() {
         for (p, q, left) in kept_edges(f, &all, i, tol) {
