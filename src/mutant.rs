@@ -31,6 +31,7 @@ pub const NAMES: &[&str] = &[
     "offset_one_side",
     "hull_arc_caps_dropped",
     "outline_first_loop_only",
+    "offset_arcs_unswept",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -57,6 +57,7 @@ MUTANTS = {
     "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
     "outline_first_loop_only": (["tests/openscad/offsets.csg"], False),
+    "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
 }
 
 # fault -> a scene tools/pov_check.py must then reject (the export is read

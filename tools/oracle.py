@@ -306,6 +306,8 @@ def cross_section(f, n):
             [mf.CrossSection.hull_points((t[:, None, :] + b[None, :, :]).reshape(-1, 2).tolist()) for t in tris], mf.OpType.Add
         )
         return cs.transform([[m[0, 0], m[0, 1], m[0, 2]], [m[1, 0], m[1, 1], m[1, 2]]])
+    if len(f) == 4 and f[3][0] == "kites":
+        return mf.CrossSection.batch_boolean([cross_section(k, n) for k in f[2]], mf.OpType.Add)
     if len(f) == 4:
         # An offset: manifold's own (Clipper2's) of the child, then moved.
         join, d, child, m = f[3]
@@ -528,7 +530,14 @@ def extrusion_facets(leaf, n):
     matrix's singular values and condition); a turn is cut in n steps
     about the axis, within R (1 - cos(pi/n)) of the surface at distance R,
     its normals within pi/n, doubled where a circle's facets add their
-    own."""
+    own. Computed once a leaf and n."""
+    cache = leaf.__dict__.setdefault("_extrusion_facets", {})
+    if n not in cache:
+        cache[n] = extrusion_facets_of(leaf, n)
+    return cache[n]
+
+
+def extrusion_facets_of(leaf, n):
     p = leaf.params
     b = 1 - math.cos(math.pi / n)
     sv = ellipse_singular_values(leaf)
@@ -548,13 +557,14 @@ def extrusion_facets(leaf, n):
             # outline's corners (turning by at most 2 qa) stand off the
             # round offset by up to |d| (1 / cos(qa) - 1).
             dist += qd * k + (bk * (1 / math.cos(min(qa, 1.0)) - 1) * k if sharp else 0.0)
+        dist += kite_reach(p["flat"]) * math.pi / n * k
         ang = max(max((s[0] / s[1] * math.pi / n for s in sv), default=0.0), qa) + sa
         return dist, ang
     R = flat_extent(p["flat"])
     emax = max((s[0] for s in sv), default=0.0)
     qd, qa = quad_facets(leaf, n)
     sd, sa = svg_slack(p["flat"])
-    dist = (R + emax) * b + max(emax * b, qd) + CROSS_SECTION_GRID + sd
+    dist = (R + emax) * b + max(emax * b, qd) + CROSS_SECTION_GRID + sd + kite_reach(p["flat"]) * math.pi / n
     ang = (2 if sv or qa else 1) * math.pi / n * max((s[0] / s[1] for s in sv), default=1.0) + qa + sa
     return dist, ang
 
@@ -634,7 +644,7 @@ def twisted_facets(leaf, n):
     piece = max([float(np.linalg.norm(g(1.0) - g(0.0))) for g in pieces] + [0.0])
     bcirc = 1 - math.cos(math.pi / n)
     dist = dt * dt * rho * (2 * k * th + sg * th * th) / 8 + dt * (k + sg * th) * piece / 4
-    dist += max((r * bcirc * sg for r in radii), default=0.0)
+    dist += max((r * bcirc * sg for r in radii), default=0.0) + kite_reach(p["flat"]) * math.pi / n * sg
     ang, curv = 0.0, math.inf
     t = np.linspace(0.0, 1.0, slices + 1)
     uu, tt = np.meshgrid(np.array([0.0, 0.5, 1.0]), np.concatenate([t, (t[:-1] + t[1:]) / 2]))
@@ -756,6 +766,18 @@ def bands(f):
     return bk, sharp
 
 
+def kite_reach(f):
+    """How far the miter and square joins at the sharp corners of an offset
+    of polygons and circles reach from their corners (0 without). Clipper
+    joins a flattened circle's last chord, whose direction is within pi / n
+    of the circle's tangent at the corner: the kite's side turns by that
+    much about the corner, moving its far end by up to reach * pi / n."""
+    if f[0] != "op":
+        return 0.0
+    own = f[3][1] if len(f) == 4 and f[3][0] == "kites" else 0.0
+    return max([own] + [kite_reach(k) for k in f[2]])
+
+
 def extrusion_curvature(leaf):
     """The smallest object-space curvature radius of an extrusion's circles
     (a tapered one's at its smaller end; infinite without circles)."""
@@ -819,6 +841,12 @@ def facet_angle(leaf, n):
 
 
 def largest_radius(leaf):
+    if not hasattr(leaf, "_largest_radius"):
+        leaf._largest_radius = largest_radius_of(leaf)
+    return leaf._largest_radius
+
+
+def largest_radius_of(leaf):
     if leaf.kind in ("hull", "minkowski"):
         return sum(max(largest_radius(x) for x in ops) for ops in convex_parts(leaf))
     p, (smax, _) = leaf.params, svd(leaf)
@@ -937,7 +965,8 @@ def feature_distance(ft, q):
     if ft[0] == "seg":
         a, b = ft[1], ft[2]
         e = b - a
-        u = min(1.0, max(0.0, float((q - a) @ e / (e @ e))))
+        ee = float(e @ e)
+        u = min(1.0, max(0.0, float((q - a) @ e) / ee)) if ee > 0 else 0.0
         return float(np.linalg.norm(q - a - u * e))
     A, c = ft[1], ft[2]
     r = float(np.linalg.norm(np.linalg.solve(A, q - c)))

@@ -1301,6 +1301,8 @@ def flat_moved(f, m):
     if len(f) == 4 and f[3][0] == "bands":
         # Distances scale with a similarity's factor.
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("bands", f[3][1] * math.sqrt(abs(np.linalg.det(m[:2, :2])))))
+    if len(f) == 4 and f[3][0] == "kites":
+        return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("kites", f[3][1] * float(np.linalg.norm(m[:2, :2], 2))))
     if len(f) == 4:
         join, d, child, m0 = f[3]
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], (join, d, child, m @ m0))
@@ -1379,7 +1381,10 @@ def offset_pieces(f, join, d):
             return None if not parts else parts[0] if len(parts) == 1 else ("op", f[1], parts)
         loops = straight_loops(f)
         if loops is None:
-            raise ValueError(f"offset of a 2-D {f[1]} by {d:g} is not in the oracle")
+            swept = swept_pieces(f, join, d)
+            if swept is None:
+                raise ValueError(f"offset of a 2-D {f[1]} by {d:g} is not in the oracle")
+            return swept
         # Any other combination of straight polygons: its boundary's loops
         # (manifold's boolean), offset as one polygon.
         return offset_pieces(("poly", loops), join, d) if loops else None
@@ -1407,6 +1412,204 @@ def offset_pieces(f, join, d):
             pieces.append(join_piece(join, v, n1, n2, t1, t2, k))
     body = ("poly", loops)
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
+
+
+def plain_op(g):
+    """Whether g is a union, intersection or difference of 2-D trees (an
+    offset's pieces are one too)."""
+    return g[0] == "op" and g[1] in ("union", "intersection", "difference") and (len(g) == 3 or len(g) == 4 and g[3][0] in ("round", "miter", "square", "kites"))
+
+
+def edges_and_circles(f, combines):
+    """The polygon edges (a, b) and circles (c, r) of a 2-D tree whose
+    combinations pass `combines`; None for another leaf."""
+    segs, circles = [], []
+
+    def leaves(g):
+        if g[0] == "poly":
+            segs.extend((np.asarray(l[i], float), np.asarray(l[(i + 1) % len(l)], float)) for l in g[1] for i in range(len(l)))
+            return True
+        if g[0] == "ellipse":
+            if not is_circle(g[1]):
+                return False
+            circles.append((np.asarray(g[2], float), float(np.linalg.norm(g[1][:, 0]))))
+            return True
+        return combines(g) and all(leaves(k) for k in g[2])
+
+    return (segs, circles) if leaves(f) else None
+
+
+def boundary_strokes(f):
+    """The boundary of a 2-D tree of straight polygons and circles as
+    strokes with the region on their left — ("line", p, q) and ("arc", c,
+    r, a0, span, convex): the circle's angles a0 to a0 + span, the region
+    on the centre's side when convex — and the distance within which two
+    points are one; None for other leaves. Each polygon edge is cut where
+    any other edge or circle crosses it, each circle where anything
+    crosses it, and a piece kept where the region is on exactly one of its
+    sides, 1e-9 of the tree's size off the piece's middle."""
+    got = edges_and_circles(f, plain_op)
+    if got is None or not got[1]:
+        return None
+    segs, circles = got
+    size = max([float(np.abs(q).max()) for sg in segs for q in sg] + [float(np.abs(c).max()) + r for c, r in circles])
+    eps = 1e-9 * size
+    inside = lambda q: bool(flat_inside(f, q))
+
+    def seg_circle(a, b, c, r):
+        d = b - a
+        A, B, C = d @ d, 2 * (a - c) @ d, (a - c) @ (a - c) - r * r
+        disc = B * B - 4 * A * C
+        if A == 0 or disc < 0:
+            return []
+        return [u for u in ((-B - math.sqrt(disc)) / (2 * A), (-B + math.sqrt(disc)) / (2 * A)) if 0 <= u <= 1]
+
+    out = []
+    for i, (a, b) in enumerate(segs):
+        d = b - a
+        if not np.any(d):
+            continue
+        us = [0.0, 1.0]
+        for j, (p0, q0) in enumerate(segs):
+            e = q0 - p0
+            den = d[0] * e[1] - d[1] * e[0]
+            if j != i and den != 0:
+                w = p0 - a
+                u, v = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+                if 0 <= u <= 1 and 0 <= v <= 1:
+                    us.append(u)
+        for c, r in circles:
+            us += seg_circle(a, b, c, r)
+        us = sorted(us)
+        nrm = np.array([-d[1], d[0]]) / np.linalg.norm(d)
+        for u0, u1 in zip(us, us[1:]):
+            if u1 > u0:
+                mid = a + (u0 + u1) / 2 * d
+                left, right = inside(mid + eps * nrm), inside(mid - eps * nrm)
+                if left != right:
+                    p0, p1 = a + u0 * d, a + u1 * d
+                    out.append(("line", p0, p1) if left else ("line", p1, p0))
+    for i, (c, r) in enumerate(circles):
+        angs = []
+        for a, b in segs:
+            angs += [math.atan2(*(a + u * (b - a) - c)[::-1]) for u in seg_circle(a, b, c, r)]
+        for j, (c2, r2) in enumerate(circles):
+            dd = c2 - c
+            l = float(np.linalg.norm(dd))
+            if j != i and 0 < l <= r + r2 and l >= abs(r - r2):
+                x = (r * r - r2 * r2 + l * l) / (2 * l)
+                h = math.sqrt(max(r * r - x * x, 0.0))
+                mid, perp = c + dd * x / l, np.array([-dd[1], dd[0]]) / l
+                angs += [math.atan2(*(q - c)[::-1]) for q in (mid + h * perp, mid - h * perp)]
+        angs = sorted(angs)
+        spans = [(a0, a1 - a0) for a0, a1 in zip(angs, angs[1:] + [angs[0] + 2 * math.pi]) if a1 > a0] if angs else [(0.0, 2 * math.pi)]
+        for a0, span in spans:
+            u = np.array([math.cos(a0 + span / 2), math.sin(a0 + span / 2)])
+            outer, inner = inside(c + (r + eps) * u), inside(c + (r - eps) * u)
+            if outer != inner:
+                out.append(("arc", c, r, a0, span, inner))
+    return out, eps
+
+
+def swept_pieces(f, join, d):
+    """Any other offset of a 2-D tree of polygons and circles, from its
+    boundary's strokes: R grown is R with every point within |d| of its
+    boundary, R shrunk is R without them; the points within |d| of a line
+    stroke are its two-sided band and a disc at each end, of an arc the
+    annular sector over its angles (radii r -+ |d|) and the same discs.
+    Miter and square joins add (take away) the kite at each corner the
+    offset side sees as convex. None for other leaves."""
+    got = boundary_strokes(f)
+    if got is None:
+        return None
+    strokes, tol = got
+    k, side = abs(d), (1.0 if d > 0 else -1.0)
+    pieces, ends = [f], []
+
+    def ends_of(st):
+        if st[0] == "line":
+            return st[1], st[2]
+        _, c, r, a0, span, convex = st
+        p0, p1 = (c + r * np.array([math.cos(a), math.sin(a)]) for a in (a0, a0 + span))
+        return (p0, p1) if convex else (p1, p0)
+
+    def tangent(st, at_end):
+        if st[0] == "line":
+            t = st[2] - st[1]
+            return t / np.linalg.norm(t)
+        _, c, r, a0, span, convex = st
+        a = a0 + span if convex == at_end else a0
+        t = np.array([-math.sin(a), math.cos(a)])
+        return t if convex else -t
+
+    for st in strokes:
+        if st[0] == "line":
+            p0, p1 = st[1], st[2]
+            t = p1 - p0
+            n = np.array([-t[1], t[0]]) * (k / np.linalg.norm(t))
+            pieces.append(("poly", [np.array([p0 - n, p1 - n, p1 + n, p0 + n])]))
+        else:
+            _, c, r, a0, span, _ = st
+            pieces += sector_pieces(c, r - k, r + k, a0, span)
+            if span >= 2 * math.pi:
+                continue
+        for e in ends_of(st):
+            if all(np.linalg.norm(x - e) > tol for x in ends):
+                ends.append(e)
+    pieces += [("ellipse", np.eye(2) * k, e.copy()) for e in ends]
+    if join != "round":
+        kites, reach = [], 0.0
+        for st in strokes:
+            v = ends_of(st)[1]
+            nxt = [o for o in strokes if np.linalg.norm(ends_of(o)[0] - v) <= tol]
+            if len(nxt) != 1:
+                raise ValueError("a sharp offset of an outline that touches itself is not in the oracle")
+            t1, t2 = tangent(st, True), tangent(nxt[0], False)
+            n1, n2 = np.array([t1[1], -t1[0]]) * side, np.array([t2[1], -t2[0]]) * side
+            if t2 @ n1 >= 0 or 1 - n1 @ n2 <= 1e-12:
+                continue
+            kites.append(join_piece(join, v, n1, n2, t1, t2, k))
+            reach = max(reach, max(float(np.linalg.norm(q - v)) for q in kites[-1][1][0]))
+        if kites:
+            # Marked with their reach: a flattened circle's last chord
+            # turns a kite's side about its corner (tools/oracle.py).
+            pieces.append(("op", "union", kites, ("kites", reach)))
+    return ("op", "union" if d > 0 else "difference", pieces)
+
+
+def sector_pieces(c, r0, r1, a0, span):
+    """The annular sector about c between radii r0 (none below 0) and r1
+    over the angles a0 to a0 + span as 2-D trees: a ring for a whole turn,
+    else sectors of at most a half turn, each the disc r1 met with its
+    wedge cut to the sector's exact box (csgrt's framing), less disc r0."""
+    disc = lambda r: ("ellipse", np.eye(2) * r, np.asarray(c, float).copy())
+    hole = lambda g: ("op", "difference", [g, disc(r0)]) if r0 > 0 else g
+    if span >= 2 * math.pi:
+        return [hole(disc(r1))]
+    m = max(1, math.ceil(span / math.pi))
+    at = lambda a, r: c + r * np.array([math.cos(a), math.sin(a)])
+    out = []
+    for i in range(m):
+        b0 = a0 + span * i / m
+        b1 = b0 + span / m
+        pts = [at(b0, r1), at(b1, r1)] + ([at(b0, r0), at(b1, r0)] if r0 > 0 else [np.asarray(c, float)])
+        pts += [at(q * math.pi / 2, r1) for q in range(-4, 10) if b0 < q * math.pi / 2 < b1]
+        lo, hi = np.min(pts, axis=0), np.max(pts, axis=0)
+        wedge = [np.asarray(c, float), at(b0, 2 * r1), at((b0 + b1) / 2, 2 * r1), at(b1, 2 * r1)]
+        # The wedge met with the box: cut by each of its four sides.
+        for axis, bound, sign in ((0, lo[0], 1), (0, hi[0], -1), (1, lo[1], 1), (1, hi[1], -1)):
+            cut = []
+            for j, q0 in enumerate(wedge):
+                q1 = wedge[(j + 1) % len(wedge)]
+                s0, s1 = (q0[axis] - bound) * sign, (q1[axis] - bound) * sign
+                if s0 >= 0:
+                    cut.append(q0)
+                if (s0 >= 0) != (s1 >= 0):
+                    cut.append(q0 + (q1 - q0) * (s0 / (s0 - s1)))
+            wedge = cut
+        if len(wedge) >= 3:
+            out.append(hole(("op", "intersection", [disc(r1), ("poly", [np.array(wedge)])])))
+    return out
 
 
 def outline_box(f):
@@ -3003,7 +3206,7 @@ def flat_inside(f, p):
     if f[0] == "ellipse":
         q = np.linalg.solve(f[1], np.asarray(p) - f[2])
         return q @ q <= 1.0
-    if f[0] != "op" or len(f) != 3:
+    if f[0] != "op" or not (len(f) == 3 or plain_op(f)):
         return None
     ins = [flat_inside(k, p) for k in f[2]]
     if any(i is None for i in ins):
@@ -3025,25 +3228,12 @@ def hull_polygon(f):
     points along the axes and farthest from the origin), those in the
     closed region (within 1e-9 of its size). None for other children (they
     frame by their boxes)."""
-    segs, circles = [], []
-
-    def leaves(g):
-        if g[0] == "poly":
-            segs.extend((l[i], l[(i + 1) % len(l)]) for l in g[1] for i in range(len(l)))
-            return True
-        if g[0] == "ellipse":
-            if not is_circle(g[1]):
-                return False
-            circles.append((np.asarray(g[2], float), float(np.linalg.norm(g[1][:, 0]))))
-            return True
-        return g[0] == "op" and len(g) == 3 and g[1] != "xor" and all(leaves(k) for k in g[2])
-
     pts = []
     for kid in f[2]:
-        segs.clear()
-        circles.clear()
-        if not leaves(kid) or flat_inside(kid, np.zeros(2)) is None:
+        got = edges_and_circles(kid, lambda g: g[0] == "op" and len(g) == 3 and g[1] != "xor")
+        if got is None or flat_inside(kid, np.zeros(2)) is None:
             return None
+        segs, circles = got
         cand = [np.asarray(a, float) for a, _ in segs]
         for c, r in circles:
             cand += [c + r * np.array(v, float) for v in ((1, 0), (0, 1), (-1, 0), (0, -1))]

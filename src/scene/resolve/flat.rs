@@ -719,7 +719,7 @@ impl Resolver<'_> {
             Err(why) => Err(self.src.error(
                 s.name_span,
                 why,
-                "csgrt offsets simple polygons, circles, curved outlines (text), combinations of polygons, and unions when growing or apart",
+                "csgrt offsets simple polygons, circles, curved outlines (text), and combinations of polygons and circles",
             )),
         }
     }

@@ -86,20 +86,9 @@ impl Site {
         let lo = far.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
         let hi = far.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
         let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-        // The box on the arc's side of the chord (Sutherland–Hodgman).
+        // The box on the arc's side of the chord.
         let m = DVec2::from_angle(from + span / 2.0);
-        let side = |p: DVec2| (p - e0).dot(m);
-        let mut poly = Vec::new();
-        for i in 0..4 {
-            let (a, b) = (corners[i], corners[(i + 1) % 4]);
-            let (sa, sb) = (side(a), side(b));
-            if sa >= 0.0 {
-                poly.push(a);
-            }
-            if (sa >= 0.0) != (sb >= 0.0) {
-                poly.push(a + (b - a) * (sa / (sa - sb)));
-            }
-        }
+        let poly = clip(&corners, |p| (p - e0).dot(m));
         if poly.len() < 3 {
             return disc;
         }
@@ -111,6 +100,23 @@ impl Site {
             ],
         )
     }
+}
+
+/// The part of a convex polygon where `side` is not negative
+/// (Sutherland–Hodgman; `side` affine).
+pub(super) fn clip(poly: &[DVec2], side: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
+    let mut out = Vec::new();
+    for (i, &a) in poly.iter().enumerate() {
+        let b = poly[(i + 1) % poly.len()];
+        let (sa, sb) = (side(a), side(b));
+        if sa >= 0.0 {
+            out.push(a);
+        }
+        if (sa >= 0.0) != (sb >= 0.0) {
+            out.push(a + (b - a) * (sa / (sa - sb)));
+        }
+    }
+    out
 }
 
 /// The most boundary pieces (polygon edges and circles) a combination may
@@ -166,7 +172,7 @@ fn pieces(f: &Flat, out: &mut Vec<Piece>) -> bool {
 }
 
 /// Whether p is in `f` (made of [`pieces`]' leaves only).
-fn inside(f: &Flat, p: DVec2) -> bool {
+pub(super) fn inside(f: &Flat, p: DVec2) -> bool {
     match f {
         Flat::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
         Flat::Polygon(o) => o.contains(p),
@@ -204,20 +210,130 @@ fn line_circle(a: DVec2, b: DVec2, c: DVec2, r: f64) -> Vec<f64> {
 
 /// Adds the pieces of `f`'s boundary (above) to `out` as sites.
 fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
-    let Some((all, eps)) = read(f) else {
+    let Some((strokes, _)) = strokes(f) else {
         return false;
     };
+    for s in strokes {
+        match s {
+            Stroke::Line(p, q) => {
+                out.push(Site::point(p));
+                out.push(Site::point(q));
+            }
+            Stroke::Arc {
+                c,
+                r,
+                from,
+                span,
+                convex,
+            } => {
+                if span >= TAU {
+                    if convex {
+                        out.push(Site::disc(c, r));
+                    }
+                    continue;
+                }
+                out.push(Site::point(s.start()));
+                out.push(Site::point(s.end()));
+                if convex {
+                    out.push(Site {
+                        c,
+                        r,
+                        arc: Some((from, span)),
+                    });
+                }
+            }
+        }
+    }
+    true
+}
+
+/// A piece of a combination's boundary, running with the shape on its
+/// left.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum Stroke {
+    /// A stretch of a polygon edge, from the first point to the second.
+    Line(DVec2, DVec2),
+    /// The arc of the circle (c, r) over the angles from `from` to `from +
+    /// span` (span in (0, 2π]; 2π: the whole circle), run counter-clockwise
+    /// when the shape is on the centre's side (`convex`), else clockwise.
+    Arc {
+        c: DVec2,
+        r: f64,
+        from: f64,
+        span: f64,
+        convex: bool,
+    },
+}
+
+impl Stroke {
+    /// Where it starts.
+    pub fn start(&self) -> DVec2 {
+        match *self {
+            Stroke::Line(p, _) => p,
+            Stroke::Arc {
+                c,
+                r,
+                from,
+                span,
+                convex,
+            } => c + DVec2::from_angle(if convex { from } else { from + span }) * r,
+        }
+    }
+
+    /// Where it ends.
+    pub fn end(&self) -> DVec2 {
+        match *self {
+            Stroke::Line(_, q) => q,
+            Stroke::Arc {
+                c,
+                r,
+                from,
+                span,
+                convex,
+            } => c + DVec2::from_angle(if convex { from + span } else { from }) * r,
+        }
+    }
+
+    /// Its unit direction where it starts (`at_end` false) or ends.
+    pub fn tangent(&self, at_end: bool) -> DVec2 {
+        match *self {
+            Stroke::Line(p, q) => (q - p).normalize(),
+            Stroke::Arc {
+                from, span, convex, ..
+            } => {
+                let a = if convex == at_end { from + span } else { from };
+                let t = DVec2::from_angle(a).perp();
+                if convex {
+                    t
+                } else {
+                    -t
+                }
+            }
+        }
+    }
+}
+
+/// The pieces of `f`'s boundary (above) as strokes with the shape on their
+/// left, and how far apart two points may be and still be one (10⁻⁹ of
+/// the shape's size); `None` for a combination with another leaf than
+/// straight polygons and circles, or past [`MAX_PIECES`] pieces.
+pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
+    let (all, eps) = read(f)?;
     // Kept where the shape is on one side and not the other.
     let kept = |p: DVec2, n: DVec2| {
         let (out_side, in_side) = (inside(f, p + n * eps), inside(f, p - n * eps));
         (out_side != in_side).then_some(in_side)
     };
+    let mut out = Vec::new();
     for (i, &piece) in all.iter().enumerate() {
         match piece {
             Piece::Edge(..) => {
-                for (p, q, _) in kept_edges(f, &all, i, eps) {
-                    out.push(Site::point(p));
-                    out.push(Site::point(q));
+                for (p, q, left) in kept_edges(f, &all, i, eps) {
+                    out.push(if left {
+                        Stroke::Line(p, q)
+                    } else {
+                        Stroke::Line(q, p)
+                    });
                 }
             }
             Piece::Circle(c, r) => {
@@ -238,8 +354,14 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
                 }
                 let at = |a: f64| c + DVec2::from_angle(a) * r;
                 if cuts.is_empty() {
-                    if kept(at(0.0), DVec2::X) == Some(true) {
-                        out.push(Site::disc(c, r));
+                    if let Some(convex) = kept(at(0.0), DVec2::X) {
+                        out.push(Stroke::Arc {
+                            c,
+                            r,
+                            from: 0.0,
+                            span: TAU,
+                            convex,
+                        });
                     }
                     continue;
                 }
@@ -254,23 +376,20 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
                         continue;
                     }
                     let mid = (from + to) / 2.0;
-                    let Some(convex) = kept(at(mid), DVec2::from_angle(mid)) else {
-                        continue;
-                    };
-                    out.push(Site::point(at(from)));
-                    out.push(Site::point(at(to)));
-                    if convex {
-                        out.push(Site {
+                    if let Some(convex) = kept(at(mid), DVec2::from_angle(mid)) {
+                        out.push(Stroke::Arc {
                             c,
                             r,
-                            arc: Some((from, to - from)),
+                            from,
+                            span: to - from,
+                            convex,
                         });
                     }
                 }
             }
         }
     }
-    true
+    Some((out, eps))
 }
 
 /// Where the edge a → b (piece i of `all`) crosses the other pieces, as
