@@ -883,6 +883,10 @@ class Reader:
             angle = 360.0
         if f is None or angle == 0:
             return None
+        lo, hi = flat_x_range(f)
+        if lo < 0 < hi:
+            # OpenSCAD's error: it renders the rest without this.
+            return None
         return self.leaf(s, "rotate_extrude", dict(flat=f, angle=angle), xf, mat)
 
     def transform(self, s, a):

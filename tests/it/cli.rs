@@ -603,11 +603,22 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
         fails("linear_extrude(height = 1, twist = 10) text(\"J\");\n"),
         "error: twisting or unevenly scaling curved outlines (text) is not supported yet\n --> bad.csg:1:1\n  |\n1 | linear_extrude(height = 1, twist = 10) text(\"J\");\n  | ^^^^^^^^^^^^^^ csgrt twists polygons, circles and ellipses\n"
     );
-    // OpenSCAD's error for a shape across the axis, with its range.
+}
+
+#[test]
+fn a_shape_across_the_axis_is_not_turned_as_in_openscad() {
+    // OpenSCAD 2021.01 reports its error, with the range, and renders the
+    // rest of the model: csgrt warns at the place and leaves it out.
+    let cube = "translate([2, 0, 0]) cube(1);\n";
+    let (alone, _) = image_of(cube);
+    let (img, said) = image_of(&format!(
+        "rotate_extrude() translate([-1, 0]) square(3);\n{cube}"
+    ));
     assert_eq!(
-        fails("rotate_extrude() translate([-1, 0]) square(3);\n"),
-        "error: all points for rotate_extrude() must have the same X coordinate sign (range is -1.00 -> 2.00)\n --> bad.csg:1:1\n  |\n1 | rotate_extrude() translate([-1, 0]) square(3);\n  | ^^^^^^^^^^^^^^ expected a 2-D shape on one side of the axis x = 0\n"
+        said,
+        "warning: all points for rotate_extrude() must have the same X coordinate sign (range is -1.00 -> 2.00); it is left out, as in OpenSCAD\n --> p.csg:2:1\n  |\n2 | rotate_extrude() translate([-1, 0]) square(3);\n  | ^^^^^^^^^^^^^^ expected a 2-D shape on one side of the axis x = 0\n"
     );
+    assert!(img == alone);
 }
 
 #[test]

@@ -1210,14 +1210,18 @@ impl Resolver<'_> {
         }
         let (lo, hi) = f.x_range();
         if lo < 0.0 && hi > 0.0 {
-            return Err(self.src.error(
+            // OpenSCAD 2021.01 reports this as an error and renders the
+            // rest of the model without the extrusion.
+            let e = self.src.error(
                 s.name_span,
                 format!(
                     "all points for rotate_extrude() must have the same X coordinate sign \
                      (range is {lo:.2} -> {hi:.2})"
                 ),
                 "expected a 2-D shape on one side of the axis x = 0",
-            ));
+            );
+            self.go_on(e, "it is left out, as in OpenSCAD")?;
+            return Ok(None);
         }
         if self.facets == super::super::Facets::OpenScad {
             // OpenSCAD's fragments, from the shape's whole x extent (with
