@@ -1477,14 +1477,21 @@ def boundary_strokes(f):
         for j, (p0, q0) in enumerate(segs):
             e = q0 - p0
             den = d[0] * e[1] - d[1] * e[0]
-            if j != i and den != 0:
-                w = p0 - a
-                u, v = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
-                if 0 <= u <= 1 and 0 <= v <= 1:
-                    us.append(u)
+            if j == i:
+                continue
+            if abs(den) <= 1e-12 * np.linalg.norm(d) * np.linalg.norm(e):
+                # Along the same line: cut at the other edge's ends.
+                off = lambda x: abs((x - a)[0] * d[1] - (x - a)[1] * d[0]) / np.linalg.norm(d)
+                if off(p0) <= eps and off(q0) <= eps:
+                    us += [float((p0 - a) @ d / (d @ d)), float((q0 - a) @ d / (d @ d))]
+                continue
+            w = p0 - a
+            u, v = (w[0] * e[1] - w[1] * e[0]) / den, (w[0] * d[1] - w[1] * d[0]) / den
+            if 0 <= u <= 1 and 0 <= v <= 1:
+                us.append(u)
         for c, r in circles:
             us += seg_circle(a, b, c, r)
-        us = sorted(us)
+        us = sorted(u for u in us if 0 <= u <= 1)
         nrm = np.array([-d[1], d[0]]) / np.linalg.norm(d)
         for u0, u1 in zip(us, us[1:]):
             if u1 > u0:
@@ -1563,12 +1570,26 @@ def swept_pieces(f, join, d):
     pieces += [("ellipse", np.eye(2) * k, e.copy()) for e in ends]
     if join != "round":
         kites, reach = [], 0.0
+        # Corners join the strokes that are not whole circles, not within
+        # 1000 tol long (slivers where a band's edge meets a circle
+        # tangent), and not copies of another: the next stroke starts
+        # nearest the end, within 1000 tol; two within tol touch.
+        slack, chain = 1e3 * tol, []
         for st in strokes:
+            p0, p1 = ends_of(st)
+            whole = st[0] == "arc" and st[4] >= 2 * math.pi
+            copy = any(np.linalg.norm(ends_of(o)[0] - p0) <= tol and np.linalg.norm(ends_of(o)[1] - p1) <= tol for o in chain)
+            if not whole and np.linalg.norm(p1 - p0) > slack and not copy:
+                chain.append(st)
+        for st in chain:
             v = ends_of(st)[1]
-            nxt = [o for o in strokes if np.linalg.norm(ends_of(o)[0] - v) <= tol]
-            if len(nxt) != 1:
+            nxt = sorted((float(np.linalg.norm(ends_of(o)[0] - v)), i) for i, o in enumerate(chain))
+            nxt = [x for x in nxt if x[0] <= slack]
+            # Those within tol along one direction overlap: any one serves.
+            one_way = nxt and all(np.linalg.norm(tangent(chain[i], False) - tangent(chain[nxt[0][1]], False)) <= 1e-9 for l, i in nxt if l <= tol)
+            if not nxt or len(nxt) > 1 and nxt[1][0] <= tol and not one_way:
                 raise ValueError("a sharp offset of an outline that touches itself is not in the oracle")
-            t1, t2 = tangent(st, True), tangent(nxt[0], False)
+            t1, t2 = tangent(st, True), tangent(chain[nxt[0][1]], False)
             n1, n2 = np.array([t1[1], -t1[0]]) * side, np.array([t2[1], -t2[0]]) * side
             if t2 @ n1 >= 0 or 1 - n1 @ n2 <= 1e-12:
                 continue

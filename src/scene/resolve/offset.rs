@@ -271,17 +271,49 @@ fn around(
     }
     parts.extend(ends.iter().map(|&e| Flat::disc(e, k)));
     if join != Join::Round {
+        // The corners: where one stroke ends and the next starts. Whole
+        // circles have none; strokes no longer than `slack` = 1000 tol
+        // (slivers of an arc cut twice where a band's edge meets its
+        // circle tangent: numerical noise) and copies of a stroke are
+        // passed over, and a stroke's next is the one that starts nearest
+        // its end, within `slack`; two within `tol` are a boundary that
+        // touches itself.
+        let slack = 1e3 * tol;
+        let mut chain: Vec<&Stroke> = Vec::new();
         for s in strokes {
+            let whole = matches!(s, Stroke::Arc { span, .. } if *span >= TAU);
+            let same = |o: &&Stroke| {
+                (o.start() - s.start()).length() <= tol && (o.end() - s.end()).length() <= tol
+            };
+            if !whole && (s.end() - s.start()).length() > slack && !chain.iter().any(same) {
+                chain.push(s);
+            }
+        }
+        for s in &chain {
             let v = s.end();
-            let next: Vec<&Stroke> = strokes
+            let mut next: Vec<(f64, &Stroke)> = chain
                 .iter()
-                .filter(|n| (n.start() - v).length() <= tol)
+                .map(|n| ((n.start() - v).length(), *n))
+                .filter(|(l, _)| *l <= slack)
                 .collect();
-            let [n] = next[..] else {
-                return Err(
-                    "offsetting an outline that touches itself with sharp corners is not supported yet"
-                        .into(),
-                );
+            next.sort_by(|x, y| x.0.total_cmp(&y.0));
+            // Those starting within `tol` along one direction overlap (a
+            // stretch two pieces share, cut a little differently): any
+            // one serves.
+            let t = next.first().map(|(_, n)| n.tangent(false));
+            let close = next.iter().filter(|(l, _)| *l <= tol);
+            let one_way = close
+                .clone()
+                .all(|(_, n)| t.is_some_and(|t| (n.tangent(false) - t).length() <= 1e-9));
+            let n = match next[..] {
+                [(_, n)] => n,
+                [(_, n), (l, _), ..] if l > tol || one_way => n,
+                _ => {
+                    return Err(
+                        "offsetting an outline that touches itself with sharp corners is not supported yet"
+                            .into(),
+                    )
+                }
             };
             let (t1, t2) = (s.tangent(true), n.tangent(false));
             // Offset-side normals: the outside is on a stroke's right.

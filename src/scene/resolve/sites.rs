@@ -329,11 +329,20 @@ pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
         match piece {
             Piece::Edge(..) => {
                 for (p, q, left) in kept_edges(f, &all, i, eps) {
-                    out.push(if left {
+                    let s = if left {
                         Stroke::Line(p, q)
                     } else {
                         Stroke::Line(q, p)
-                    });
+                    };
+                    // A stretch two edges share, once.
+                    let same = |o: &Stroke| {
+                        matches!(o, Stroke::Line(..))
+                            && (o.start() - s.start()).length() <= eps
+                            && (o.end() - s.end()).length() <= eps
+                    };
+                    if !out.iter().any(same) {
+                        out.push(s);
+                    }
                 }
             }
             Piece::Circle(c, r) => {
@@ -392,9 +401,10 @@ pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
     Some((out, eps))
 }
 
-/// Where the edge a → b (piece i of `all`) crosses the other pieces, as
-/// sorted parameters in [0, 1] with both ends.
-fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece]) -> Vec<f64> {
+/// Where the edge a → b (piece i of `all`) crosses the other pieces, and
+/// where the ends of an edge along its line (within `eps`) lie, as sorted
+/// parameters in [0, 1] with both ends.
+fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> {
     let d = b - a;
     let mut cuts = vec![0.0, 1.0];
     for (j, &other) in all.iter().enumerate() {
@@ -405,7 +415,17 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece]) -> Vec<f64> {
             Piece::Edge(p, q) => {
                 let e = q - p;
                 let den = d.perp_dot(e);
-                if den != 0.0 {
+                if den.abs() <= 1e-12 * d.length() * e.length() {
+                    // Along the same line (within eps): cut where the
+                    // other edge's ends lie, so that the stretches two
+                    // edges share are the same on both.
+                    let off = |x: DVec2| (x - a).perp_dot(d).abs() / d.length();
+                    if off(p) <= eps && off(q) <= eps {
+                        let l2 = d.length_squared();
+                        cuts.push((p - a).dot(d) / l2);
+                        cuts.push((q - a).dot(d) / l2);
+                    }
+                } else {
                     let u = (p - a).perp_dot(e) / den;
                     let v = (p - a).perp_dot(d) / den;
                     if (0.0..=1.0).contains(&v) {
@@ -434,7 +454,7 @@ fn kept_edges(f: &Flat, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2,
         return Vec::new();
     }
     let normal = d.perp().normalize();
-    let cuts = edge_cuts(i, a, b, all);
+    let cuts = edge_cuts(i, a, b, all, eps);
     let mut out = Vec::new();
     for w in cuts.windows(2) {
         if w[1] > w[0] {

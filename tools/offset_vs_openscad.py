@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""Random offsets of random 2-D combinations of circles and squares, each
+rendered by csgrt and by OpenSCAD itself: csgrt's prism of the offset
+(linear_extrude(1), traced by vertical rays on a 61 x 61 grid) against the
+top faces of OpenSCAD's own mesh (`openscad -o m.off`, $fn = 256), point by
+point, points within 2e-3 of OpenSCAD's outline left out (its facets and
+Clipper's miters on them). A check of `offset` against the reference
+implementation itself, not run in CI (it needs the openscad binary and
+takes about 4 s a scene).
+
+Usage: offset_vs_openscad.py FIRST_SEED COUNT [--dir DIR] [--csgrt BIN]
+Prints one line a scene and `bad N`; exit status 1 if any scene disagrees.
+"""
+import sys, os, subprocess, random, math, tempfile, numpy as np
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import manifold3d as mf
+import scene
+BIN = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "target/release/csgrt")
+def shape(rng, depth=0):
+    k = rng.random()
+    if depth < 2 and k < 0.35:
+        op = rng.choice(['union', 'difference', 'intersection'])
+        kids = [shape(rng, depth+1) for _ in range(rng.randint(2, 3))]
+        return f"{op}() {{ {' '.join(kids)} }}"
+    if k < 0.65:
+        return f"translate([{rng.uniform(-3,3):.3f}, {rng.uniform(-3,3):.3f}]) circle(r = {rng.uniform(0.5,3):.3f});"
+    return f"translate([{rng.uniform(-3,3):.3f}, {rng.uniform(-3,3):.3f}]) rotate({rng.uniform(0,90):.2f}) square([{rng.uniform(0.5,4):.3f}, {rng.uniform(0.5,4):.3f}], center = true);"
+def offs(rng):
+    j = rng.choice(['r', 'r', 'delta', 'chamfer'])
+    d = rng.choice([-1, 1]) * rng.uniform(0.1, 1.5)
+    if j == 'r': return f"offset(r = {d:.3f})"
+    if j == 'delta': return f"offset(delta = {d:.3f})"
+    return f"offset(delta = {d:.3f}, chamfer = true)"
+seed0 = int(sys.argv[1]); N = int(sys.argv[2])
+if "--csgrt" in sys.argv:
+    BIN = sys.argv[sys.argv.index("--csgrt") + 1]
+ROOT_DIR = sys.argv[sys.argv.index("--dir") + 1] if "--dir" in sys.argv else tempfile.mkdtemp(prefix="offsets-")
+bad = 0
+for seed in range(seed0, seed0+N):
+    rng = random.Random(seed)
+    o = offs(rng)
+    if rng.random() < 0.3: o = o + " " + offs(rng)
+    body = f"union() {{ {shape(rng)} {shape(rng)} }}"
+    scad = f"$fn = 256;\nlinear_extrude(1) {o} {body}\n"
+    d = os.path.join(ROOT_DIR, f"s{seed}"); os.makedirs(d, exist_ok=True)
+    open(f"{d}/m.scad", "w").write(scad)
+    subprocess.run(["openscad", "-o", f"{d}/m.csg", f"{d}/m.scad"], capture_output=True)
+    subprocess.run(["openscad", "-o", f"{d}/m.off", f"{d}/m.scad"], capture_output=True)
+    # openscad's mesh: its top face z=1 polygons -> membership by a vertical ray through its mesh
+    pts = np.array([[x, y] for x in np.linspace(-9, 9, 61) for y in np.linspace(-9, 9, 61)])
+    rays = "\n".join(f"{x} {y} 5 0 0 -1" for x, y in pts) + "\n"
+    r = subprocess.run([BIN, f"{d}/m.csg", "--trace-rays", "-"], input=rays, capture_output=True, text=True)
+    if r.returncode != 0:
+        print(seed, "csgrt:", r.stderr.strip().splitlines()[0][:150]); continue
+    got = [ln.split()[0] != "miss" for ln in r.stdout.strip().splitlines()]
+    # OpenSCAD's own mesh, read: membership by the 2-D polygons of its top faces via manifold
+    try:
+        txt = open(f"{d}/m.off").read().split()
+    except FileNotFoundError:
+        print(seed, "empty (OpenSCAD wrote no mesh)"); continue
+    nv, nf = int(txt[1]), int(txt[2]); vals = txt[4:]
+    V = np.array(vals[:3*nv], float).reshape(-1, 3)
+    i = 3*nv; tris = []
+    for _ in range(nf):
+        k = int(vals[i]); idx = [int(v) for v in vals[i+1:i+1+k]]; i += 1+k
+        for j in range(1, k-1): tris.append((idx[0], idx[j], idx[j+1]))
+    top = [t for t in tris if all(abs(V[q, 2] - 1) < 1e-9 for q in t)]
+    polys = [V[list(t), :2] for t in top]
+    area = lambda p: (p[1, 0] - p[0, 0]) * (p[2, 1] - p[0, 1]) - (p[1, 1] - p[0, 1]) * (p[2, 0] - p[0, 0])
+    cs = mf.CrossSection.batch_boolean([mf.CrossSection([p.tolist()], mf.FillRule.NonZero) for p in polys if abs(area(p)) > 1e-12], mf.OpType.Add) if polys else mf.CrossSection()
+    loops = [np.asarray(l) for l in cs.to_polygons()]
+    def dist_edge(p):
+        m = 1e9
+        for l in loops:
+            a = l; b = np.roll(l, -1, axis=0); e = b - a
+            u = np.clip(((p - a) * e).sum(1) / np.maximum((e*e).sum(1), 1e-300), 0, 1)
+            m = min(m, np.min(np.linalg.norm(p - a - u[:, None]*e, axis=1)))
+        return m
+    mism = 0
+    for p, g in zip(pts, got):
+        want = scene.even_odd_inside(loops, p) if loops else False
+        if want != g and dist_edge(p) > 2e-3:
+            mism += 1
+    if mism:
+        bad += 1
+        print(seed, "MISMATCH", mism, scad.strip().replace("\n", " ")[:300])
+    else:
+        print(seed, "ok", sum(got))
+print("bad", bad)
+sys.exit(1 if bad else 0)
