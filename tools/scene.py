@@ -516,10 +516,12 @@ class Reader:
                 raise self.err(s, "polyhedron needs faces")
             out = []
             for f in faces:
-                idx = [int(i) for i in f]
-                if len(idx) < 3 or any(i != j or i < 0 or i >= len(pts) for i, j in zip(idx, f)):
-                    raise self.err(s, "a face of polyhedron has fewer than 3 points or an index out of range")
-                out.append(idx)
+                # OpenSCAD 2021.01 drops an index out of range from its face
+                # (cut to a whole number first) and a face left with fewer
+                # than 3 points.
+                idx = [int(math.trunc(i)) for i in f if isinstance(i, float) and 0 <= math.trunc(i) < len(pts)]
+                if len(idx) >= 3:
+                    out.append(idx)
             return self.leaf(s, k, dict(points=pts, faces=out), xf, mat)
         if k == "cube":
             size = vec(self.path, s, a, "size", 1.0, scalar=True)

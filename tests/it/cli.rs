@@ -606,6 +606,26 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
 }
 
 #[test]
+fn polyhedron_indices_out_of_range_are_dropped_with_a_warning_as_in_openscad() {
+    // OpenSCAD 2021.01 warns "Point index 7 is out of bounds (from
+    // faces[4][2])", drops it from its face, and a face left with fewer
+    // than 3 points adds nothing: the picture is the tetrahedron's.
+    let tet = "polyhedron(points = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]";
+    let (alone, quiet) = image_of(&format!("{tet}]);\n"));
+    assert_eq!(quiet, "");
+    let (img, said) = image_of(&format!("{tet}, [0, 1, 7]]);\n"));
+    assert!(img == alone);
+    assert!(
+        said.starts_with("warning: index 7 in `faces` of `polyhedron` is out of range; it is dropped from its face, as in OpenSCAD\n --> p.csg:2:"),
+        "{said}"
+    );
+    assert!(
+        said.contains("warning: a face of fewer than 3 points adds nothing"),
+        "{said}"
+    );
+}
+
+#[test]
 fn a_shape_across_the_axis_is_not_turned_as_in_openscad() {
     // OpenSCAD 2021.01 reports its error, with the range, and renders the
     // rest of the model: csgrt warns at the place and leaves it out.

@@ -330,7 +330,7 @@ fn polyhedron(
     let pts = a.points("points", &[3], 0)?;
     let key = if a.has("faces") { "faces" } else { "triangles" };
     let faces = match pts {
-        Some(ref p) => a.index_lists(key, p.len(), 3)?,
+        Some(ref p) => faces(res, &a, key, p.len())?,
         None => None,
     };
     // OpenSCAD makes nothing of a polyhedron without points or faces
@@ -344,6 +344,37 @@ fn polyhedron(
             "it has no points or no faces (as in OpenSCAD, it is left out)",
         ),
     }
+}
+
+/// A polyhedron's faces read as OpenSCAD 2021.01 reads them: an index
+/// out of range is dropped from its face (its warning "Point index is out
+/// of bounds"), a fraction cut to a whole number as its `size_t` does, and
+/// a face left with fewer than 3 points adds nothing; each a warning at
+/// its place.
+fn faces(res: &mut Resolver, a: &Args, key: &str, count: usize) -> Result<Option<Vec<Vec<u32>>>> {
+    let Some(lists) = a.number_lists(key)? else {
+        return Ok(None);
+    };
+    let mut out = Vec::with_capacity(lists.len());
+    for l in lists {
+        let mut row = Vec::with_capacity(l.items.len());
+        for (n, span) in l.items {
+            let i = n.trunc();
+            if !(i >= 0.0 && i < count as f64) {
+                let e = a.index_range(key, n, span, count);
+                res.go_on(e, "it is dropped from its face, as in OpenSCAD")?;
+                continue;
+            }
+            row.push(i as u32);
+        }
+        if row.len() < 3 {
+            let found = format!("expected 3 or more points, found {}", row.len());
+            res.warn(l.span, "a face of fewer than 3 points adds nothing", &found);
+            continue;
+        }
+        out.push(row);
+    }
+    Ok(Some(out))
 }
 
 /// `import(file, ...)` where a solid stands: a mesh file, or a drawing
