@@ -98,6 +98,10 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
                 Some((strokes, tol)) if op != Op::Xor => {
                     around(combination.clone(), &strokes, tol, join, d)
                 }
+                _ if super::sites::too_many_pieces(combination) => Err(format!(
+                    "offsetting a combination of more than {} edges and circles is not supported yet",
+                    super::sites::MAX_PIECES
+                )),
                 _ => Err(format!(
                     "{} a 2-D {} is not supported yet",
                     if d > 0.0 { "growing" } else { "shrinking" },
@@ -669,5 +673,24 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Past the limit of pieces a combination's boundary is read from,
+    /// the offset says so.
+    #[test]
+    fn the_limit_of_pieces_is_named() {
+        let n = super::super::sites::MAX_PIECES + 1;
+        let ring: Vec<DVec2> = (0..n)
+            .map(|i| DVec2::from_angle(i as f64 * TAU / n as f64) * 10.0)
+            .collect();
+        let f = Flat::Op(
+            Op::Union,
+            vec![
+                Flat::Polygon(Outlines::polygons(vec![ring])),
+                Flat::disc(DVec2::new(10.0, 0.0), 1.0),
+            ],
+        );
+        let e = offset(f, Join::Round, -0.5).unwrap_err();
+        assert!(e.contains(&format!("more than {} edges", n - 1)), "{e}");
     }
 }

@@ -120,8 +120,16 @@ pub(super) fn clip(poly: &[DVec2], side: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
 }
 
 /// The most boundary pieces (polygon edges and circles) a combination may
-/// have to be read here: each is cut at every other (n² tests).
-pub const MAX_PIECES: usize = 256;
+/// have to be read here: each is cut at every other (n² tests), and each
+/// stretch tested against the whole tree (n² again, times the cuts).
+pub const MAX_PIECES: usize = 2048;
+
+/// Whether `f` is made of pieces [`strokes`] reads but has more than
+/// [`MAX_PIECES`] of them.
+pub(super) fn too_many_pieces(f: &Flat) -> bool {
+    let mut all = Vec::new();
+    pieces(f, &mut all) && all.len() > MAX_PIECES
+}
 
 /// Adds to `out` the sites `f`'s hull is the hull of: its circles and its
 /// polygons' corners, or for a combination other than a union, the pieces
