@@ -27,7 +27,8 @@
 //! combination — shrinking a union whose parts' boxes meet, growing an
 //! intersection, either of a difference — is done on the loops of its
 //! boundary when it is made of straight polygons
-//! ([`super::sites::outline`]); with circles, and ellipses and
+//! ([`super::sites::outline`]), and with circles too through the strokes
+//! of its boundary swept by the disc ([`around`]); ellipses and
 //! self-crossing polygons, not yet.
 
 use super::flat::{is_circle, Flat};
