@@ -1402,7 +1402,11 @@ def offset_pieces(f, join, d):
         return ("ellipse", np.eye(2) * (r + d), f[2]) if r + d > 0 else None
     if f[0] == "curves":
         return curved_offset_pieces(f, join, d)
-    loops = f[1]
+    # A repeated point makes an edge of no length: left out (and a loop
+    # left with fewer than 3 points, unless none is left).
+    kept = [np.asarray([l[i] for i in range(len(l)) if np.any(l[i] != l[(i + 1) % len(l)])], float) for l in f[1]]
+    kept = [l for l in kept if len(l) >= 3]
+    loops = kept if kept else f[1]
     k, side = abs(d), (1.0 if d > 0 else -1.0)
     pieces = []
     for l in loops:

@@ -14,3 +14,6 @@ translate([6, 12]) linear_extrude(1) offset(r = -0.2) intersection() { square(2)
 translate([0, 18]) linear_extrude(1) offset(r = 0.5) difference() { square(4); translate([1, 1]) square(2); }
 translate([6, 18]) linear_extrude(1) offset(delta = -0.4) union() { square(3); translate([1.5, 1.5]) square(3); }
 translate([12, 18]) linear_extrude(1) offset(delta = 0.4, chamfer = true) intersection() { square(3); rotate(30) square(3); }
+// A point repeated: an edge of no length bounds nothing (OpenSCAD's
+// rounding idiom on a polygon that repeats its last point).
+translate([18, 18]) linear_extrude(1) offset(r = -0.5) offset(r = 1) polygon([[0, 0], [4, 0], [4, 1], [1, 1], [0, 3], [0, 3]]);

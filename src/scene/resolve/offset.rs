@@ -175,6 +175,25 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
     if o.curved() {
         return curved(o, join, d);
     }
+    // A point repeated (OpenSCAD's points often are) makes an edge of no
+    // length, which bounds nothing: left out, and so is a loop left with
+    // fewer than 3 points (unless none is left).
+    let loops: Vec<Vec<DVec2>> = o
+        .loops
+        .iter()
+        .map(|l| {
+            (0..l.len())
+                .filter(|&i| l[i] != l[(i + 1) % l.len()])
+                .map(|i| l[i])
+                .collect::<Vec<DVec2>>()
+        })
+        .filter(|l| l.len() >= 3)
+        .collect();
+    let o = if loops.is_empty() {
+        o
+    } else {
+        Outlines::polygons(loops)
+    };
     let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
     if edges > MAX_OFFSET_EDGES {
         return Err(format!(
