@@ -32,7 +32,7 @@
 //! self-crossing polygons, not yet.
 
 use super::flat::{is_circle, Flat};
-use super::sites::{clip, Stroke};
+use super::sites::{bounds, clip, Site, Stroke};
 use crate::csg::spans::Op;
 use crate::plane::offset::{offsettable, Offset};
 use crate::plane::{Outlines, Region};
@@ -298,21 +298,18 @@ fn around(
         // The corners: where one stroke ends and the next starts. Whole
         // circles have none; strokes no longer than `slack` = 1000 tol
         // (slivers of an arc cut twice where a band's edge meets its
-        // circle tangent: numerical noise) and copies of a stroke are
-        // passed over, and a stroke's next is the one that starts nearest
-        // its end, within `slack`; two within `tol` are a boundary that
-        // touches itself.
+        // circle tangent: numerical noise) are passed over (copies are
+        // not there: strokes() keeps a shared stretch once), and a
+        // stroke's next is the one that starts nearest its end, within
+        // `slack`; two within `tol` are a boundary that touches itself.
         let slack = 1e3 * tol;
-        let mut chain: Vec<&Stroke> = Vec::new();
-        for s in strokes {
-            let whole = matches!(s, Stroke::Arc { span, .. } if *span >= TAU);
-            let same = |o: &&Stroke| {
-                (o.start() - s.start()).length() <= tol && (o.end() - s.end()).length() <= tol
-            };
-            if !whole && (s.end() - s.start()).length() > slack && !chain.iter().any(same) {
-                chain.push(s);
-            }
-        }
+        let chain: Vec<&Stroke> = strokes
+            .iter()
+            .filter(|s| {
+                let whole = matches!(s, Stroke::Arc { span, .. } if *span >= TAU);
+                !whole && (s.end() - s.start()).length() > slack
+            })
+            .collect();
         for s in &chain {
             let v = s.end();
             let mut next: Vec<(f64, &Stroke)> = chain
@@ -375,22 +372,20 @@ fn annular(c: DVec2, inner: f64, outer: f64, from: f64, span: f64) -> Vec<Flat> 
         .map(|i| {
             let a0 = from + step * i as f64;
             let a1 = a0 + step;
-            // The sector's box: its four corners (the centre when it has
-            // no hole) and its outer arc's points along the axes.
-            let mut pts = vec![at(a0, outer), at(a1, outer)];
+            // The sector's box: its outer arc's ends and axis points, and
+            // its inner arc's ends (the centre when it has no hole).
+            let arc = Site {
+                c,
+                r: outer,
+                arc: Some((a0, step)),
+            };
+            let mut pts = arc.extremes();
             if inner > 0.0 {
                 pts.extend([at(a0, inner), at(a1, inner)]);
             } else {
                 pts.push(c);
             }
-            for q in 0..14 {
-                let a = q as f64 * TAU / 4.0 - TAU;
-                if a > a0 && a < a1 {
-                    pts.push(at(a, outer));
-                }
-            }
-            let lo = pts.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
-            let hi = pts.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+            let (lo, hi) = bounds(&pts);
             // The wedge: rays at a0 and a1 through points 2·outer out,
             // joined through the middle ray (each chord at least √2·outer
             // from c, a step being at most a half turn).

@@ -52,6 +52,22 @@ impl Site {
         self.c + DVec2::from_angle(a) * self.r
     }
 
+    /// The points of its circle that can be extreme along an axis: an
+    /// arc's ends and the axis points it faces (a disc's four).
+    pub fn extremes(&self) -> Vec<DVec2> {
+        let mut out: Vec<DVec2> = match self.arc {
+            Some((from, span)) => vec![self.at(from), self.at(from + span)],
+            None => Vec::new(),
+        };
+        for k in 0..4 {
+            let a = k as f64 * TAU / 4.0;
+            if self.faces(a, 0.0) {
+                out.push(self.at(a));
+            }
+        }
+        out
+    }
+
     /// Whether the outward normal at angle `a` is one of the site's (any is
     /// a whole disc's), within `tol` radians.
     pub fn faces(&self, a: f64, tol: f64) -> bool {
@@ -75,16 +91,8 @@ impl Site {
         let Some((from, span)) = self.arc else {
             return disc;
         };
-        let (e0, e1) = (self.at(from), self.at(from + span));
-        let mut far = vec![e0, e1];
-        for k in 0..4 {
-            let a = k as f64 * TAU / 4.0;
-            if self.faces(a, 0.0) {
-                far.push(self.at(a));
-            }
-        }
-        let lo = far.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
-        let hi = far.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+        let e0 = self.at(from);
+        let (lo, hi) = bounds(&self.extremes());
         let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
         // The box on the arc's side of the chord.
         let m = DVec2::from_angle(from + span / 2.0);
@@ -100,6 +108,13 @@ impl Site {
             ],
         )
     }
+}
+
+/// The box (lower and upper corner) of some points.
+pub(super) fn bounds(pts: &[DVec2]) -> (DVec2, DVec2) {
+    let lo = pts.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
+    let hi = pts.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
+    (lo, hi)
 }
 
 /// The part of a convex polygon where `side` is not negative
@@ -337,20 +352,11 @@ pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
         match piece {
             Piece::Edge(..) => {
                 for (p, q, left) in kept_edges(f, &all, i, eps) {
-                    let s = if left {
+                    out.push(if left {
                         Stroke::Line(p, q)
                     } else {
                         Stroke::Line(q, p)
-                    };
-                    // A stretch two edges share, once.
-                    let same = |o: &Stroke| {
-                        matches!(o, Stroke::Line(..))
-                            && (o.start() - s.start()).length() <= eps
-                            && (o.end() - s.end()).length() <= eps
-                    };
-                    if !out.iter().any(same) {
-                        out.push(s);
-                    }
+                    });
                 }
             }
             Piece::Circle(c, r) => {
@@ -406,7 +412,32 @@ pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
             }
         }
     }
-    Some((out, eps))
+    // A stretch two pieces share (an edge twice, a circle twice), once.
+    let mut once: Vec<Stroke> = Vec::with_capacity(out.len());
+    for s in out {
+        let same = |o: &Stroke| match (*o, s) {
+            (Stroke::Line(..), Stroke::Line(..)) => {
+                (o.start() - s.start()).length() <= eps && (o.end() - s.end()).length() <= eps
+            }
+            (
+                Stroke::Arc {
+                    c, r, from, span, ..
+                },
+                Stroke::Arc {
+                    c: c2,
+                    r: r2,
+                    from: f2,
+                    span: s2,
+                    ..
+                },
+            ) => (c - c2).length() <= eps && (r - r2).abs() <= eps && from == f2 && span == s2,
+            _ => false,
+        };
+        if !once.iter().any(same) {
+            once.push(s);
+        }
+    }
+    Some((once, eps))
 }
 
 /// Where the edge a → b (piece i of `all`) crosses the other pieces, and
