@@ -100,20 +100,11 @@ impl MeshData {
         ]
     }
 
-    /// The crossings `(t, triangle, its normal faces along d)` of the
-    /// sheared line `w` with the leaf's triangles `first..first + count`,
-    /// each triangle tested counted in `tested` as it is taken.
-    fn leaf_crossings<'a>(
-        &'a self,
-        w: &'a Watertight,
-        first: u32,
-        count: u32,
-        tested: &'a mut u64,
-    ) -> impl Iterator<Item = (f64, u32, bool)> + 'a {
-        (first..first + count).filter_map(move |i| {
-            *tested += 1;
-            w.hit(self.corner_refs(i)).map(|(t, along)| (t, i, along))
-        })
+    /// The crossing `(t, triangle, its normal faces along d)` of the sheared
+    /// line `w` with triangle `i`, if any.
+    #[inline(always)]
+    fn cross(&self, w: &Watertight, i: u32) -> Option<(f64, u32, bool)> {
+        w.hit(self.corner_refs(i)).map(|(t, along)| (t, i, along))
     }
 
     /// The crossings `(t, triangle, the triangle's normal faces along d)`
@@ -129,15 +120,20 @@ impl MeshData {
         st: &mut crate::stats::Stats,
     ) -> SmallVec<[(f64, u32, bool); 16]> {
         let mut out: SmallVec<[(f64, u32, bool); 16]> = SmallVec::new();
-        let Some(w) = Watertight::new(o, d) else {
-            return out;
-        };
+        // The sheared line is set up at the first leaf met (most lines
+        // that look for crossings before their start meet none).
+        let mut w = Lazy::new(o, d);
         let mut tested = 0;
         self.bvh.visit(&self.bounds, o, d, t0, t1, st, |first, n| {
-            out.extend(
-                self.leaf_crossings(&w, first, n, &mut tested)
-                    .filter(|x| x.0 <= t1),
-            );
+            let Some(w) = w.get() else { return true };
+            tested += u64::from(n);
+            for i in first..first + n {
+                if let Some(x) = self.cross(w, i) {
+                    if x.0 <= t1 {
+                        out.push(x);
+                    }
+                }
+            }
             false
         });
         st.triangle_tests += tested;
@@ -156,15 +152,22 @@ impl MeshData {
         tmax: f64,
         st: &mut crate::stats::Stats,
     ) -> Option<(f64, u32, bool)> {
-        let w = Watertight::new(o, d)?;
+        let mut w = Lazy::new(o, d);
         let mut found = None;
         let mut tested = 0;
         self.bvh
             .visit(&self.bounds, o, d, tmin, tmax, st, |first, n| {
-                found = self
-                    .leaf_crossings(&w, first, n, &mut tested)
-                    .find(|x| x.0 > tmin && x.0 < tmax);
-                found.is_some()
+                let Some(w) = w.get() else { return true };
+                for i in first..first + n {
+                    tested += 1;
+                    if let Some(x) = self.cross(w, i) {
+                        if x.0 > tmin && x.0 < tmax {
+                            found = Some(x);
+                            return true;
+                        }
+                    }
+                }
+                false
             });
         st.triangle_tests += tested;
         found
@@ -181,23 +184,51 @@ impl MeshData {
         tmax: f64,
         st: &mut crate::stats::Stats,
     ) -> Option<(f64, u32, bool)> {
-        let w = Watertight::new(o, d)?;
+        let mut w = Lazy::new(o, d);
         let mut best: Option<(f64, u32, bool)> = None;
         let mut tested = 0;
         self.bvh
             .visit_near_first(&self.bounds, o, d, tmin, tmax, st, |first, n| {
-                for (t, i, along) in self.leaf_crossings(&w, first, n, &mut tested) {
-                    // Ties go to the lower triangle, whatever the order of
-                    // visits.
-                    let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
-                    if t > tmin && t < tmax && better {
-                        best = Some((t, i, along));
+                let Some(w) = w.get() else {
+                    return f64::INFINITY;
+                };
+                tested += u64::from(n);
+                for i in first..first + n {
+                    if let Some((t, i, along)) = self.cross(w, i) {
+                        // Ties go to the lower triangle, whatever the order
+                        // of visits.
+                        let better = best.map_or(true, |b| t < b.0 || (t == b.0 && i < b.1));
+                        if t > tmin && t < tmax && better {
+                            best = Some((t, i, along));
+                        }
                     }
                 }
                 best.map_or(f64::INFINITY, |b| b.0)
             });
         st.triangle_tests += tested;
         best
+    }
+}
+
+/// A line's [`Watertight`] set-up, made when first asked for (a line
+/// that meets no leaf's box needs none).
+struct Lazy {
+    o: DVec3,
+    d: DVec3,
+    w: Option<Option<Watertight>>,
+}
+
+impl Lazy {
+    fn new(o: DVec3, d: DVec3) -> Lazy {
+        Lazy { o, d, w: None }
+    }
+
+    /// The set-up, `None` for a direction it cannot take (zero or not
+    /// finite: then no walk reaches a leaf either).
+    #[inline(always)]
+    fn get(&mut self) -> Option<&Watertight> {
+        let (o, d) = (self.o, self.d);
+        self.w.get_or_insert_with(|| Watertight::new(o, d)).as_ref()
     }
 }
 
@@ -241,8 +272,9 @@ impl Watertight {
         let [kx, ky, kz] = self.k;
         let s = self.s;
         let o: &[f64; 3] = self.o.as_ref();
-        let q = p.map(|v| {
-            // Coordinates read by index from memory, not from registers.
+        // Coordinates read by index from memory, not from registers (and
+        // not through `[_; 3]::map`, which was not made inline here).
+        let at = |v: &DVec3| {
             let v: &[f64; 3] = v.as_ref();
             let rz = v[kz] - o[kz];
             (
@@ -250,8 +282,8 @@ impl Watertight {
                 (v[ky] - o[ky]) - s.y * rz,
                 s.z * rz,
             )
-        });
-        let (a, b, c) = (q[0], q[1], q[2]);
+        };
+        let (a, b, c) = (at(p[0]), at(p[1]), at(p[2]));
         // Edge functions: u of edge b→c, v of c→a, w of a→b.
         let mut u = c.0 * b.1 - c.1 * b.0;
         let mut v = a.0 * c.1 - a.1 * c.0;
@@ -335,6 +367,7 @@ impl Solid for Mesh {
                 return;
             };
             let entering = q.need == Need::AnyBoundary
+                || !MeshBvh::meets(&m.bounds, q.o, q.d, f64::NEG_INFINITY, q.tmin)
                 || m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st).len() % 2 == 0;
             let part = part_of(x, entering);
             if entering {

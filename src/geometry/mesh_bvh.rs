@@ -36,6 +36,7 @@ use super::Aabb;
 use crate::stats::Stats;
 use glam::DVec3;
 use smallvec::SmallVec;
+use std::mem::MaybeUninit;
 
 /// The most triangles in a leaf (at most 8: the count is kept in 3 bits).
 /// Two: on the bench's 1.3-million-triangle mesh, 2.96 triangle tests a
@@ -58,7 +59,42 @@ const BINS: usize = 16;
 /// (so that no mesh makes the tree, or a ray's stack, deeper than
 /// `MEDIAN_FROM + 28` levels).
 const MEDIAN_FROM: usize = 40;
+/// The most entries a walk's stack holds: three a level of the deepest
+/// tree the build makes.
 const STACK: usize = (WIDTH - 1) * (MEDIAN_FROM + 30) + 1;
+
+/// A walk's stack: an array of [`STACK`] entries, never cleared (1.7 kB
+/// to clear for each line took as long as a tenth of its walk).
+struct Stack<T> {
+    top: usize,
+    at: [MaybeUninit<T>; STACK],
+}
+
+impl<T: Copy> Stack<T> {
+    #[inline(always)]
+    fn new() -> Self {
+        Stack {
+            top: 0,
+            at: [MaybeUninit::uninit(); STACK],
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, x: T) {
+        self.at[self.top] = MaybeUninit::new(x);
+        self.top += 1;
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<T> {
+        if self.top == 0 {
+            return None;
+        }
+        self.top -= 1;
+        // SAFETY: entries below `top` were each written by `push`.
+        Some(unsafe { self.at[self.top].assume_init() })
+    }
+}
 
 const LEAF_BIT: u32 = 1 << 31;
 
@@ -90,6 +126,11 @@ struct Node {
     b: [[f32; WIDTH]; 6],
     child: [u32; WIDTH],
 }
+
+/// How many bits of a four-bit mask are set (a table: `count_ones` is a
+/// dozen instructions on a processor without `popcnt`, such as the
+/// x86-64 baseline this crate is built for).
+const BITS4: [u32; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
 
 const EMPTY_NODE: Node = Node {
     b: [
@@ -238,6 +279,28 @@ pub fn up32(x: f64) -> f32 {
     }
 }
 
+/// An `f32` at least `x` (finite or infinite, not NaN), at most three
+/// steps above it: `x` moved up by more than half an `f32` step before rounding
+/// to nearest, with no branch (a ray's set-up rounds a dozen values, each
+/// way at random; [`up32`]'s test is a branch mispredicted half the time).
+#[inline(always)]
+fn above32(x: f64) -> f32 {
+    (x + (x.abs() * TWO_POW_M23 + F32_TINY)) as f32
+}
+
+/// An `f32` at most `x`, at most three steps below it ([`above32`]).
+#[inline(always)]
+fn below32(x: f64) -> f32 {
+    (x - (x.abs() * TWO_POW_M23 + F32_TINY)) as f32
+}
+
+/// 2⁻²³: twice the largest relative rounding of an `f32` (round to
+/// nearest moves a value by at most 2⁻²⁴ of itself, or by 2⁻¹⁵⁰ below the
+/// normal range).
+const TWO_POW_M23: f64 = 1.192_092_895_507_812_5e-7;
+/// 2⁻¹⁴⁹, the least `f32` step.
+const F32_TINY: f64 = 1.401_298_464_324_817e-45;
+
 impl MeshBvh {
     /// The hierarchy of `tris` over `verts` (at most 2²⁸ triangles, every
     /// coordinate within ±[`MAX_COORD`]), and the order to put the
@@ -325,6 +388,12 @@ impl MeshBvh {
         Line32::new(root, o, d, tmin, tmax)
     }
 
+    /// Whether the line `o + t·d` may meet the box `root` for some t in
+    /// [tmin, tmax] (the test every walk begins with; rounded outward).
+    pub fn meets(root: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> bool {
+        piece_in(root, o, DVec3::ONE / d, tmin, tmax).is_some()
+    }
+
     /// Calls `leaf(first, count)` for every leaf whose box the line `o +
     /// t·d` may meet for some t in [tmin, tmax] within `root` (the mesh's
     /// box), in a fixed order, until it returns `true`.
@@ -342,18 +411,17 @@ impl MeshBvh {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return;
         };
-        let mut stack = [0u32; STACK];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = &self.nodes[stack[top] as usize];
-            let (near, _) = l.test(n, l.tmax);
-            for (&c, met) in n.child.iter().zip(near) {
+        let mut stack = Stack::new();
+        stack.push(0);
+        while let Some(at) = stack.pop() {
+            let n = &self.nodes[at as usize];
+            let (near, _) = l.test_any(n, l.tmax);
+            for (lane, &c) in n.child.iter().enumerate() {
                 if c == EMPTY_LANE {
                     continue;
                 }
                 st.bound_tests += 1;
-                if !met {
+                if near & (1 << lane) == 0 {
                     st.bound_culled += 1;
                 } else if c & LEAF_BIT != 0 {
                     let (first, count) = leaf_range(c);
@@ -361,8 +429,7 @@ impl MeshBvh {
                         return;
                     }
                 } else {
-                    stack[top] = c;
-                    top += 1;
+                    stack.push(c);
                 }
             }
         }
@@ -381,86 +448,117 @@ impl MeshBvh {
         tmin: f64,
         tmax: f64,
         st: &mut Stats,
-        mut leaf: impl FnMut(u32, u32) -> f64,
+        leaf: impl FnMut(u32, u32) -> f64,
     ) {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return;
         };
-        let mut cut = l.tmax;
-        let mut stack = [(0u32, 0f32); STACK];
-        let mut top = 0;
-        let (mut tests, mut culled) = (0u64, 0u64);
-        // The node or leaf to open next, and where its box begins.
-        let mut next = Some((0u32, l.tmin));
-        loop {
-            let (c, entry) = match next.take() {
-                Some(x) => x,
-                None => {
-                    if top == 0 {
-                        break;
-                    }
-                    top -= 1;
-                    stack[top]
-                }
-            };
-            if entry > cut + l.eps {
-                culled += 1;
-                continue;
-            }
-            if c & LEAF_BIT != 0 {
-                let (first, count) = leaf_range(c);
-                let best = leaf(first, count);
-                if best < f64::INFINITY {
-                    cut = cut.min(l.local_up(best));
-                }
-                continue;
-            }
-            let n = &self.nodes[c as usize];
-            let (hit, tn) = l.test(n, cut);
-            // Lanes met, as bits (an empty lane is never met).
-            let (mut mask, mut lanes) = (0u32, 0u64);
-            for (lane, (&c, met)) in n.child.iter().zip(hit).enumerate() {
-                lanes += u64::from(c != EMPTY_LANE);
-                mask |= u32::from(met) << lane;
-            }
-            let m = mask.count_ones() as usize;
-            tests += lanes;
-            culled += lanes - m as u64;
-            if m == 0 {
-                continue;
-            }
-            if m == 1 {
-                let lane = mask.trailing_zeros() as usize;
-                next = Some((n.child[lane], tn[lane]));
-                continue;
-            }
-            // The boxes met, sorted by entry (ties by child, for one order
-            // whatever the threads): the nearest is opened next, the others
-            // pushed farthest first.
-            let mut found = [(0f32, 0u32); WIDTH];
-            let mut k = 0;
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let f = (tn[lane], n.child[lane]);
-                let mut j = k;
-                while j > 0
-                    && (found[j - 1].0 > f.0 || (found[j - 1].0 == f.0 && found[j - 1].1 > f.1))
-                {
-                    found[j] = found[j - 1];
-                    j -= 1;
-                }
-                found[j] = f;
-                k += 1;
-            }
-            for j in (1..m).rev() {
-                stack[top] = (found[j].1, found[j].0);
-                top += 1;
-            }
-            next = Some((found[0].1, found[0].0));
+        // One walk for each octant of directions: which plane of each
+        // slab is the near one is then known when it is compiled.
+        match l.octant() {
+            0 => self.near_first::<0>(&l, st, leaf),
+            1 => self.near_first::<1>(&l, st, leaf),
+            2 => self.near_first::<2>(&l, st, leaf),
+            3 => self.near_first::<3>(&l, st, leaf),
+            4 => self.near_first::<4>(&l, st, leaf),
+            5 => self.near_first::<5>(&l, st, leaf),
+            6 => self.near_first::<6>(&l, st, leaf),
+            _ => self.near_first::<7>(&l, st, leaf),
         }
+    }
+
+    /// [`visit_near_first`](Self::visit_near_first) for a line whose
+    /// direction has the signs `OCTANT` (bit a set: negative along axis a).
+    #[inline(always)]
+    fn near_first<const OCTANT: u8>(
+        &self,
+        l: &Line32,
+        st: &mut Stats,
+        mut leaf: impl FnMut(u32, u32) -> f64,
+    ) {
+        let mut cut = l.tmax;
+        let mut stack = Stack::new();
+        // Nodes tested (four boxes each, empty lanes included), boxes met,
+        // and pushed boxes dropped for beginning beyond the cut.
+        let (mut nodes, mut met, mut dropped) = (0u64, 0u64, 0u64);
+        // The node or leaf opened next; its box begins before the cut.
+        let mut cur = 0u32;
+        'walk: loop {
+            // Down from `cur` along the nearest box met, the others pushed.
+            loop {
+                if cur & LEAF_BIT != 0 {
+                    let (first, count) = leaf_range(cur);
+                    let best = leaf(first, count);
+                    if best < f64::INFINITY {
+                        cut = cut.min(l.local_up(best));
+                    }
+                    break;
+                }
+                let n = &self.nodes[cur as usize];
+                let (mut mask, tn) = l.test::<OCTANT>(n, cut);
+                nodes += 1;
+                met += u64::from(BITS4[mask as usize]);
+                if mask == 0 {
+                    break;
+                }
+                let a = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if mask == 0 {
+                    cur = n.child[a];
+                    continue;
+                }
+                let b = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                if mask == 0 {
+                    // Two met: the nearer opened, the other pushed (ties
+                    // by lane: one order, whatever the threads).
+                    let (near, far) = if tn[b] < tn[a] { (b, a) } else { (a, b) };
+                    stack.push((n.child[far], tn[far]));
+                    cur = n.child[near];
+                    continue;
+                }
+                // Three or four: sorted by entry (ties by lane), the nearest
+                // opened, the others pushed farthest first.
+                let mut found = [(0f32, 0u32); WIDTH];
+                found[0] = (tn[a], n.child[a]);
+                found[1] = (tn[b], n.child[b]);
+                let mut k = 2;
+                while mask != 0 {
+                    let lane = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    found[k] = (tn[lane], n.child[lane]);
+                    k += 1;
+                }
+                // Insertion by entry, stable: lanes in order among ties.
+                for i in 1..k {
+                    let f = found[i];
+                    let mut j = i;
+                    while j > 0 && found[j - 1].0 > f.0 {
+                        found[j] = found[j - 1];
+                        j -= 1;
+                    }
+                    found[j] = f;
+                }
+                for j in (1..k).rev() {
+                    stack.push((found[j].1, found[j].0));
+                }
+                cur = found[0].1;
+            }
+            // Up: the nearest pushed box that still begins before the cut.
+            loop {
+                let Some((c, entry)) = stack.pop() else {
+                    break 'walk;
+                };
+                if entry <= cut + l.eps {
+                    cur = c;
+                    continue 'walk;
+                }
+                dropped += 1;
+            }
+        }
+        let tests = WIDTH as u64 * nodes;
         st.bound_tests += tests;
-        st.bound_culled += culled;
+        st.bound_culled += tests - met + dropped;
     }
 
     /// How many nodes the hierarchy has (for its memory).
@@ -559,27 +657,18 @@ struct Split {
 }
 
 /// The piece `[lo, hi]` of `[tmin, tmax]` in which the line `o + t·d`
-/// may lie in the bounded box `b`, widened for rounding; `None` if there
-/// is none. A line in a plane of a slab along which it does not move (a
+/// (`inv` = 1 / d) may lie in the bounded box `b`, widened for rounding;
+/// `None` if there is none. A line in a plane of a slab along which it does not move (a
 /// `0·∞` NaN) is within that slab.
-fn piece_in(b: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> Option<(f64, f64)> {
-    let inv = DVec3::ONE / d;
+fn piece_in(b: &Aabb, o: DVec3, inv: DVec3, tmin: f64, tmax: f64) -> Option<(f64, f64)> {
     let t0 = (b.min - o) * inv;
     let t1 = (b.max - o) * inv;
-    let (mut lo, mut hi) = (tmin, tmax);
-    for a in 0..3 {
-        let (x, y) = (t0[a], t1[a]);
-        if x.is_nan() || y.is_nan() {
-            continue;
-        }
-        let (n, f) = if x < y { (x, y) } else { (y, x) };
-        if n > lo {
-            lo = n;
-        }
-        if f < hi {
-            hi = f;
-        }
-    }
+    // An axis with a NaN constrains nothing.
+    let nan = t0.is_nan_mask() | t1.is_nan_mask();
+    let near = DVec3::select(nan, DVec3::NEG_INFINITY, t0.min(t1));
+    let far = DVec3::select(nan, DVec3::INFINITY, t0.max(t1));
+    let lo = tmin.max(near.max_element());
+    let hi = tmax.min(far.min_element());
     const W: f64 = 8.0 * f64::EPSILON;
     let (lo, hi) = (lo - W * lo.abs(), hi + W * hi.abs());
     (lo <= hi && lo.is_finite() && hi.is_finite()).then_some((lo, hi))
@@ -593,9 +682,6 @@ struct Line32 {
     inv: [f32; 3],
     /// Whether the near plane of each axis is the box's upper one.
     neg: [bool; 3],
-    /// Which of a node's plane rows is each axis's near one, and far one.
-    near: [usize; 3],
-    far: [usize; 3],
     tmin: f32,
     tmax: f32,
     eps: f32,
@@ -610,7 +696,8 @@ impl Line32 {
         if !(m > 0.0 && m.is_finite() && o.is_finite()) {
             return None;
         }
-        let (lo, hi) = piece_in(root, o, d, tmin, tmax)?;
+        let inv = DVec3::ONE / d;
+        let (lo, hi) = piece_in(root, o, inv, tmin, tmax)?;
         let s = 0.5 * lo + 0.5 * hi;
         // p = 2^e with m / p in [1, 2): o + t·d = o' + t''·(d / p), with
         // o' = o + s·d and t'' = (t − s)·p, every step exact but o'.
@@ -630,18 +717,16 @@ impl Line32 {
         let local = |t: f64| (t - s) * p;
         let tl = local(lo);
         let th = local(hi);
-        let tmin32 = down32(tl - tl.abs() * f64::EPSILON);
-        let tmax32 = up32(th + th.abs() * f64::EPSILON);
+        let tmin32 = below32(tl - tl.abs() * f64::EPSILON);
+        let tmax32 = above32(th + th.abs() * f64::EPSILON);
         let tt = (tmin32 as f64).abs().max((tmax32 as f64).abs());
-        let eps = up32(10.0 * U32 * tt);
+        let eps = above32(10.0 * U32 * tt);
         let op = o + s * d;
         let mut l = Line32 {
             on: [0.0; 3],
             of: [0.0; 3],
             inv: [0.0; 3],
             neg: [false; 3],
-            near: [0, 1, 2],
-            far: [3, 4, 5],
             tmin: tmin32,
             tmax: tmax32,
             eps,
@@ -651,43 +736,64 @@ impl Line32 {
         let mdp = dp.abs().max_element();
         for a in 0..3 {
             let mut err = (o[a].abs() + (s * d[a]).abs()) * (2.0 * f64::EPSILON);
-            if dp[a].abs() < PARALLEL * mdp {
+            let parallel = dp[a].abs() < PARALLEL * mdp;
+            if parallel {
                 err += dp[a].abs() * tt * 1.01;
-                l.inv[a] = f32::INFINITY;
-                l.neg[a] = false;
-            } else {
-                l.inv[a] = (1.0 / dp[a]) as f32;
-                l.neg[a] = dp[a] < 0.0;
             }
-            let up = up32(op[a] + err);
-            let dn = down32(op[a] - err);
-            if l.neg[a] {
-                l.on[a] = dn;
-                l.of[a] = up;
-                l.near[a] = a + 3;
-                l.far[a] = a;
+            // 1 / (d / p) = p · (1 / d), rounded alike (p is a power of two).
+            l.inv[a] = if parallel {
+                f32::INFINITY
             } else {
-                l.on[a] = up;
-                l.of[a] = dn;
-            }
+                (p * inv[a]) as f32
+            };
+            l.neg[a] = !parallel && dp[a] < 0.0;
+            let up = above32(op[a] + err);
+            let dn = below32(op[a] - err);
+            (l.on[a], l.of[a]) = if l.neg[a] { (dn, up) } else { (up, dn) };
         }
         Some(l)
+    }
+
+    /// The direction's signs: bit a set when the near plane along axis a
+    /// is the box's upper one.
+    fn octant(&self) -> u8 {
+        (0..3).map(|a| u8::from(self.neg[a]) << a).sum()
+    }
+
+    /// [`test`](Self::test) for a walk not specialised by octant.
+    #[inline(always)]
+    fn test_any(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+        match self.octant() {
+            0 => self.test::<0>(n, tmax),
+            1 => self.test::<1>(n, tmax),
+            2 => self.test::<2>(n, tmax),
+            3 => self.test::<3>(n, tmax),
+            4 => self.test::<4>(n, tmax),
+            5 => self.test::<5>(n, tmax),
+            6 => self.test::<6>(n, tmax),
+            _ => self.test::<7>(n, tmax),
+        }
     }
 
     /// `t` in the line's own `f32` measure, rounded up.
     fn local_up(&self, t: f64) -> f32 {
         let x = (t - self.s) * self.p;
-        up32(x + x.abs() * f64::EPSILON)
+        above32(x + x.abs() * f64::EPSILON)
     }
 
     /// Which of a node's four boxes the line may meet before `tmax`, and
     /// where it enters each.
+    #[cfg(not(target_arch = "x86_64"))]
     #[inline(always)]
-    fn test(&self, n: &Node, tmax: f32) -> ([bool; WIDTH], [f32; WIDTH]) {
+    fn test<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
         let mut tn = [self.tmin; WIDTH];
         let mut tf = [tmax; WIDTH];
         for a in 0..3 {
-            let (np, fp) = (&n.b[self.near[a]], &n.b[self.far[a]]);
+            let (np, fp) = if OCTANT >> a & 1 == 1 {
+                (&n.b[a + 3], &n.b[a])
+            } else {
+                (&n.b[a], &n.b[a + 3])
+            };
             let (on, of, inv) = (self.on[a], self.of[a], self.inv[a]);
             for k in 0..WIDTH {
                 let t0 = (np[k] - on) * inv;
@@ -696,10 +802,50 @@ impl Line32 {
                 tf[k] = if t1 < tf[k] { t1 } else { tf[k] };
             }
         }
-        let mut hit = [false; WIDTH];
+        let mut hit = 0u32;
         for k in 0..WIDTH {
-            hit[k] = tn[k] <= tf[k] + self.eps;
+            hit |= u32::from(tn[k] <= tf[k] + self.eps) << k;
         }
         (hit, tn)
+    }
+
+    /// Which of a node's four boxes the line may meet before `tmax` (a bit
+    /// a lane), and where it enters each: the four lanes at once in SSE
+    /// registers (the same operations, lane by lane, as the portable test).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    #[allow(unused_unsafe)]
+    fn test<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+        use std::arch::x86_64::*;
+        // SAFETY: SSE and SSE2 are part of every x86_64 processor; each
+        // load and store reads or writes a whole `[f32; 4]`.
+        unsafe {
+            let mut tn = _mm_set1_ps(self.tmin);
+            let mut tf = _mm_set1_ps(tmax);
+            for a in 0..3 {
+                let (np, fp) = if OCTANT >> a & 1 == 1 {
+                    (&n.b[a + 3], &n.b[a])
+                } else {
+                    (&n.b[a], &n.b[a + 3])
+                };
+                let inv = _mm_set1_ps(self.inv[a]);
+                let t0 = _mm_mul_ps(
+                    _mm_sub_ps(_mm_loadu_ps(np.as_ptr()), _mm_set1_ps(self.on[a])),
+                    inv,
+                );
+                let t1 = _mm_mul_ps(
+                    _mm_sub_ps(_mm_loadu_ps(fp.as_ptr()), _mm_set1_ps(self.of[a])),
+                    inv,
+                );
+                // maxps and minps return their second operand when either
+                // is NaN: the running bound.
+                tn = _mm_max_ps(t0, tn);
+                tf = _mm_min_ps(t1, tf);
+            }
+            let met = _mm_cmple_ps(tn, _mm_add_ps(tf, _mm_set1_ps(self.eps)));
+            let mut out = [0f32; WIDTH];
+            _mm_storeu_ps(out.as_mut_ptr(), tn);
+            (_mm_movemask_ps(met) as u32, out)
+        }
     }
 }
