@@ -781,11 +781,20 @@ impl Line32 {
         above32(x + x.abs() * f64::EPSILON)
     }
 
-    /// Which of a node's four boxes the line may meet before `tmax`, and
-    /// where it enters each.
-    #[cfg(not(target_arch = "x86_64"))]
+    /// Which of a node's four boxes the line may meet before `tmax` (a bit
+    /// a lane), and where it enters each.
     #[inline(always)]
     fn test<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+        #[cfg(target_arch = "x86_64")]
+        return self.test_sse::<OCTANT>(n, tmax);
+        #[cfg(not(target_arch = "x86_64"))]
+        return self.test_portable::<OCTANT>(n, tmax);
+    }
+
+    /// [`test`](Self::test) lane by lane, in any processor's own `f32`.
+    #[cfg_attr(target_arch = "x86_64", allow(dead_code))]
+    #[inline(always)]
+    fn test_portable<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
         let mut tn = [self.tmin; WIDTH];
         let mut tf = [tmax; WIDTH];
         for a in 0..3 {
@@ -809,13 +818,13 @@ impl Line32 {
         (hit, tn)
     }
 
-    /// Which of a node's four boxes the line may meet before `tmax` (a bit
-    /// a lane), and where it enters each: the four lanes at once in SSE
-    /// registers (the same operations, lane by lane, as the portable test).
+    /// [`test`](Self::test) with the four lanes at once in SSE registers:
+    /// the same operations, lane by lane, as the portable test, and the
+    /// same answers (a unit test compares them).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     #[allow(unused_unsafe)]
-    fn test<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    fn test_sse<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
         use std::arch::x86_64::*;
         // SAFETY: SSE and SSE2 are part of every x86_64 processor; each
         // load and store reads or writes a whole `[f32; 4]`.
@@ -847,5 +856,97 @@ impl Line32 {
             _mm_storeu_ps(out.as_mut_ptr(), tn);
             (_mm_movemask_ps(met) as u32, out)
         }
+    }
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+
+    /// Both of a line's tests of `n`, for the octant of its direction.
+    fn both(l: &Line32, n: &Node, tmax: f32) -> [(u32, [f32; WIDTH]); 2] {
+        macro_rules! pair {
+            ($o:literal) => {
+                [l.test_sse::<$o>(n, tmax), l.test_portable::<$o>(n, tmax)]
+            };
+        }
+        match l.octant() {
+            0 => pair!(0),
+            1 => pair!(1),
+            2 => pair!(2),
+            3 => pair!(3),
+            4 => pair!(4),
+            5 => pair!(5),
+            6 => pair!(6),
+            _ => pair!(7),
+        }
+    }
+
+    #[test]
+    fn the_sse_node_test_answers_as_the_portable_one() {
+        let mut x: u64 = 11;
+        let mut next = move || {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let root = Aabb {
+            min: DVec3::splat(-4.0),
+            max: DVec3::splat(4.0),
+        };
+        let (mut met, mut checked) = (0, 0);
+        for k in 0..20_000 {
+            let mut n = EMPTY_NODE;
+            // Up to four boxes, some flat, the rest of the lanes empty.
+            for lane in 0..(k % 4 + 1) {
+                for a in 0..3 {
+                    let lo = (next() * 8.0 - 4.0) as f32;
+                    let size = if next() < 0.1 {
+                        0.0
+                    } else {
+                        next() as f32 * 6.0
+                    };
+                    n.b[a][lane] = lo;
+                    n.b[a + 3][lane] = lo + size;
+                }
+                n.child[lane] = lane as u32;
+            }
+            // Lines aimed at the boxes' middle, some along an axis or in
+            // a plane.
+            let o = DVec3::new(next(), next(), next()) * 12.0 - DVec3::splat(6.0);
+            let mut d = DVec3::new(next(), next(), next()) * 3.0 - DVec3::splat(1.5) - o;
+            if k % 5 == 0 {
+                d[k % 3] = 0.0;
+            }
+            let mut o = o;
+            if k % 7 == 0 {
+                // Along an axis, in a plane of the first box (0·∞ is NaN
+                // there: such a slab constrains nothing).
+                let axis = k % 3;
+                d = [DVec3::X, DVec3::NEG_Y, DVec3::Z][axis];
+                for a in (0..3).filter(|&a| a != axis) {
+                    o[a] = 0.0;
+                    // The line's origin there is rounded out by one step
+                    // either way (`above32`, `below32`).
+                    let side = (k / 7) % 2;
+                    let step = f32::from_bits(1);
+                    n.b[a + 3 * side][0] = if side == 0 { step } else { -step };
+                    n.b[a][0] = n.b[a][0].min(n.b[a + 3][0]);
+                    n.b[a + 3][0] = n.b[a][0].max(n.b[a + 3][0]);
+                }
+            }
+            let Some(l) = Line32::new(&root, o, d, f64::NEG_INFINITY, f64::INFINITY) else {
+                continue;
+            };
+            let [sse, portable] = both(&l, &n, l.tmax);
+            assert_eq!(sse.0, portable.0, "{o} {d}");
+            for lane in 0..WIDTH {
+                assert_eq!(sse.1[lane].to_bits(), portable.1[lane].to_bits(), "{o} {d}");
+            }
+            met += sse.0.count_ones();
+            checked += 1;
+        }
+        assert!(checked > 15_000 && met > 4_000, "{checked} {met}");
     }
 }
