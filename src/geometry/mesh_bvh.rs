@@ -39,8 +39,9 @@ use smallvec::SmallVec;
 use std::mem::MaybeUninit;
 
 /// The most triangles in a leaf (at most 8: the count is kept in 3 bits).
-/// Two: on the bench's 1.3-million-triangle mesh, 2.96 triangle tests a
-/// ray for 52.5 boxes, against 4.86 for 50.0 with four, and 15 % faster.
+/// Two: on the bench's 1.3-million-triangle mesh, 2.96 triangle tests and
+/// 13.5 nodes a ray, against 4.86 and 12.5 with four, and 15 % faster;
+/// with three, measured again with the walk of 2026-12-03, the same time.
 pub const LEAF_MAX: usize = 2;
 
 /// The largest mesh coordinate (2⁶⁰): a slab distance, at most 2⁶² over a
