@@ -184,10 +184,25 @@ impl MeshData {
         tmax: f64,
         st: &mut crate::stats::Stats,
     ) -> Option<(f64, u32, bool)> {
+        self.nearest_and_before(o, d, tmin, tmax, st).0
+    }
+
+    /// [`nearest`](Self::nearest), and whether the line may meet the
+    /// mesh's box at or before tmin (`false` when it has no crossing in
+    /// (tmin, tmax)): if not, no crossing lies before tmin.
+    pub fn nearest_and_before(
+        &self,
+        o: DVec3,
+        d: DVec3,
+        tmin: f64,
+        tmax: f64,
+        st: &mut crate::stats::Stats,
+    ) -> (Option<(f64, u32, bool)>, bool) {
         let mut w = Lazy::new(o, d);
         let mut best: Option<(f64, u32, bool)> = None;
         let mut tested = 0;
-        self.bvh
+        let before = self
+            .bvh
             .visit_near_first(&self.bounds, o, d, tmin, tmax, st, |first, n| {
                 let Some(w) = w.get() else {
                     return f64::INFINITY;
@@ -206,7 +221,7 @@ impl MeshData {
                 best.map_or(f64::INFINITY, |b| b.0)
             });
         st.triangle_tests += tested;
-        best
+        (best, before && best.is_some())
     }
 }
 
@@ -358,16 +373,18 @@ impl Solid for Mesh {
             // the parity of the crossings up to tmin (none when the box
             // begins after tmin), asked only for a first hit's normal. A
             // shadow ray takes the first crossing it meets.
-            let x = if q.need == Need::AnyBoundary {
-                m.any(q.o, q.d, q.tmin, q.tmax, q.st)
+            // (A line whose piece in the mesh's box begins after tmin has
+            // no crossing before it: no walk for the parity.)
+            let (x, before) = if q.need == Need::AnyBoundary {
+                (m.any(q.o, q.d, q.tmin, q.tmax, q.st), false)
             } else {
-                m.nearest(q.o, q.d, q.tmin, q.tmax, q.st)
+                m.nearest_and_before(q.o, q.d, q.tmin, q.tmax, q.st)
             };
             let Some(x) = x else {
                 return;
             };
             let entering = q.need == Need::AnyBoundary
-                || !MeshBvh::meets(&m.bounds, q.o, q.d, f64::NEG_INFINITY, q.tmin)
+                || !before
                 || m.crossings(q.o, q.d, f64::NEG_INFINITY, q.tmin, q.st).len() % 2 == 0;
             let part = part_of(x, entering);
             if entering {

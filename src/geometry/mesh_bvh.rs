@@ -395,12 +395,6 @@ impl MeshBvh {
         Line32::new(root, o, d, tmin, tmax)
     }
 
-    /// Whether the line `o + t·d` may meet the box `root` for some t in
-    /// [tmin, tmax] (the test every walk begins with; rounded outward).
-    pub fn meets(root: &Aabb, o: DVec3, d: DVec3, tmin: f64, tmax: f64) -> bool {
-        piece_in(root, o, DVec3::ONE / d, tmin, tmax).is_some()
-    }
-
     /// Calls `leaf(first, count)` for every leaf whose box the line `o +
     /// t·d` may meet for some t in [tmin, tmax] within `root` (the mesh's
     /// box), in a fixed order, until it returns `true`.
@@ -445,7 +439,9 @@ impl MeshBvh {
     /// Calls `leaf(first, count)` for the leaves whose boxes the line may
     /// meet within [tmin, tmax] and `root`, nearest box first, skipping
     /// every box that begins beyond the cut `leaf` returns (the nearest
-    /// crossing so far; ∞ for none).
+    /// crossing so far; ∞ for none). Returns whether the line may meet
+    /// `root` at or before `tmin` too (the same outward-rounded slab test
+    /// over (−∞, tmin]; `false` when it meets nothing in [tmin, tmax]).
     #[allow(clippy::too_many_arguments)]
     pub fn visit_near_first(
         &self,
@@ -456,9 +452,9 @@ impl MeshBvh {
         tmax: f64,
         st: &mut Stats,
         leaf: impl FnMut(u32, u32) -> f64,
-    ) {
+    ) -> bool {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
-            return;
+            return false;
         };
         // One walk for each octant of directions: which plane of each
         // slab is the near one is then known when it is compiled.
@@ -472,6 +468,7 @@ impl MeshBvh {
             6 => self.near_first::<6>(&l, st, leaf),
             _ => self.near_first::<7>(&l, st, leaf),
         }
+        l.before
     }
 
     /// [`visit_near_first`](Self::visit_near_first) for a line whose
@@ -668,19 +665,32 @@ struct Split {
     centres: [Box32; 2],
 }
 
-/// The piece `[lo, hi]` of `[tmin, tmax]` in which the line `o + t·d`
-/// (`inv` = 1 / d) may lie in the bounded box `b`, widened for rounding;
-/// `None` if there is none. A line in a plane of a slab along which it does not move (a
-/// `0·∞` NaN) is within that slab.
-fn piece_in(b: &Aabb, o: DVec3, inv: DVec3, tmin: f64, tmax: f64) -> Option<(f64, f64)> {
-    let t0 = (b.min - o) * inv;
-    let t1 = (b.max - o) * inv;
-    // An axis with a NaN constrains nothing.
-    let nan = t0.is_nan_mask() | t1.is_nan_mask();
-    let near = DVec3::select(nan, DVec3::NEG_INFINITY, t0.min(t1));
-    let far = DVec3::select(nan, DVec3::INFINITY, t0.max(t1));
-    let lo = tmin.max(near.max_element());
-    let hi = tmax.min(far.min_element());
+/// Where the line `o + t·d` (`inv` = 1 / d) may enter the bounded box `b`
+/// and leave it, over all t: the greatest of its slabs' near distances
+/// and the least of their far ones (an axis with a NaN constrains
+/// nothing).
+fn slabs(b: &Aabb, o: DVec3, inv: DVec3) -> (f64, f64) {
+    let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
+    for a in 0..3 {
+        let x = (b.min[a] - o[a]) * inv[a];
+        let y = (b.max[a] - o[a]) * inv[a];
+        // Plain compares (no NaN rules of `f64::min`): both are numbers
+        // when `ok`.
+        let ok = !(x.is_nan() | y.is_nan());
+        let (n, f) = if x < y { (x, y) } else { (y, x) };
+        near = if ok & (n > near) { n } else { near };
+        far = if ok & (f < far) { f } else { far };
+    }
+    (near, far)
+}
+
+/// The piece `[lo, hi]` of `[tmin, tmax]` within [`slabs`]' `(near,
+/// far)`, widened for rounding; `None` if there is none. A line in a plane
+/// of a slab along which it does not move (a `0·∞` NaN) is within that
+/// slab.
+fn clip((near, far): (f64, f64), tmin: f64, tmax: f64) -> Option<(f64, f64)> {
+    let lo = tmin.max(near);
+    let hi = tmax.min(far);
     const W: f64 = 8.0 * f64::EPSILON;
     let (lo, hi) = (lo - W * lo.abs(), hi + W * hi.abs());
     (lo <= hi && lo.is_finite() && hi.is_finite()).then_some((lo, hi))
@@ -700,6 +710,9 @@ struct Line32 {
     /// t'' = (t − s)·p.
     s: f64,
     p: f64,
+    /// Whether the line may meet the box at or before the `tmin` it was
+    /// set up for.
+    before: bool,
 }
 
 impl Line32 {
@@ -709,7 +722,10 @@ impl Line32 {
             return None;
         }
         let inv = DVec3::ONE / d;
-        let (lo, hi) = piece_in(root, o, inv, tmin, tmax)?;
+        let both = slabs(root, o, inv);
+        let (lo, hi) = clip(both, tmin, tmax)?;
+        // The same test over (−∞, tmin], from the same slabs.
+        let before = clip(both, f64::NEG_INFINITY, tmin).is_some();
         let s = 0.5 * lo + 0.5 * hi;
         // p = 2^e with m / p in [1, 2): o + t·d = o' + t''·(d / p), with
         // o' = o + s·d and t'' = (t − s)·p, every step exact but o'.
@@ -744,6 +760,7 @@ impl Line32 {
             eps,
             s,
             p,
+            before,
         };
         let mdp = dp.abs().max_element();
         for a in 0..3 {
