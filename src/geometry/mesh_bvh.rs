@@ -307,6 +307,48 @@ const TWO_POW_M23: f64 = 1.192_092_895_507_812_5e-7;
 /// 2⁻¹⁴⁹, the least `f32` step.
 const F32_TINY: f64 = 1.401_298_464_324_817e-45;
 
+/// `$body` with `$o` a constant equal to `$octant` (0 to 7): a walk
+/// compiled for each octant of directions, so that which plane of each
+/// slab is the near one is known when it is compiled.
+macro_rules! by_octant {
+    ($octant:expr, $o:ident => $body:expr) => {
+        match $octant {
+            0 => {
+                const $o: u8 = 0;
+                $body
+            }
+            1 => {
+                const $o: u8 = 1;
+                $body
+            }
+            2 => {
+                const $o: u8 = 2;
+                $body
+            }
+            3 => {
+                const $o: u8 = 3;
+                $body
+            }
+            4 => {
+                const $o: u8 = 4;
+                $body
+            }
+            5 => {
+                const $o: u8 = 5;
+                $body
+            }
+            6 => {
+                const $o: u8 = 6;
+                $body
+            }
+            _ => {
+                const $o: u8 = 7;
+                $body
+            }
+        }
+    };
+}
+
 impl MeshBvh {
     /// The hierarchy of `tris` over `verts` (at most 2²⁸ triangles, every
     /// coordinate within ±[`MAX_COORD`]), and the order to put the
@@ -407,16 +449,28 @@ impl MeshBvh {
         tmin: f64,
         tmax: f64,
         st: &mut Stats,
-        mut leaf: impl FnMut(u32, u32) -> bool,
+        leaf: impl FnMut(u32, u32) -> bool,
     ) {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return;
         };
+        by_octant!(l.octant, O => self.every::<O>(&l, st, leaf))
+    }
+
+    /// [`visit`](Self::visit) for a line whose direction has the signs
+    /// `OCTANT` (bit a set: negative along axis a).
+    #[inline(always)]
+    fn every<const OCTANT: u8>(
+        &self,
+        l: &Line32,
+        st: &mut Stats,
+        mut leaf: impl FnMut(u32, u32) -> bool,
+    ) {
         let mut stack = Stack::new();
         stack.push(0);
         while let Some(at) = stack.pop() {
             let n = &self.nodes[at as usize];
-            let (near, _) = l.test_any(n, l.tmax);
+            let (near, _) = l.test::<OCTANT>(n, l.tmax);
             for (lane, &c) in n.child.iter().enumerate() {
                 if c == EMPTY_LANE {
                     continue;
@@ -456,18 +510,7 @@ impl MeshBvh {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return false;
         };
-        // One walk for each octant of directions: which plane of each
-        // slab is the near one is then known when it is compiled.
-        match l.octant() {
-            0 => self.near_first::<0>(&l, st, leaf),
-            1 => self.near_first::<1>(&l, st, leaf),
-            2 => self.near_first::<2>(&l, st, leaf),
-            3 => self.near_first::<3>(&l, st, leaf),
-            4 => self.near_first::<4>(&l, st, leaf),
-            5 => self.near_first::<5>(&l, st, leaf),
-            6 => self.near_first::<6>(&l, st, leaf),
-            _ => self.near_first::<7>(&l, st, leaf),
-        }
+        by_octant!(l.octant, O => self.near_first::<O>(&l, st, leaf));
         l.before
     }
 
@@ -702,8 +745,9 @@ struct Line32 {
     on: [f32; 3],
     of: [f32; 3],
     inv: [f32; 3],
-    /// Whether the near plane of each axis is the box's upper one.
-    neg: [bool; 3],
+    /// The direction's signs: bit a set when the near plane along axis a
+    /// is the box's upper one.
+    octant: u8,
     tmin: f32,
     tmax: f32,
     eps: f32,
@@ -754,7 +798,7 @@ impl Line32 {
             on: [0.0; 3],
             of: [0.0; 3],
             inv: [0.0; 3],
-            neg: [false; 3],
+            octant: 0,
             tmin: tmin32,
             tmax: tmax32,
             eps,
@@ -775,33 +819,13 @@ impl Line32 {
             } else {
                 (p * inv[a]) as f32
             };
-            l.neg[a] = !parallel && dp[a] < 0.0;
+            let neg = !parallel && dp[a] < 0.0;
+            l.octant |= u8::from(neg) << a;
             let up = above32(op[a] + err);
             let dn = below32(op[a] - err);
-            (l.on[a], l.of[a]) = if l.neg[a] { (dn, up) } else { (up, dn) };
+            (l.on[a], l.of[a]) = if neg { (dn, up) } else { (up, dn) };
         }
         Some(l)
-    }
-
-    /// The direction's signs: bit a set when the near plane along axis a
-    /// is the box's upper one.
-    fn octant(&self) -> u8 {
-        (0..3).map(|a| u8::from(self.neg[a]) << a).sum()
-    }
-
-    /// [`test`](Self::test) for a walk not specialised by octant.
-    #[inline(always)]
-    fn test_any(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
-        match self.octant() {
-            0 => self.test::<0>(n, tmax),
-            1 => self.test::<1>(n, tmax),
-            2 => self.test::<2>(n, tmax),
-            3 => self.test::<3>(n, tmax),
-            4 => self.test::<4>(n, tmax),
-            5 => self.test::<5>(n, tmax),
-            6 => self.test::<6>(n, tmax),
-            _ => self.test::<7>(n, tmax),
-        }
     }
 
     /// `t` in the line's own `f32` measure, rounded up.
@@ -894,21 +918,7 @@ mod tests {
 
     /// Both of a line's tests of `n`, for the octant of its direction.
     fn both(l: &Line32, n: &Node, tmax: f32) -> [(u32, [f32; WIDTH]); 2] {
-        macro_rules! pair {
-            ($o:literal) => {
-                [l.test_sse::<$o>(n, tmax), l.test_portable::<$o>(n, tmax)]
-            };
-        }
-        match l.octant() {
-            0 => pair!(0),
-            1 => pair!(1),
-            2 => pair!(2),
-            3 => pair!(3),
-            4 => pair!(4),
-            5 => pair!(5),
-            6 => pair!(6),
-            _ => pair!(7),
-        }
+        by_octant!(l.octant, O => [l.test_sse::<O>(n, tmax), l.test_portable::<O>(n, tmax)])
     }
 
     #[test]
