@@ -215,8 +215,8 @@ impl Box32 {
 
     /// Half the surface area (the SAH's measure), 0 for an empty box.
     fn area(&self) -> f64 {
-        // Written out (not through `[_; 3]::map`, which was not made
-        // inline here: a fifth of the build).
+        // Written out, not through `[_; 3]::map` (the SAH weighs about 30
+        // boxes a split: a tenth of the build's instructions).
         let e = |a: usize| (self.hi[a] as f64 - self.lo[a] as f64).max(0.0);
         let (x, y, z) = (e(0), e(1), e(2));
         x * y + y * z + z * x
