@@ -329,7 +329,6 @@ impl Csg {
                         tmax: q.tmax,
                         st: &mut *q.st,
                         sc: &mut *q.sc,
-                        need: Need::Spans,
                     },
                 ),
                 // Along the frame's z: all of the line or none of it.
@@ -387,25 +386,78 @@ impl Csg {
     }
 
     fn push_prim_spans(&self, id: u32, q: &mut Query) {
-        q.st.primitive_tests += 1;
+        let stack = &mut q.sc.stack;
+        self.prim_spans(id, q.ray, q.tmin, q.tmax, Need::Spans, q.st, |s| {
+            stack.push(s)
+        });
+    }
+
+    /// Calls `emit` with the spans of primitive `id` along `ray` (see
+    /// [`Solid::spans`](crate::geometry::solid::Solid::spans)), asked for
+    /// `need`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn prim_spans(
+        &self,
+        id: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        need: Need,
+        st: &mut Stats,
+        mut emit: impl FnMut(Span),
+    ) {
+        st.primitive_tests += 1;
         let p = &self.prims[id as usize];
-        let (o, d) = p.xf.ray_to_object(q.ray);
+        let (o, d) = p.xf.ray_to_object(ray);
         let mut probe = Probe {
             o,
             d,
-            tmin: q.tmin,
-            tmax: q.tmax,
-            st: &mut *q.st,
-            need: q.need,
+            tmin,
+            tmax,
+            st,
+            need,
         };
-        let stack = &mut q.sc.stack;
         p.shape.spans(&mut probe, &mut |(t0, p0, t1, p1)| {
             let b = |t, part| Boundary::new(t, id, part);
-            stack.push(Span {
+            emit(Span {
                 enter: b(t0, p0),
                 exit: b(t1, p1),
             })
         });
+    }
+
+    /// [`Csg::first_boundary_for`] of a tree that is one leaf, primitive
+    /// `id`: its first surface boundary read off its spans as they come,
+    /// with no scratch list (its box tested first, as any node's).
+    #[allow(clippy::too_many_arguments)]
+    fn leaf_first(
+        &self,
+        node: u32,
+        id: u32,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        need: Need,
+    ) -> Option<Boundary> {
+        st.bound_tests += 1;
+        if !self.nodes[node as usize].bounds.hit(ray, tmin, tmax) {
+            st.bound_culled += 1;
+            return None;
+        }
+        let (mut first, mut count) = (None, 0u64);
+        self.prim_spans(id, ray, tmin, tmax, need, st, |s| {
+            count += 1;
+            if first.is_none() {
+                first = [s.enter, s.exit]
+                    .into_iter()
+                    .find(|b| b.t > tmin && b.is_surface());
+            }
+        });
+        // The leaf's list, counted as if held.
+        st.max_spans = st.max_spans.max(count);
+        first.filter(|b| b.t < tmax)
     }
 
     /// The first surface boundary with `tmin < t < tmax`, if any.
@@ -430,13 +482,12 @@ impl Csg {
         need: Need,
     ) -> Option<Boundary> {
         let root = self.root?;
+        if let NodeKind::Leaf(id) = self.nodes[root as usize].kind {
+            return self.leaf_first(root, id, ray, tmin, tmax, st, need);
+        }
         query(ray, tmin, tmax, st, |q| {
             match &self.nodes[root as usize].kind {
                 NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q),
-                NodeKind::Leaf(_) => {
-                    q.need = need;
-                    self.push_spans(root, q)
-                }
                 _ => self.push_spans(root, q),
             };
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
@@ -483,7 +534,6 @@ impl Csg {
                     tmax,
                     st,
                     sc: &mut *sc,
-                    need: Need::Spans,
                 };
                 add(c, &mut child);
                 cut(&child.sc.stack[base..])
@@ -626,9 +676,6 @@ struct Query<'a> {
     tmax: f64,
     st: &'a mut Stats,
     sc: &'a mut Scratch,
-    /// What is read of the answer: less than every span only for a leaf
-    /// that is the whole tree (see [`Need`]).
-    need: Need,
 }
 
 /// Runs `f` on a query over (tmin, tmax) built on this thread's scratch.
@@ -640,7 +687,6 @@ fn query<R>(ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats, f: impl FnOnce(&mut
             tmax,
             st,
             sc,
-            need: Need::Spans,
         })
     })
 }
@@ -655,7 +701,6 @@ impl Query<'_> {
             tmax: hi,
             st: &mut *self.st,
             sc: &mut *self.sc,
-            need: Need::Spans,
         }
     }
 }
