@@ -685,7 +685,7 @@ mod tests {
             for k in 0..4000 {
                 // Aimed at a vertex, an edge's midpoint or anywhere, from
                 // near or far, along an axis (zero components), nearly
-                // along one (tiny ones) or in any direction.
+                // along one (tiny ones, subnormal too) or in any direction.
                 let a = rng.pick(&pts);
                 let b = rng.pick(&pts);
                 let target = match k % 3 {
@@ -696,7 +696,11 @@ mod tests {
                 let mut d = match k % 4 {
                     0 => DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5),
                     1 => [DVec3::X, DVec3::Y, DVec3::Z, -DVec3::Z][k / 4 % 4],
-                    2 => DVec3::new(1e-25 * (rng.next() - 0.5), rng.next() - 0.5, 1.0),
+                    2 => DVec3::new(
+                        rng.pick(&[1e-25, 1e-313]) * (rng.next() - 0.5),
+                        rng.next() - 0.5,
+                        1.0,
+                    ),
                     _ => b - a + DVec3::new(0.0, 0.0, scale * 0.05),
                 };
                 if d == DVec3::ZERO {

@@ -708,18 +708,22 @@ struct Split {
     centres: [Box32; 2],
 }
 
-/// Where the line `o + t·d` (`inv` = 1 / d) may enter the bounded box `b`
-/// and leave it, over all t: the greatest of its slabs' near distances
-/// and the least of their far ones (an axis with a NaN constrains
-/// nothing).
-fn slabs(b: &Aabb, o: DVec3, inv: DVec3) -> (f64, f64) {
+/// Where the line `o + t·d` may enter the bounded box `b` and leave it,
+/// over all t: the greatest of its slabs' near distances and the least of
+/// their far ones. Only the axes along which the line moves by at least
+/// [`PARALLEL`] of its largest component `m` constrain it: along the others
+/// a rounding of the line's position is more than its motion, and the
+/// walk's own tests bound the position instead (see [`Line32::new`]).
+/// Divided, not multiplied by 1 / d: a component below 2⁻¹⁰²⁴ has no
+/// finite inverse.
+fn slabs(b: &Aabb, o: DVec3, d: DVec3, m: f64) -> (f64, f64) {
     let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
     for a in 0..3 {
-        let x = (b.min[a] - o[a]) * inv[a];
-        let y = (b.max[a] - o[a]) * inv[a];
+        let x = (b.min[a] - o[a]) / d[a];
+        let y = (b.max[a] - o[a]) / d[a];
         // Plain compares (no NaN rules of `f64::min`): both are numbers
-        // when `ok`.
-        let ok = !(x.is_nan() | y.is_nan());
+        // when `ok` (an overflow to ±∞ is a number).
+        let ok = !(x.is_nan() | y.is_nan()) & (d[a].abs() >= PARALLEL * m);
         let (n, f) = if x < y { (x, y) } else { (y, x) };
         near = if ok & (n > near) { n } else { near };
         far = if ok & (f < far) { f } else { far };
@@ -765,8 +769,7 @@ impl Line32 {
         if !(m > 0.0 && m.is_finite() && o.is_finite()) {
             return None;
         }
-        let inv = DVec3::ONE / d;
-        let both = slabs(root, o, inv);
+        let both = slabs(root, o, d, m);
         let (lo, hi) = clip(both, tmin, tmax)?;
         // The same test over (−∞, tmin], from the same slabs.
         let before = clip(both, f64::NEG_INFINITY, tmin).is_some();
@@ -813,11 +816,12 @@ impl Line32 {
             if parallel {
                 err += dp[a].abs() * tt * 1.01;
             }
-            // 1 / (d / p) = p · (1 / d), rounded alike (p is a power of two).
+            // Not parallel: |d / p| is at least 2⁻⁶⁰, its inverse finite
+            // even where 1 / d is not.
             l.inv[a] = if parallel {
                 f32::INFINITY
             } else {
-                (p * inv[a]) as f32
+                (1.0 / dp[a]) as f32
             };
             let neg = !parallel && dp[a] < 0.0;
             l.octant |= u8::from(neg) << a;
