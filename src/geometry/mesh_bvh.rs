@@ -300,6 +300,20 @@ fn below32(x: f64) -> f32 {
     (x - (x.abs() * TWO_POW_M23 + F32_TINY)) as f32
 }
 
+/// The greatest power of two at most `m` (positive and finite, subnormal
+/// too), exactly.
+pub(crate) fn pow2_floor(m: f64) -> f64 {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    if m >= f64::MIN_POSITIVE {
+        f64::from_bits(m.to_bits() & EXPONENT)
+    } else {
+        // Through 2^64 and back (exact scalings of a power of two): 2^e by
+        // `powi` is 1 / 2^-e, zero for e below -1023.
+        f64::from_bits((m * 18_446_744_073_709_551_616.0).to_bits() & EXPONENT)
+            * 5.421_010_862_427_522e-20
+    }
+}
+
 /// 2⁻²³: twice the largest relative rounding of an `f32` (round to
 /// nearest moves a value by at most 2⁻²⁴ of itself, or by 2⁻¹⁵⁰ below the
 /// normal range).
@@ -776,18 +790,7 @@ impl Line32 {
         let s = 0.5 * lo + 0.5 * hi;
         // p = 2^e with m / p in [1, 2): o + t·d = o' + t''·(d / p), with
         // o' = o + s·d and t'' = (t − s)·p, every step exact but o'.
-        let p = if m >= f64::MIN_POSITIVE {
-            // m's exponent alone.
-            f64::from_bits(m.to_bits() & 0x7ff0_0000_0000_0000)
-        } else {
-            let mut p = 2f64.powi(m.log2().floor() as i32);
-            if m / p >= 2.0 {
-                p *= 2.0;
-            } else if m / p < 1.0 {
-                p *= 0.5;
-            }
-            p
-        };
+        let p = pow2_floor(m);
         let dp = d / p;
         let local = |t: f64| (t - s) * p;
         let tl = local(lo);
@@ -923,6 +926,33 @@ mod tests {
     /// Both of a line's tests of `n`, for the octant of its direction.
     fn both(l: &Line32, n: &Node, tmax: f32) -> [(u32, [f32; WIDTH]); 2] {
         by_octant!(l.octant, O => [l.test_sse::<O>(n, tmax), l.test_portable::<O>(n, tmax)])
+    }
+
+    #[test]
+    fn pow2_floor_is_the_power_of_two_below_every_float() {
+        // 2^e from its bits: the exponent field for a normal one, the one
+        // set bit of the fraction for a subnormal one.
+        let two_to = |e: i32| {
+            if e >= -1022 {
+                f64::from_bits(((e + 1023) as u64) << 52)
+            } else {
+                f64::from_bits(1u64 << (e + 1074))
+            }
+        };
+        for e in -1074..=1023 {
+            let p = two_to(e);
+            assert_eq!(pow2_floor(p), p, "2^{e}");
+            // The greatest float below 2^(e+1), and a point in between.
+            if e < 1023 {
+                let next = two_to(e + 1);
+                let below = f64::from_bits(next.to_bits() - 1);
+                assert_eq!(pow2_floor(below), p, "below 2^{}", e + 1);
+            }
+            // (1.5 · 2^-1074 is not a float: it rounds to 2^-1073.)
+            if e > -1074 {
+                assert_eq!(pow2_floor(p * 1.5), p, "1.5 * 2^{e}");
+            }
+        }
     }
 
     #[test]
