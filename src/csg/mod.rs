@@ -450,9 +450,7 @@ impl Csg {
         self.prim_spans(id, ray, tmin, tmax, need, st, |s| {
             count += 1;
             if first.is_none() {
-                first = [s.enter, s.exit]
-                    .into_iter()
-                    .find(|b| b.t > tmin && b.is_surface());
+                first = first_surface(std::slice::from_ref(&s), tmin);
             }
         });
         // The leaf's list, counted as if held.

@@ -724,20 +724,19 @@ struct Split {
 
 /// Where the line `o + t·d` may enter the bounded box `b` and leave it,
 /// over all t: the greatest of its slabs' near distances and the least of
-/// their far ones. Only the axes along which the line moves by at least
-/// [`PARALLEL`] of its largest component `m` constrain it: along the others
+/// their far ones. Only the axes not `parallel` constrain it: along those
 /// a rounding of the line's position is more than its motion, and the
 /// walk's own tests bound the position instead (see [`Line32::new`]).
 /// Divided, not multiplied by 1 / d: a component below 2⁻¹⁰²⁴ has no
 /// finite inverse.
-fn slabs(b: &Aabb, o: DVec3, d: DVec3, m: f64) -> (f64, f64) {
+fn slabs(b: &Aabb, o: DVec3, d: DVec3, parallel: [bool; 3]) -> (f64, f64) {
     let (mut near, mut far) = (f64::NEG_INFINITY, f64::INFINITY);
     for a in 0..3 {
         let x = (b.min[a] - o[a]) / d[a];
         let y = (b.max[a] - o[a]) / d[a];
         // Plain compares (no NaN rules of `f64::min`): both are numbers
         // when `ok` (an overflow to ±∞ is a number).
-        let ok = !(x.is_nan() | y.is_nan()) & (d[a].abs() >= PARALLEL * m);
+        let ok = !(x.is_nan() | y.is_nan() | parallel[a]);
         let (n, f) = if x < y { (x, y) } else { (y, x) };
         near = if ok & (n > near) { n } else { near };
         far = if ok & (f < far) { f } else { far };
@@ -746,9 +745,7 @@ fn slabs(b: &Aabb, o: DVec3, d: DVec3, m: f64) -> (f64, f64) {
 }
 
 /// The piece `[lo, hi]` of `[tmin, tmax]` within [`slabs`]' `(near,
-/// far)`, widened for rounding; `None` if there is none. A line in a plane
-/// of a slab along which it does not move (a `0·∞` NaN) is within that
-/// slab.
+/// far)`, widened for rounding; `None` if there is none.
 fn clip((near, far): (f64, f64), tmin: f64, tmax: f64) -> Option<(f64, f64)> {
     let lo = tmin.max(near);
     let hi = tmax.min(far);
@@ -783,15 +780,20 @@ impl Line32 {
         if !(m > 0.0 && m.is_finite() && o.is_finite()) {
             return None;
         }
-        let both = slabs(root, o, d, m);
+        // p = 2^e with m / p in [1, 2): o + t·d = o' + t''·(d / p), with
+        // o' = o + s·d and t'' = (t − s)·p (s below), every step exact but
+        // o'.
+        let p = pow2_floor(m);
+        let dp = d / p;
+        let mdp = dp.abs().max_element();
+        // The axes along which the line moves too little for its slab
+        // distances to bound it: decided once, for the slabs and the walk.
+        let parallel: [bool; 3] = std::array::from_fn(|a| dp[a].abs() < PARALLEL * mdp);
+        let both = slabs(root, o, d, parallel);
         let (lo, hi) = clip(both, tmin, tmax)?;
         // The same test over (−∞, tmin], from the same slabs.
         let before = clip(both, f64::NEG_INFINITY, tmin).is_some();
         let s = 0.5 * lo + 0.5 * hi;
-        // p = 2^e with m / p in [1, 2): o + t·d = o' + t''·(d / p), with
-        // o' = o + s·d and t'' = (t − s)·p, every step exact but o'.
-        let p = pow2_floor(m);
-        let dp = d / p;
         let local = |t: f64| (t - s) * p;
         let tl = local(lo);
         let th = local(hi);
@@ -812,10 +814,9 @@ impl Line32 {
             p,
             before,
         };
-        let mdp = dp.abs().max_element();
         for a in 0..3 {
             let mut err = (o[a].abs() + (s * d[a]).abs()) * (2.0 * f64::EPSILON);
-            let parallel = dp[a].abs() < PARALLEL * mdp;
+            let parallel = parallel[a];
             if parallel {
                 err += dp[a].abs() * tt * 1.01;
             }
