@@ -1,10 +1,10 @@
-//! A mesh's own hierarchy: four-wide nodes of `f32` boxes over ranges of
+//! A mesh's own hierarchy: eight-wide nodes of `f32` boxes over ranges of
 //! its triangles, with no box kept for a triangle (Wald, Benthin and
-//! Boulos 2008's four-wide BVH; the layout of Embree's `BVH4`).
+//! Boulos 2008's multi-branching BVH; the layout of Embree's `BVH8`).
 //!
 //! Built top down by binned SAH (16 bins along the widest spread of
-//! triangle centres), each node taking the four largest parts of up to
-//! three splits; the triangles are put in leaf order, so that a leaf is a
+//! triangle centres), each node taking the eight largest parts of up to
+//! seven splits; the triangles are put in leaf order, so that a leaf is a
 //! range of at most [`LEAF_MAX`] of them.
 //!
 //! **Conservative in `f32`.** A box never culls a triangle that the exact
@@ -39,10 +39,18 @@ use smallvec::SmallVec;
 use std::mem::MaybeUninit;
 
 /// The most triangles in a leaf (at most 8: the count is kept in 3 bits).
-/// Two: on the bench's 1.3-million-triangle mesh, 2.96 triangle tests and
-/// 13.5 nodes a ray, against 4.86 and 12.5 with four, and 15 % faster;
-/// with three, measured again with the walk of 2026-12-03, the same time.
-pub const LEAF_MAX: usize = 2;
+/// A node's parts of more than [`SPLIT_ABOVE`] are split while it has
+/// lanes left; a part of three left when its eight lanes are taken is a
+/// leaf, not a node of two leaves and six empty lanes. On the bench's
+/// 1.3-million-triangle mesh (eight-wide, 2026-12-03): leaves of at most
+/// 2, 3 or 4 took the same time (3.0, 3.2, 3.5 triangle tests and 9.2,
+/// 9.0, 8.8 nodes a ray) with 229, 189 and 154 thousand nodes; three is
+/// the middle.
+pub const LEAF_MAX: usize = 3;
+/// A part of a node with more triangles than this is split while the node
+/// has lanes left (at two: 2.96 triangle tests a ray against 4.86 at
+/// four with the four-wide nodes, and 15 % faster).
+const SPLIT_ABOVE: usize = 2;
 
 /// The largest mesh coordinate (2⁶⁰): a slab distance, at most 2⁶² over a
 /// direction component of at least 2⁻⁶⁰, stays below `f32::MAX`.
@@ -53,19 +61,22 @@ pub fn too_far(points: &[DVec3]) -> Option<&DVec3> {
     points.iter().find(|p| p.abs().max_element() > MAX_COORD)
 }
 
-/// Children a node has.
-const WIDTH: usize = 4;
+/// Children a node has: eight, as Embree's `BVH8` on a processor with
+/// AVX. On the bench's mesh, against four: 9.2 nodes a ray instead of
+/// 13.7 for the same 3.0 triangle tests, 7 to 10 % faster (a walk waits
+/// on each node's load and its branches, not on its arithmetic).
+const WIDTH: usize = 8;
 const BINS: usize = 16;
 /// From this depth of binary splits on, a node is halved at its median
 /// (so that no mesh makes the tree, or a ray's stack, deeper than
 /// `MEDIAN_FROM + 28` levels).
 const MEDIAN_FROM: usize = 40;
-/// The most entries a walk's stack holds: three a level of the deepest
+/// The most entries a walk's stack holds: seven a level of the deepest
 /// tree the build makes.
 const STACK: usize = (WIDTH - 1) * (MEDIAN_FROM + 30) + 1;
 
-/// A walk's stack: an array of [`STACK`] entries, never cleared (1.7 kB
-/// to clear for each line took as long as a tenth of its walk).
+/// A walk's stack: an array of [`STACK`] entries, never cleared (3.9 kB;
+/// 1.7 kB to clear for each line took as long as a tenth of its walk).
 struct Stack<T> {
     top: usize,
     at: [MaybeUninit<T>; STACK],
@@ -116,7 +127,7 @@ const EMPTY_LANE: u32 = u32::MAX;
 const PARALLEL: f64 = 8.673_617_379_884_035e-19; // 2⁻⁶⁰
 const U32: f64 = 5.960_464_477_539_063e-8; // 2⁻²⁴
 
-/// Four children's boxes, axis by axis and lane by lane, and what each
+/// Eight children's boxes, axis by axis and lane by lane, and what each
 /// child is: an inner node's index, a leaf's range (`LEAF_BIT`, the count
 /// less one in bits 28–30, the first triangle below), or `EMPTY_LANE`
 /// (whose box is empty: +∞ below, −∞ above, never met).
@@ -385,7 +396,10 @@ impl MeshBvh {
             })
             .collect();
         let mut bvh = MeshBvh {
-            nodes: Vec::with_capacity(items.len() / 8 + 1),
+            // About one node for seven triangles: room for one for four,
+            // reserved but not touched, so that the vector never grows by
+            // a copy (which holds both at the peak); the rest handed back.
+            nodes: Vec::with_capacity(items.len() / 4 + 1),
         };
         if !items.is_empty() {
             let all = Box32::of(&items);
@@ -415,7 +429,7 @@ impl MeshBvh {
             // The largest part that is too big for a leaf is split.
             let mut pick: Option<(usize, f64)> = None;
             for (j, p) in parts.iter().enumerate() {
-                if p.1 - p.0 > LEAF_MAX && pick.map_or(true, |(_, a)| p.2.area() > a) {
+                if p.1 - p.0 > SPLIT_ABOVE && pick.map_or(true, |(_, a)| p.2.area() > a) {
                     pick = Some((j, p.2.area()));
                 }
             }
@@ -558,7 +572,7 @@ impl MeshBvh {
                 let n = &self.nodes[cur as usize];
                 let (mut mask, tn) = l.test::<OCTANT>(n, cut);
                 nodes += 1;
-                met += u64::from(BITS4[mask as usize]);
+                met += u64::from(BITS4[(mask & 15) as usize] + BITS4[(mask >> 4) as usize]);
                 if mask == 0 {
                     break;
                 }
@@ -879,8 +893,8 @@ impl Line32 {
         (hit, tn)
     }
 
-    /// [`test`](Self::test) with the four lanes at once in SSE registers:
-    /// the same operations, lane by lane, as the portable test, and the
+    /// [`test`](Self::test) four lanes at a time in SSE registers: the
+    /// same operations, lane by lane, as the portable test, and the
     /// same answers (a unit test compares them).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
@@ -888,34 +902,44 @@ impl Line32 {
     fn test_sse<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
         use std::arch::x86_64::*;
         // SAFETY: SSE and SSE2 are part of every x86_64 processor; each
-        // load and store reads or writes a whole `[f32; 4]`.
+        // load and store reads or writes four `f32` at 0 or 4 of eight.
         unsafe {
-            let mut tn = _mm_set1_ps(self.tmin);
-            let mut tf = _mm_set1_ps(tmax);
-            for a in 0..3 {
-                let (np, fp) = if OCTANT >> a & 1 == 1 {
-                    (&n.b[a + 3], &n.b[a])
-                } else {
-                    (&n.b[a], &n.b[a + 3])
-                };
-                let inv = _mm_set1_ps(self.inv[a]);
-                let t0 = _mm_mul_ps(
-                    _mm_sub_ps(_mm_loadu_ps(np.as_ptr()), _mm_set1_ps(self.on[a])),
-                    inv,
-                );
-                let t1 = _mm_mul_ps(
-                    _mm_sub_ps(_mm_loadu_ps(fp.as_ptr()), _mm_set1_ps(self.of[a])),
-                    inv,
-                );
-                // maxps and minps return their second operand when either
-                // is NaN: the running bound.
-                tn = _mm_max_ps(t0, tn);
-                tf = _mm_min_ps(t1, tf);
-            }
-            let met = _mm_cmple_ps(tn, _mm_add_ps(tf, _mm_set1_ps(self.eps)));
             let mut out = [0f32; WIDTH];
-            _mm_storeu_ps(out.as_mut_ptr(), tn);
-            (_mm_movemask_ps(met) as u32, out)
+            let mut mask = 0u32;
+            for h in 0..WIDTH / 4 {
+                let mut tn = _mm_set1_ps(self.tmin);
+                let mut tf = _mm_set1_ps(tmax);
+                for a in 0..3 {
+                    let (np, fp) = if OCTANT >> a & 1 == 1 {
+                        (&n.b[a + 3], &n.b[a])
+                    } else {
+                        (&n.b[a], &n.b[a + 3])
+                    };
+                    let inv = _mm_set1_ps(self.inv[a]);
+                    let t0 = _mm_mul_ps(
+                        _mm_sub_ps(
+                            _mm_loadu_ps(np.as_ptr().add(4 * h)),
+                            _mm_set1_ps(self.on[a]),
+                        ),
+                        inv,
+                    );
+                    let t1 = _mm_mul_ps(
+                        _mm_sub_ps(
+                            _mm_loadu_ps(fp.as_ptr().add(4 * h)),
+                            _mm_set1_ps(self.of[a]),
+                        ),
+                        inv,
+                    );
+                    // maxps and minps return their second operand when
+                    // either is NaN: the running bound.
+                    tn = _mm_max_ps(t0, tn);
+                    tf = _mm_min_ps(t1, tf);
+                }
+                let met = _mm_cmple_ps(tn, _mm_add_ps(tf, _mm_set1_ps(self.eps)));
+                _mm_storeu_ps(out.as_mut_ptr().add(4 * h), tn);
+                mask |= (_mm_movemask_ps(met) as u32) << (4 * h);
+            }
+            (mask, out)
         }
     }
 }
@@ -972,8 +996,8 @@ mod tests {
         let (mut met, mut checked) = (0, 0);
         for k in 0..20_000 {
             let mut n = EMPTY_NODE;
-            // Up to four boxes, some flat, the rest of the lanes empty.
-            for lane in 0..(k % 4 + 1) {
+            // Up to eight boxes, some flat, the rest of the lanes empty.
+            for lane in 0..(k % WIDTH + 1) {
                 for a in 0..3 {
                     let lo = (next() * 8.0 - 4.0) as f32;
                     let size = if next() < 0.1 {
