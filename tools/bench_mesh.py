@@ -13,7 +13,8 @@ to it, csgrt --threads 1, Embree's own threads too):
   build timed apart; each program's first pass after its build, Embree's
   second pass reported too); the ratio, and the pixels whose hit or miss differ
   (silhouettes), with how many of those lie on a silhouette edge;
-Each time is the median of 5 runs.
+Each time is the median of 7 runs; the primary rays' ratio is the median
+of 7 rounds' ratios, csgrt and Embree run back to back in each round.
 
 * load: csgrt's whole run on one ray (parse, STL, merge, triangulation,
   BVH) — wall-clock seconds — and its peak resident memory beyond a run
@@ -44,7 +45,7 @@ import oracle  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DIR = os.path.join(ROOT, "bench", "mesh")
 R = 20.0
-ROUNDS = 5
+ROUNDS = 7
 
 
 def generate(edge):
@@ -145,17 +146,12 @@ def main():
         load_wall = statistics.median(x[0] for x in loads)
         load_rss = max(x[1] for x in loads)
         beyond = (load_rss - empty_rss - 50 * ntri) / ntri
-        # Primary rays.
+        # Primary rays: csgrt and Embree on the same triangles and rays, one
+        # after the other in each round, so that both meet the same phase of
+        # a machine whose speed drifts by 10 to 20 % from one minute to the
+        # next; the ratio is the median of the rounds' own ratios.
         st = os.path.join(work, "st.json")
         hits = os.path.join(work, "hits.txt")
-        traces = []
-        for _ in range(ROUNDS):
-            with open(hits, "w") as out:
-                subprocess.run(one + [a.csgrt, scene, "--trace-rays", rfile, "--threads", "1", "--stats-json", st], check=True, stdout=out)
-            traces.append(json.load(open(st))["render_seconds"])
-        csgrt_trace = statistics.median(traces)
-        mine = [line.split()[0] != "miss" for line in open(hits)]
-        # Embree on the same triangles and rays.
         from embreex import rtcore_scene as rtcs
         from embreex.mesh_construction import TriangleMesh
 
@@ -163,12 +159,16 @@ def main():
         tris = rec["v"].astype(np.float32)
         origins = np.array([o for o, _ in rays], dtype=np.float32)
         dirs = np.array([d for _, d in rays], dtype=np.float32)
+        traces = []
         # Like csgrt's, each of Embree's timed passes is the first over the
         # rays after its build (a fresh scene each round): both programs
         # begin with their hierarchies out of the caches. A second pass over
         # the same scene (caches warm from the first) is reported too.
         embree_builds, embree_traces, embree_warm = [], [], []
         for _ in range(ROUNDS):
+            with open(hits, "w") as out:
+                subprocess.run(one + [a.csgrt, scene, "--trace-rays", rfile, "--threads", "1", "--stats-json", st], check=True, stdout=out)
+            traces.append(json.load(open(st))["render_seconds"])
             es = None
             t0 = time.perf_counter()
             es = rtcs.EmbreeScene()
@@ -181,9 +181,13 @@ def main():
             t0 = time.perf_counter()
             es.run(origins, dirs)
             embree_warm.append(time.perf_counter() - t0)
+        csgrt_trace = statistics.median(traces)
+        mine = [line.split()[0] != "miss" for line in open(hits)]
         embree_build = statistics.median(embree_builds)
         embree_trace = statistics.median(embree_traces)
         warm = statistics.median(embree_warm)
+        ratios = sorted(c / e for c, e in zip(traces, embree_traces))
+        warm_ratios = sorted(c / e for c, e in zip(traces, embree_warm))
         theirs = list(np.asarray(ids) >= 0)
         grid = np.array(mine).reshape(h, w)
         diff = np.array(mine) != np.array(theirs)
@@ -197,8 +201,8 @@ def main():
         parse = next((float(x.split("(")[1].split()[0]) for x in r.stderr.splitlines() if "Parse Time:" in x), float("nan"))
     rows = [
         f"triangles: {ntri} ({os.path.getsize(stl) / 1e6:.1f} MB binary STL), {w}x{h} camera rays, one core",
-        f"primary rays: csgrt {csgrt_trace:.3f} s, Embree {embree_trace:.3f} s (rtcIntersect1 per ray through embreex), ratio {csgrt_trace / embree_trace:.2f} (each program's first pass after its build)",
-        f"primary rays, Embree's second pass over the same scene: {warm:.3f} s, ratio {csgrt_trace / warm:.2f}",
+        f"primary rays: csgrt {csgrt_trace:.3f} s, Embree {embree_trace:.3f} s (rtcIntersect1 per ray through embreex; medians), ratio {statistics.median(ratios):.2f} (median of the rounds' ratios, {ratios[0]:.2f} to {ratios[-1]:.2f}; each program's first pass after its build)",
+        f"primary rays, Embree's second pass over the same scene: {warm:.3f} s, ratio {statistics.median(warm_ratios):.2f} ({warm_ratios[0]:.2f} to {warm_ratios[-1]:.2f})",
         f"silhouettes: {int(diff.sum())} of {len(mine)} pixels differ in hit or miss, {int((diff & edge).sum())} of them on csgrt's silhouette edge",
         f"load (parse, STL, merge, BVH) + one ray: csgrt {load_wall:.3f} s wall (an empty scene: {empty_wall:.3f} s); Embree's build alone {embree_build:.3f} s",
         f"memory: peak RSS {load_rss / 1e6:.0f} MB, {beyond:.0f} bytes a triangle beyond the empty run and the STL's 50",

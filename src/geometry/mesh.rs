@@ -293,7 +293,7 @@ impl Watertight {
 
     /// `(t, whether the triangle's normal (b − a) × (c − a) faces along
     /// d)` where the line crosses it, if it does (by the rules above).
-    #[inline]
+    #[inline(always)]
     fn hit(&self, p: [&DVec3; 3]) -> Option<(f64, bool)> {
         let [kx, ky, kz] = self.k;
         let s = self.s;

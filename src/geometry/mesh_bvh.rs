@@ -139,6 +139,13 @@ struct Node {
     child: [u32; WIDTH],
 }
 
+/// Whether this processor has AVX (asked once: the answer is kept).
+#[cfg(target_arch = "x86_64")]
+#[inline]
+fn has_avx() -> bool {
+    std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("popcnt")
+}
+
 /// How many bits of a four-bit mask are set (a table: `count_ones` is a
 /// dozen instructions on a processor without `popcnt`, such as the
 /// x86-64 baseline this crate is built for).
@@ -538,14 +545,38 @@ impl MeshBvh {
         let Some(l) = self.line(root, o, d, tmin, tmax) else {
             return false;
         };
-        by_octant!(l.octant, O => self.near_first::<O>(&l, st, leaf));
+        #[cfg(target_arch = "x86_64")]
+        if has_avx() {
+            // SAFETY: the processor has AVX.
+            by_octant!(l.octant, O => unsafe { self.near_first_avx::<O>(&l, st, leaf) });
+            return l.before;
+        }
+        by_octant!(l.octant, O => self.near_first::<O, false>(&l, st, leaf));
         l.before
     }
 
+    /// [`near_first`](Self::near_first) compiled for AVX, its node test
+    /// eight lanes at once.
+    ///
+    /// # Safety
+    /// The processor must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx,popcnt")]
+    unsafe fn near_first_avx<const OCTANT: u8>(
+        &self,
+        l: &Line32,
+        st: &mut Stats,
+        leaf: impl FnMut(u32, u32) -> f64,
+    ) {
+        self.near_first::<OCTANT, true>(l, st, leaf)
+    }
+
     /// [`visit_near_first`](Self::visit_near_first) for a line whose
-    /// direction has the signs `OCTANT` (bit a set: negative along axis a).
+    /// direction has the signs `OCTANT` (bit a set: negative along axis a),
+    /// its node test in AVX registers if `AVX` (only where inlined into
+    /// [`near_first_avx`](Self::near_first_avx)).
     #[inline(always)]
-    fn near_first<const OCTANT: u8>(
+    fn near_first<const OCTANT: u8, const AVX: bool>(
         &self,
         l: &Line32,
         st: &mut Stats,
@@ -570,9 +601,13 @@ impl MeshBvh {
                     break;
                 }
                 let n = &self.nodes[cur as usize];
-                let (mut mask, tn) = l.test::<OCTANT>(n, cut);
+                let (mut mask, tn) = l.test_with::<OCTANT, AVX>(n, cut);
                 nodes += 1;
-                met += u64::from(BITS4[(mask & 15) as usize] + BITS4[(mask >> 4) as usize]);
+                met += u64::from(if AVX {
+                    mask.count_ones()
+                } else {
+                    BITS4[(mask & 15) as usize] + BITS4[(mask >> 4) as usize]
+                });
                 if mask == 0 {
                     break;
                 }
@@ -866,6 +901,62 @@ impl Line32 {
         return self.test_portable::<OCTANT>(n, tmax);
     }
 
+    /// [`test`](Self::test), in AVX registers if `AVX`.
+    #[inline(always)]
+    fn test_with<const OCTANT: u8, const AVX: bool>(
+        &self,
+        n: &Node,
+        tmax: f32,
+    ) -> (u32, [f32; WIDTH]) {
+        #[cfg(target_arch = "x86_64")]
+        if AVX {
+            // SAFETY: `AVX` is only set in a walk compiled for AVX, which
+            // runs only where the processor has it.
+            return unsafe { self.test_avx::<OCTANT>(n, tmax) };
+        }
+        self.test::<OCTANT>(n, tmax)
+    }
+
+    /// [`test`](Self::test) with the eight lanes at once in AVX registers:
+    /// the same operations, lane by lane, as the other tests, and the same
+    /// answers (a unit test compares them).
+    ///
+    /// # Safety
+    /// The processor must have AVX (and the caller be compiled for it, or
+    /// every intrinsic is a call).
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    unsafe fn test_avx<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+        use std::arch::x86_64::*;
+        let mut tn = _mm256_set1_ps(self.tmin);
+        let mut tf = _mm256_set1_ps(tmax);
+        for a in 0..3 {
+            let (np, fp) = if OCTANT >> a & 1 == 1 {
+                (&n.b[a + 3], &n.b[a])
+            } else {
+                (&n.b[a], &n.b[a + 3])
+            };
+            let inv = _mm256_set1_ps(self.inv[a]);
+            let t0 = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_loadu_ps(np.as_ptr()), _mm256_set1_ps(self.on[a])),
+                inv,
+            );
+            let t1 = _mm256_mul_ps(
+                _mm256_sub_ps(_mm256_loadu_ps(fp.as_ptr()), _mm256_set1_ps(self.of[a])),
+                inv,
+            );
+            // vmaxps and vminps return their second operand when either is
+            // NaN, as maxps and minps: the running bound.
+            tn = _mm256_max_ps(t0, tn);
+            tf = _mm256_min_ps(t1, tf);
+        }
+        // cmpleps's own predicate (ordered, signalling).
+        let met = _mm256_cmp_ps::<_CMP_LE_OS>(tn, _mm256_add_ps(tf, _mm256_set1_ps(self.eps)));
+        let mut out = [0f32; WIDTH];
+        _mm256_storeu_ps(out.as_mut_ptr(), tn);
+        (_mm256_movemask_ps(met) as u32, out)
+    }
+
     /// [`test`](Self::test) lane by lane, in any processor's own `f32`.
     #[cfg_attr(target_arch = "x86_64", allow(dead_code))]
     #[inline(always)]
@@ -953,6 +1044,12 @@ mod tests {
         by_octant!(l.octant, O => [l.test_sse::<O>(n, tmax), l.test_portable::<O>(n, tmax)])
     }
 
+    /// The AVX test, compiled for AVX.
+    #[target_feature(enable = "avx")]
+    unsafe fn avx_test<const O: u8>(l: &Line32, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+        l.test_avx::<O>(n, tmax)
+    }
+
     #[test]
     fn pow2_floor_is_the_power_of_two_below_every_float() {
         // 2^e from its bits: the exponent field for a normal one, the one
@@ -993,7 +1090,7 @@ mod tests {
             min: DVec3::splat(-4.0),
             max: DVec3::splat(4.0),
         };
-        let (mut met, mut checked) = (0, 0);
+        let (mut met, mut checked, mut avx_checked, mut grazed) = (0, 0, 0, 0);
         for k in 0..20_000 {
             let mut n = EMPTY_NODE;
             // Up to eight boxes, some flat, the rest of the lanes empty.
@@ -1037,14 +1134,52 @@ mod tests {
             let Some(l) = Line32::new(&root, o, d, f64::NEG_INFINITY, f64::INFINITY) else {
                 continue;
             };
+            if k % 4 == 3 && k % 7 != 0 {
+                // A box with a corner by the line: met only within the
+                // test's ε of a graze, or just missed.
+                let lane = k % WIDTH;
+                let t = l.s + (next() - 0.5) * 0.1;
+                // Entered along x up to three ε after it is left along y.
+                let late = next() * 3.0 * f64::from(l.eps) / l.p;
+                let p = o + t * d;
+                let size = 0.5 + next() as f32;
+                let (x, y) = ((o.x + (t + late) * d.x) as f32, p.y as f32);
+                (n.b[0][lane], n.b[3][lane]) = if d.x > 0.0 {
+                    (x, x + size)
+                } else {
+                    (x - size, x)
+                };
+                (n.b[1][lane], n.b[4][lane]) = if d.y > 0.0 {
+                    (y - size, y)
+                } else {
+                    (y, y + size)
+                };
+                n.b[2][lane] = p.z as f32 - size;
+                n.b[5][lane] = p.z as f32 + size;
+                n.child[lane] = lane as u32;
+            }
             let [sse, portable] = both(&l, &n, l.tmax);
+            let flush = Line32 { eps: 0.0, ..l };
+            grazed += (portable.0 & !both(&flush, &n, l.tmax)[1].0).count_ones();
             assert_eq!(sse.0, portable.0, "{o} {d}");
             for lane in 0..WIDTH {
                 assert_eq!(sse.1[lane].to_bits(), portable.1[lane].to_bits(), "{o} {d}");
+            }
+            if has_avx() {
+                // SAFETY: the processor has AVX.
+                let avx = by_octant!(l.octant, O => unsafe { avx_test::<O>(&l, &n, l.tmax) });
+                assert_eq!(avx.0, portable.0, "{o} {d}");
+                for lane in 0..WIDTH {
+                    assert_eq!(avx.1[lane].to_bits(), portable.1[lane].to_bits(), "{o} {d}");
+                }
+                avx_checked += 1;
             }
             met += sse.0.count_ones();
             checked += 1;
         }
         assert!(checked > 15_000 && met > 4_000, "{checked} {met}");
+        // Boxes met only thanks to ε, on which the tests must agree too.
+        assert!(grazed > 200, "{grazed}");
+        assert!(avx_checked == checked || !has_avx());
     }
 }
