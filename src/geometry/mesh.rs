@@ -41,6 +41,13 @@ pub struct MeshData {
     pub tris: Vec<[u32; 3]>,
     bvh: MeshBvh,
     bounds: Aabb,
+    /// Each triangle's corners in `f32`, triangle by triangle, when every
+    /// point is exactly an `f32` (a binary STL's always are); empty
+    /// otherwise. The triangle tests read a leaf's corners here, in one
+    /// place, instead of its triangles' indices and then the shared points
+    /// they name (two loads, the second waiting on the first); the values,
+    /// and so every answer, are the same.
+    flat: Vec<[f32; 9]>,
 }
 
 impl PartialEq for MeshData {
@@ -78,15 +85,43 @@ impl MeshData {
         kept.shrink_to_fit();
         let verts = kept;
         let bounds = verts.iter().fold(Aabb::EMPTY, |b, &v| b.include(v));
+        let in_f32 = |x: f64| f64::from(x as f32) == x;
+        let flat = if verts
+            .iter()
+            .all(|v| in_f32(v.x) && in_f32(v.y) && in_f32(v.z))
+        {
+            tris.iter()
+                .map(|t| {
+                    let [a, b, c] = t.map(|k| verts[k as usize].as_vec3());
+                    [a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z]
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
         MeshData {
             verts,
             tris,
             bvh,
             bounds,
+            flat,
         }
     }
 
+    /// Whether the triangles' corners are also kept flat in `f32`.
+    #[cfg(test)]
+    fn has_flat_corners(&self) -> bool {
+        !self.flat.is_empty()
+    }
+
+    /// Triangle `i`'s corners.
+    #[inline(always)]
     fn corners(&self, i: u32) -> [DVec3; 3] {
+        if let Some(c) = self.flat.get(i as usize) {
+            let v =
+                |k: usize| DVec3::new(f64::from(c[k]), f64::from(c[k + 1]), f64::from(c[k + 2]));
+            return [v(0), v(3), v(6)];
+        }
         self.corner_refs(i).map(|v| *v)
     }
 
@@ -104,7 +139,13 @@ impl MeshData {
     /// line `w` with triangle `i`, if any.
     #[inline(always)]
     fn cross(&self, w: &Watertight, i: u32) -> Option<(f64, u32, bool)> {
-        w.hit(self.corner_refs(i)).map(|(t, along)| (t, i, along))
+        let hit = if self.flat.is_empty() {
+            w.hit(self.corner_refs(i))
+        } else {
+            let [a, b, c] = self.corners(i);
+            w.hit([&a, &b, &c])
+        };
+        hit.map(|(t, along)| (t, i, along))
     }
 
     /// The crossings `(t, triangle, the triangle's normal faces along d)`
@@ -658,14 +699,14 @@ mod tests {
         out
     }
 
-    /// A grid of triangles over decimal coordinates (none an `f32`),
-    /// bent, at `offset` and `scale`.
-    fn grid(n: usize, offset: DVec3, scale: f64) -> MeshData {
+    /// A grid of triangles `step` apart, bent, at `offset` and `scale`
+    /// (over decimal steps, no coordinate is an `f32`).
+    fn grid(n: usize, offset: DVec3, scale: f64, step: f64) -> MeshData {
         let mut verts = Vec::new();
         for j in 0..=n {
             for i in 0..=n {
-                let (x, y) = (i as f64 * 0.1, j as f64 * 0.1);
-                let z = if (i + j) % 3 == 0 { 0.1 } else { 0.0 };
+                let (x, y) = (i as f64 * step, j as f64 * step);
+                let z = if (i + j) % 3 == 0 { step } else { 0.0 };
                 verts.push(offset + scale * DVec3::new(x, y, z));
             }
         }
@@ -685,13 +726,18 @@ mod tests {
         let mut rng = Lcg(7);
         let mut crossings = 0;
         let mut st = crate::stats::Stats::default();
-        for (offset, scale) in [
-            (DVec3::ZERO, 1.0),
-            (DVec3::new(1e6, -3e5, 7e5), 1.0),
-            (DVec3::new(0.3, 0.7, -0.1), 1e-7),
-            (DVec3::new(-2e12, 5e11, 1e12), 3e4),
+        for (offset, scale, step) in [
+            (DVec3::ZERO, 1.0, 0.1),
+            (DVec3::new(1e6, -3e5, 7e5), 1.0, 0.1),
+            (DVec3::new(0.3, 0.7, -0.1), 1e-7, 0.1),
+            (DVec3::new(-2e12, 5e11, 1e12), 3e4, 0.1),
+            // Every point an `f32`: the tests read the flat corners (the
+            // brute force below still reads the points).
+            (DVec3::ZERO, 1.0, 0.125),
+            (DVec3::new(1024.0, -512.0, 1000.0), 1.0 / 1024.0, 0.375),
         ] {
-            let m = grid(12, offset, scale);
+            let m = grid(12, offset, scale, step);
+            assert_eq!(m.has_flat_corners(), step != 0.1, "{offset} {scale} {step}");
             let pts: Vec<DVec3> = m.verts.clone();
             for k in 0..4000 {
                 // Aimed at a vertex, an edge's midpoint or anywhere, from
