@@ -139,7 +139,8 @@ struct Node {
     child: [u32; WIDTH],
 }
 
-/// Whether this processor has AVX (asked once: the answer is kept).
+/// Whether this processor has AVX and `popcnt` (asked once: the answers are
+/// kept).
 #[cfg(target_arch = "x86_64")]
 #[inline]
 fn has_avx() -> bool {
@@ -547,7 +548,7 @@ impl MeshBvh {
         };
         #[cfg(target_arch = "x86_64")]
         if has_avx() {
-            // SAFETY: the processor has AVX.
+            // SAFETY: the processor has AVX and popcnt.
             by_octant!(l.octant, O => unsafe { self.near_first_avx::<O>(&l, st, leaf) });
             return l.before;
         }
@@ -555,11 +556,12 @@ impl MeshBvh {
         l.before
     }
 
-    /// [`near_first`](Self::near_first) compiled for AVX, its node test
-    /// eight lanes at once.
+    /// [`near_first`](Self::near_first) compiled for AVX (and `popcnt`,
+    /// which every processor with AVX has), its node test eight lanes at
+    /// once.
     ///
     /// # Safety
-    /// The processor must have AVX.
+    /// The processor must have AVX and `popcnt` ([`has_avx`]).
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx,popcnt")]
     unsafe fn near_first_avx<const OCTANT: u8>(
