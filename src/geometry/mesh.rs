@@ -117,12 +117,10 @@ impl MeshData {
     /// Triangle `i`'s corners.
     #[inline(always)]
     fn corners(&self, i: u32) -> [DVec3; 3] {
-        if let Some(c) = self.flat.get(i as usize) {
-            let v =
-                |k: usize| DVec3::new(f64::from(c[k]), f64::from(c[k + 1]), f64::from(c[k + 2]));
-            return [v(0), v(3), v(6)];
+        match self.flat.get(i as usize) {
+            Some(c) => unflatten(c),
+            None => self.corner_refs(i).map(|v| *v),
         }
-        self.corner_refs(i).map(|v| *v)
     }
 
     #[inline]
@@ -139,11 +137,14 @@ impl MeshData {
     /// line `w` with triangle `i`, if any.
     #[inline(always)]
     fn cross(&self, w: &Watertight, i: u32) -> Option<(f64, u32, bool)> {
-        let hit = if self.flat.is_empty() {
-            w.hit(self.corner_refs(i))
-        } else {
-            let [a, b, c] = self.corners(i);
-            w.hit([&a, &b, &c])
+        // The shared points by reference where there are no flat corners
+        // (copied through `[_; 3]::map`, they were not made inline).
+        let hit = match self.flat.get(i as usize) {
+            Some(c) => {
+                let [a, b, c] = unflatten(c);
+                w.hit([&a, &b, &c])
+            }
+            None => w.hit(self.corner_refs(i)),
         };
         hit.map(|(t, along)| (t, i, along))
     }
@@ -264,6 +265,13 @@ impl MeshData {
         st.triangle_tests += tested;
         (best, before && best.is_some())
     }
+}
+
+/// A triangle's flat `f32` corners as the `f64` points they are.
+#[inline(always)]
+fn unflatten(c: &[f32; 9]) -> [DVec3; 3] {
+    let v = |k: usize| DVec3::new(f64::from(c[k]), f64::from(c[k + 1]), f64::from(c[k + 2]));
+    [v(0), v(3), v(6)]
 }
 
 /// A line's [`Watertight`] set-up, made when first asked for (a line

@@ -139,6 +139,20 @@ struct Node {
     child: [u32; WIDTH],
 }
 
+impl Node {
+    /// The near and the far planes of the boxes along axis `a` for a line
+    /// whose direction has the signs `OCTANT` (bit a set: the near plane is
+    /// the upper one).
+    #[inline(always)]
+    fn planes<const OCTANT: u8>(&self, a: usize) -> (&[f32; WIDTH], &[f32; WIDTH]) {
+        if OCTANT >> a & 1 == 1 {
+            (&self.b[a + 3], &self.b[a])
+        } else {
+            (&self.b[a], &self.b[a + 3])
+        }
+    }
+}
+
 /// Whether this processor has AVX and `popcnt` (asked once: the answers are
 /// kept).
 #[cfg(target_arch = "x86_64")]
@@ -933,11 +947,7 @@ impl Line32 {
         let mut tn = _mm256_set1_ps(self.tmin);
         let mut tf = _mm256_set1_ps(tmax);
         for a in 0..3 {
-            let (np, fp) = if OCTANT >> a & 1 == 1 {
-                (&n.b[a + 3], &n.b[a])
-            } else {
-                (&n.b[a], &n.b[a + 3])
-            };
+            let (np, fp) = n.planes::<OCTANT>(a);
             let inv = _mm256_set1_ps(self.inv[a]);
             let t0 = _mm256_mul_ps(
                 _mm256_sub_ps(_mm256_loadu_ps(np.as_ptr()), _mm256_set1_ps(self.on[a])),
@@ -966,11 +976,7 @@ impl Line32 {
         let mut tn = [self.tmin; WIDTH];
         let mut tf = [tmax; WIDTH];
         for a in 0..3 {
-            let (np, fp) = if OCTANT >> a & 1 == 1 {
-                (&n.b[a + 3], &n.b[a])
-            } else {
-                (&n.b[a], &n.b[a + 3])
-            };
+            let (np, fp) = n.planes::<OCTANT>(a);
             let (on, of, inv) = (self.on[a], self.of[a], self.inv[a]);
             for k in 0..WIDTH {
                 let t0 = (np[k] - on) * inv;
@@ -1003,11 +1009,7 @@ impl Line32 {
                 let mut tn = _mm_set1_ps(self.tmin);
                 let mut tf = _mm_set1_ps(tmax);
                 for a in 0..3 {
-                    let (np, fp) = if OCTANT >> a & 1 == 1 {
-                        (&n.b[a + 3], &n.b[a])
-                    } else {
-                        (&n.b[a], &n.b[a + 3])
-                    };
+                    let (np, fp) = n.planes::<OCTANT>(a);
                     let inv = _mm_set1_ps(self.inv[a]);
                     let t0 = _mm_mul_ps(
                         _mm_sub_ps(
