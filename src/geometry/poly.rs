@@ -31,6 +31,16 @@ pub fn eval(c: &[f64], degree: usize, x: f64) -> f64 {
     v
 }
 
+/// [`eval`] of a degree known when compiling: the same operations, unrolled.
+#[inline(always)]
+fn eval_n<const D: usize>(c: &Poly, x: f64) -> f64 {
+    let mut v = c[D];
+    for i in (0..D).rev() {
+        v = v * x + c[i];
+    }
+    v
+}
+
 fn derivative(c: &Poly, degree: usize) -> Poly {
     let mut d = [0.0; MAX_DEGREE + 1];
     for i in 1..=degree {
@@ -47,33 +57,41 @@ pub fn roots_in(c: &Poly, degree: usize, lo: f64, hi: f64, out: &mut Roots) -> u
     while degree > 0 && c[degree] == 0.0 {
         degree -= 1;
     }
-    if degree == 0 {
-        return 0;
-    }
-    if degree == 1 {
-        let x = -c[0] / c[1];
-        if x > lo && x < hi {
-            out[0] = x;
-            return 1;
+    match degree {
+        0 => 0,
+        1 => {
+            let x = -c[0] / c[1];
+            if x > lo && x < hi {
+                out[0] = x;
+                return 1;
+            }
+            0
         }
-        return 0;
+        2 => quadratic_in(c, lo, hi, out),
+        3 => split_in::<3>(c, lo, hi, out),
+        4 => split_in::<4>(c, lo, hi, out),
+        5 => split_in::<5>(c, lo, hi, out),
+        _ => split_in::<6>(c, lo, hi, out),
     }
-    if degree == 2 {
-        return quadratic_in(c, lo, hi, out);
-    }
+}
+
+/// [`roots_in`] of a polynomial of degree `D` ≥ 3 (`c[D]` not zero), each
+/// degree compiled on its own so that every evaluation is unrolled.
+#[inline(always)]
+fn split_in<const D: usize>(c: &Poly, lo: f64, hi: f64, out: &mut Roots) -> usize {
     // Split (lo, hi) at the critical points.
-    let d = derivative(c, degree);
+    let d = derivative(c, D);
     let mut crit = [0.0; MAX_DEGREE];
-    let nc = roots_in(&d, degree - 1, lo, hi, &mut crit);
+    let nc = roots_in(&d, D - 1, lo, hi, &mut crit);
     let mut n = 0;
     let mut a = lo;
-    let mut fa = eval(c, degree, a);
+    let mut fa = eval_n::<D>(c, a);
     for (i, &b) in crit[..nc].iter().chain(std::iter::once(&hi)).enumerate() {
-        let fb = eval(c, degree, b);
+        let fb = eval_n::<D>(c, b);
         if fa == 0.0 && i > 0 {
             // A root exactly on a critical point is a multiple root: skip it.
         } else if (fa < 0.0) != (fb < 0.0) && fb != 0.0 && n < MAX_DEGREE {
-            out[n] = refine(c, degree, &d, a, b, fa);
+            out[n] = refine::<D>(c, &d, a, b, fa);
             n += 1;
         }
         a = b;
@@ -107,11 +125,11 @@ fn quadratic_in(c: &Poly, lo: f64, hi: f64, out: &mut Roots) -> usize {
 /// The one root in `[a, b]`, where the polynomial is monotonic and changes
 /// sign: Newton steps, falling back to bisection when a step leaves the
 /// bracket or does not shrink it fast enough.
-fn refine(c: &Poly, degree: usize, d: &Poly, mut a: f64, mut b: f64, fa: f64) -> f64 {
+fn refine<const D: usize>(c: &Poly, d: &Poly, mut a: f64, mut b: f64, fa: f64) -> f64 {
     let rising = fa < 0.0;
     let mut x = 0.5 * (a + b);
     for _ in 0..200 {
-        let f = eval(c, degree, x);
+        let f = eval_n::<D>(c, x);
         if f == 0.0 {
             return x;
         }
@@ -120,7 +138,7 @@ fn refine(c: &Poly, degree: usize, d: &Poly, mut a: f64, mut b: f64, fa: f64) ->
         } else {
             b = x;
         }
-        let df = eval(d, degree - 1, x);
+        let df = eval_n_minus_1::<D>(d, x);
         let newton = x - f / df;
         let next = if newton > a && newton < b && df != 0.0 {
             newton
@@ -135,6 +153,16 @@ fn refine(c: &Poly, degree: usize, d: &Poly, mut a: f64, mut b: f64, fa: f64) ->
         x = next;
     }
     x
+}
+
+/// [`eval`] of the derivative of a polynomial of degree `D`.
+#[inline(always)]
+fn eval_n_minus_1<const D: usize>(d: &Poly, x: f64) -> f64 {
+    let mut v = d[D - 1];
+    for i in (0..D - 1).rev() {
+        v = v * x + d[i];
+    }
+    v
 }
 
 #[cfg(test)]
