@@ -552,7 +552,7 @@ impl Csg {
                 .partial_cmp(&(b.0, b.1))
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
-        for (entry, c) in order {
+        for &(entry, c) in &order {
             if entry > cut(&q.sc.stack[base..]) {
                 break;
             }
