@@ -94,46 +94,55 @@ fn widened(t: f64) -> f64 {
     t * if t >= 0.0 { WIDEN } else { 1.0 / WIDEN }
 }
 
-/// Two boxes laid out axis by axis, so that one slab test serves both
-/// (the two children of a hierarchy node, tested together).
+/// `N` boxes laid out axis by axis, so that one slab test serves them all
+/// (the two children of a binary hierarchy node, the four of a wide one).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AabbPair {
-    min: [[f64; 2]; 3],
-    max: [[f64; 2]; 3],
+pub struct AabbLanes<const N: usize> {
+    min: [[f64; N]; 3],
+    max: [[f64; N]; 3],
 }
+
+/// Two boxes tested together.
+pub type AabbPair = AabbLanes<2>;
 
 impl AabbPair {
     pub fn new(a: &Aabb, b: &Aabb) -> AabbPair {
-        let lanes = |u: DVec3, v: DVec3| [[u.x, v.x], [u.y, v.y], [u.z, v.z]];
-        AabbPair {
-            min: lanes(a.min, b.min),
-            max: lanes(a.max, b.max),
+        AabbLanes::of(&[*a, *b])
+    }
+}
+
+impl<const N: usize> AabbLanes<N> {
+    /// `boxes` (at most `N`) in the first lanes; a lane left over holds
+    /// [`Aabb::EMPTY`], whose answer means nothing (the caller knows how
+    /// many lanes it filled).
+    pub fn of(boxes: &[Aabb]) -> AabbLanes<N> {
+        assert!(boxes.len() <= N, "more boxes than lanes");
+        let at = |k: usize| boxes.get(k).unwrap_or(&Aabb::EMPTY);
+        AabbLanes {
+            min: std::array::from_fn(|i| std::array::from_fn(|k| at(k).min[i])),
+            max: std::array::from_fn(|i| std::array::from_fn(|k| at(k).max[i])),
         }
     }
 
-    /// [`Aabb::entry`] of both boxes, with the same operations in the same
-    /// order (so the same bits), written lane by lane so that the compiler
-    /// can do the two side by side.
+    /// [`Aabb::entry`] of every lane's box, with the same operations in
+    /// the same order (so the same bits), written lane by lane so that the
+    /// compiler can do the lanes side by side.
     #[inline]
-    pub fn entries(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; 2] {
+    pub fn entries(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; N] {
         let lt = |a: f64, b: f64| if a < b { a } else { b };
         let gt = |a: f64, b: f64| if a > b { a } else { b };
-        let mut lo = [tmin; 2];
-        let mut far = [f64::INFINITY; 2];
+        let mut lo = [tmin; N];
+        let mut far = [f64::INFINITY; N];
         for i in 0..3 {
             let (o, inv) = (ray.origin[i], ray.inv_dir[i]);
-            for k in 0..2 {
+            for k in 0..N {
                 let a = (self.min[i][k] - o) * inv;
                 let b = (self.max[i][k] - o) * inv;
                 lo[k] = gt(lt(a, b), lo[k]);
                 far[k] = lt(gt(a, b), far[k]);
             }
         }
-        let hi = far.map(|f| lt(widened(f), tmax));
-        [
-            (lo[0] <= hi[0]).then_some(lo[0]),
-            (lo[1] <= hi[1]).then_some(lo[1]),
-        ]
+        std::array::from_fn(|k| (lo[k] <= lt(widened(far[k]), tmax)).then_some(lo[k]))
     }
 }
 
@@ -260,6 +269,20 @@ mod tests {
             let got = AabbPair::new(&a, &b).entries(&ray, tmin, tmax);
             let want = [a.entry(&ray, tmin, tmax), b.entry(&ray, tmin, tmax)];
             prop_assert_eq!(got.map(|e| e.map(f64::to_bits)), want.map(|e| e.map(f64::to_bits)));
+        }
+
+        #[test]
+        fn four_lanes_give_the_same_bits_as_single_tests(
+            boxes in proptest::collection::vec(aabb(), 1..=4), o in vec3(), d in vec3(),
+            tmin in prop_oneof![Just(0.0), 0.0..2.0f64],
+            tmax in prop_oneof![Just(f64::INFINITY), 2.0..8.0f64],
+        ) {
+            let ray = Ray::new(o, d);
+            let got = AabbLanes::<4>::of(&boxes).entries(&ray, tmin, tmax);
+            for (k, b) in boxes.iter().enumerate() {
+                let want = b.entry(&ray, tmin, tmax);
+                prop_assert_eq!(got[k].map(f64::to_bits), want.map(f64::to_bits));
+            }
         }
     }
 }

@@ -95,7 +95,7 @@ impl Solid for Rounded {
             None => near.extend(0..self.pieces.len() as u32),
         }
         // The hierarchy's order is fixed; the spans are sorted below.
-        for i in near {
+        for &i in &near {
             let p = &self.pieces[i as usize];
             if !p.bounds.hit(&line, q.tmin, q.tmax) {
                 continue;
