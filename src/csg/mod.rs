@@ -9,6 +9,7 @@
 
 pub mod spans;
 
+use crate::geometry::aabb::AabbLanes;
 use crate::geometry::bvh::Bvh;
 use crate::geometry::robust::coincidence;
 use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
@@ -115,7 +116,15 @@ pub struct Node {
     pub bounds: Aabb,
     /// For a union of many children: a hierarchy over the bounded ones.
     pub index: Option<Box<UnionIndex>>,
+    /// For a union of [`LANES_MIN`] children or more: their boxes, four a
+    /// group in the children's order, tested four at once by a first-hit
+    /// query that sorts them (empty for other nodes).
+    pub lanes: Vec<AabbLanes<4>>,
 }
+
+/// From how many children a union's boxes are kept four to a group (fewer
+/// are tested one by one).
+pub const LANES_MIN: usize = 4;
 
 /// A union gets a hierarchy over its children from this many bounded ones.
 pub const UNION_INDEX_MIN: usize = 8;
@@ -161,6 +170,7 @@ impl Csg {
             kind: NodeKind::Leaf(id),
             bounds,
             index: None,
+            lanes: Vec::new(),
         })
     }
 
@@ -189,14 +199,21 @@ impl Csg {
         } else {
             None
         };
-        let kind = NodeKind::Op(op, children);
-        let mut node = Node {
-            kind,
-            bounds,
-            index: None,
+        let lanes = if op == Op::Union && children.len() >= LANES_MIN {
+            let boxes: Vec<Aabb> = children
+                .iter()
+                .map(|&c| self.nodes[c as usize].bounds)
+                .collect();
+            boxes.chunks(4).map(AabbLanes::of).collect()
+        } else {
+            Vec::new()
         };
-        node.index = index;
-        self.add_node(node)
+        self.add_node(Node {
+            kind: NodeKind::Op(op, children),
+            bounds,
+            index,
+            lanes,
+        })
     }
 
     /// Adds the section of node `child` (built with its primitives placed
@@ -222,6 +239,7 @@ impl Csg {
             kind: NodeKind::Section(child, k),
             bounds: Aabb::EVERYTHING,
             index: None,
+            lanes: Vec::new(),
         })
     }
 
@@ -539,12 +557,26 @@ impl Csg {
             return;
         }
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
-        for &c in ch {
-            q.st.bound_tests += 1;
-            match self.nodes[c as usize].bounds.entry(ray, tmin, tmax) {
-                Some(t) => order.push((t, c)),
-                None => q.st.bound_culled += 1,
+        if n.lanes.is_empty() {
+            for &c in ch {
+                q.st.bound_tests += 1;
+                match self.nodes[c as usize].bounds.entry(ray, tmin, tmax) {
+                    Some(t) => order.push((t, c)),
+                    None => q.st.bound_culled += 1,
+                }
             }
+        } else {
+            // The same entries, four boxes at once.
+            for (lanes, group) in n.lanes.iter().zip(ch.chunks(4)) {
+                let entries = lanes.entries(ray, tmin, tmax);
+                for (&c, e) in group.iter().zip(entries) {
+                    if let Some(t) = e {
+                        order.push((t, c));
+                    }
+                }
+            }
+            q.st.bound_tests += ch.len() as u64;
+            q.st.bound_culled += (ch.len() - order.len()) as u64;
         }
         // Entries are never NaN (the box test keeps `tmin` over NaN).
         order.sort_unstable_by(|a, b| {
