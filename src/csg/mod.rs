@@ -584,11 +584,14 @@ impl Csg {
                 .partial_cmp(&(b.0, b.1))
                 .unwrap_or(std::cmp::Ordering::Equal)
         });
+        // The cut of what has been added so far (nothing yet: none).
+        let mut now = f64::INFINITY;
         for &(entry, c) in &order {
-            if entry > cut(&q.sc.stack[base..]) {
+            if entry > now {
                 break;
             }
             add(c, q);
+            now = cut(&q.sc.stack[base..]);
         }
     }
 
@@ -689,9 +692,16 @@ pub const FILL_MAX: f64 = 1.0;
 
 /// The first real surface crossing after `tmin` in a list.
 fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
-    list.iter()
-        .flat_map(|s| [s.enter, s.exit])
-        .find(|b| b.t > tmin && b.is_surface())
+    // A plain loop: the iterator chain (flat_map over each span's two
+    // boundaries) took about a sixth of a union's first-hit query.
+    for s in list {
+        for b in [&s.enter, &s.exit] {
+            if b.t > tmin && b.is_surface() {
+                return Some(*b);
+            }
+        }
+    }
+    None
 }
 
 /// Spans a thread reserves for its queries before any query runs; a query
