@@ -91,6 +91,10 @@ impl Bvh {
     /// the largest binary node among them (by surface area, the first of
     /// equals) while what it opens into still fits in four lanes.
     fn collapse(&mut self, at: usize) -> u32 {
+        let n = &self.nodes[at];
+        if n.count > 4 {
+            return self.range_node(n.start, n.count);
+        }
         let mut lanes = self.opened(at);
         loop {
             let mut pick: Option<(usize, f64)> = None;
@@ -131,6 +135,40 @@ impl Bvh {
         }
         self.wide[me].boxes = AabbLanes::of(&boxes);
         self.wide[me].child = child;
+        me as u32
+    }
+
+    /// Adds a wide node over items `start..start + count` of a leaf of
+    /// more than four (a hierarchy built with larger leaves): four at most
+    /// a node, in runs of the leaf's order; returns its index.
+    fn range_node(&mut self, start: u32, count: u32) -> u32 {
+        let me = self.wide.len();
+        self.wide.push(Wide {
+            boxes: AabbLanes::of(&[]),
+            child: [u32::MAX; 4],
+            lanes: 0,
+        });
+        let runs = count.min(4);
+        let mut boxes: SmallVec<[Aabb; 4]> = SmallVec::new();
+        let mut child = [u32::MAX; 4];
+        let mut at = start;
+        for k in 0..runs {
+            // Runs of near-equal length, the longer first.
+            let len = count / runs + u32::from(k < count % runs);
+            let items = &self.item_bounds[at as usize..(at + len) as usize];
+            boxes.push(items.iter().fold(Aabb::EMPTY, |a, b| a.union(b)));
+            child[k as usize] = if len == 1 {
+                at | ITEM
+            } else {
+                self.range_node(at, len)
+            };
+            at += len;
+        }
+        self.wide[me] = Wide {
+            boxes: AabbLanes::of(&boxes),
+            child,
+            lanes: runs as u8,
+        };
         me as u32
     }
 
