@@ -692,8 +692,9 @@ pub const FILL_MAX: f64 = 1.0;
 
 /// The first real surface crossing after `tmin` in a list.
 fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
-    // A plain loop: the iterator chain (flat_map over each span's two
-    // boundaries) took about a sixth of a union's first-hit query.
+    // A plain loop, not a flat_map over each span's two boundaries (with
+    // the cut taken once a child is added: 2 % fewer instructions on the
+    // primitives model).
     for s in list {
         for b in [&s.enter, &s.exit] {
             if b.t > tmin && b.is_surface() {
