@@ -270,10 +270,10 @@ impl Bvh {
                     cut = visit(self.items[(c & !ITEM) as usize], st);
                     continue;
                 }
-                // Four boxes at once; those met are pushed farthest first
-                // (ties: the later lane first), so that the nearest pops
-                // first, and those beginning beyond the cut go straight to
-                // the skipped.
+                // Four boxes at once; those met are pushed farthest first,
+                // so that the nearest pops first (of equal entries, the
+                // later lane), and those beginning beyond the cut go
+                // straight to the skipped.
                 let n = &self.wide[c as usize];
                 let entries = n.boxes.entries(ray, tmin, tmax);
                 let lanes = n.lanes as usize;
