@@ -116,9 +116,10 @@ pub struct Node {
     pub bounds: Aabb,
     /// For a union of many children: a hierarchy over the bounded ones.
     pub index: Option<Box<UnionIndex>>,
-    /// For a union of [`LANES_MIN`] children or more: their boxes, four a
-    /// group in the children's order, tested four at once by a first-hit
-    /// query that sorts them (empty for other nodes).
+    /// For a union of [`LANES_MIN`] children or more whose first-hit query
+    /// sorts them (not one that walks its hierarchy): their boxes, four a
+    /// group in the children's order, tested four at once (empty for
+    /// other nodes).
     pub lanes: Vec<AabbLanes<4>>,
 }
 
@@ -199,7 +200,10 @@ impl Csg {
         } else {
             None
         };
-        let lanes = if op == Op::Union && children.len() >= LANES_MIN {
+        // Only where the sorting first-hit query reads them (a union that
+        // walks its hierarchy does not).
+        let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
+        let lanes = if op == Op::Union && sorts && children.len() >= LANES_MIN {
             let boxes: Vec<Aabb> = children
                 .iter()
                 .map(|&c| self.nodes[c as usize].bounds)

@@ -90,25 +90,18 @@ impl Aabb {
 /// as after it (a mesh counts its crossings from the line's start).
 #[inline(always)]
 fn widened(t: f64) -> f64 {
-    const WIDEN: f64 = 1.0 + 2.0 * GAMMA3;
     t * if t >= 0.0 { WIDEN } else { 1.0 / WIDEN }
 }
 
+/// The factor of [`widened`] (and of its SSE form in [`AabbLanes`]).
+const WIDEN: f64 = 1.0 + 2.0 * GAMMA3;
+
 /// `N` boxes laid out axis by axis, so that one slab test serves them all
-/// (the two children of a binary hierarchy node, the four of a wide one).
+/// (the four boxes of a wide hierarchy node, four children of a union).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AabbLanes<const N: usize> {
     min: [[f64; N]; 3],
     max: [[f64; N]; 3],
-}
-
-/// Two boxes tested together.
-pub type AabbPair = AabbLanes<2>;
-
-impl AabbPair {
-    pub fn new(a: &Aabb, b: &Aabb) -> AabbPair {
-        AabbLanes::of(&[*a, *b])
-    }
 }
 
 impl<const N: usize> AabbLanes<N> {
@@ -144,7 +137,6 @@ impl<const N: usize> AabbLanes<N> {
     #[inline(always)]
     fn entries_sse(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; N] {
         use std::arch::x86_64::*;
-        const WIDEN: f64 = 1.0 + 2.0 * GAMMA3;
         let mut out = [None; N];
         // SAFETY: SSE2 is part of x86_64; every load and store stays within
         // the arrays (N even, lanes k and k + 1).
@@ -319,7 +311,7 @@ mod tests {
             tmax in prop_oneof![Just(f64::INFINITY), 2.0..8.0f64],
         ) {
             let ray = Ray::new(o, d);
-            let got = AabbPair::new(&a, &b).entries(&ray, tmin, tmax);
+            let got = AabbLanes::<2>::of(&[a, b]).entries(&ray, tmin, tmax);
             let want = [a.entry(&ray, tmin, tmax), b.entry(&ray, tmin, tmax)];
             prop_assert_eq!(got.map(|e| e.map(f64::to_bits)), want.map(|e| e.map(f64::to_bits)));
         }
