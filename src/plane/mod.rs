@@ -366,13 +366,27 @@ impl Region {
 
     /// Whether point `p` is inside.
     pub fn contains(&self, p: DVec2) -> bool {
-        inside_by(self.edges_near(p, DVec2::X), p)
+        match self.tree {
+            None => inside_by(self.all_edges(), p),
+            Some(_) => inside_by(self.edges_near(p, DVec2::X), p),
+        }
     }
 
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
     pub fn crossings(&self, o: DVec2, d: DVec2) -> Cuts {
-        sorted_crossings(self.edges_near(o, d), o, d)
+        match self.tree {
+            None => sorted_crossings(self.all_edges(), o, d),
+            Some(_) => sorted_crossings(self.edges_near(o, d), o, d),
+        }
+    }
+
+    /// Every edge in order, as [`Region::edges_meeting`] gives them: for a
+    /// region without a tree, with no list of them made first.
+    fn all_edges(&self) -> impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)> + '_ {
+        (self.edges.iter().zip(&self.ctrl))
+            .enumerate()
+            .map(|(k, (&(a, b), &c))| (k as u32, a, c, b))
     }
 
     /// The edges that may cross the line `o + s·d`: all of them, but for
