@@ -209,95 +209,16 @@ impl Lathe {
         let meets = |lo: DVec2, hi: DVec2| {
             hi.y >= z_lo - pad && lo.y <= z_hi + pad && !apart_radially(lo, hi)
         };
-        // Edge k, with its ends' sides of the trace if known.
-        let mut cross = |k: usize, sides: Option<(bool, bool)>| {
+        // Straight edge k, its ends' sides of the trace `ga` and `gb`.
+        let mut line = |k: usize, ga: bool, gb: bool| {
             let (a, b) = self.profile.edges[k];
-            let ctrl = self.profile.ctrl[k];
             let (lo, hi) = self.boxes[k];
             // An edge whose ends lie on two sides of the trace is crossed
             // (within the heights it reaches and as near as its ends): the
             // test is for the others.
-            if !matches!(sides, Some((ga, gb)) if ga != gb) && !meets(lo, hi) {
+            if ga == gb && !meets(lo, hi) {
                 return;
             }
-            if ctrl != Ctrl::Line {
-                // A curve (r, z) = B(u): the line's height reaches z = Z(u)
-                // at t(u) = (Z(u) − o_z)/d_z, where its squared distance
-                // from the axis is ρ²(t(u)), so the curve's side of the
-                // line's trace is the sign of X(u)² − ρ²(t(u)), a
-                // polynomial of degree ≤ 6 (2·degree) in u.
-                let c = Curve::new(a, ctrl, b, DVec2::ZERO);
-                let deg = c.degree;
-                let mut xs = [0.0f64; MAX_DEGREE + 1];
-                let mut ts = [0.0f64; MAX_DEGREE + 1];
-                for i in 0..=deg {
-                    xs[i] = c.k[i].x;
-                    ts[i] = c.k[i].y / d.z;
-                }
-                ts[0] -= o.z / d.z;
-                let mul = |p: &Poly, q: &Poly| {
-                    let mut r = [0.0f64; MAX_DEGREE + 1];
-                    for i in 0..=deg {
-                        for j in 0..=deg {
-                            r[i + j] += p[i] * q[j];
-                        }
-                    }
-                    r
-                };
-                let (x2, t2) = (mul(&xs, &xs), mul(&ts, &ts));
-                let mut f = [0.0f64; MAX_DEGREE + 1];
-                for i in 0..=MAX_DEGREE {
-                    f[i] = x2[i] - (a2 * t2[i] + b2 * ts[i]);
-                }
-                f[0] -= c2;
-                // The expanded polynomial cancels; each root is polished
-                // by Newton steps on X(u)² − |o_xy + t(u)·d_xy|² itself.
-                let g = |u: f64| {
-                    let q = c.at(u);
-                    let t = (q.y - o.z) / d.z;
-                    let w = oxy + dxy * t;
-                    let dq = c.tangent(u);
-                    let val = q.x * q.x - w.length_squared();
-                    let der = 2.0 * q.x * dq.x - 2.0 * w.dot(dxy) * dq.y / d.z;
-                    (val, der)
-                };
-                side_changes(value(a), value(b), &f, 2 * deg, |u| {
-                    let u = if u == 0.0 || u == 1.0 {
-                        u
-                    } else {
-                        let mut u = u;
-                        for _ in 0..3 {
-                            let (v, dv) = g(u);
-                            if dv == 0.0 {
-                                break;
-                            }
-                            let next = (u - v / dv).clamp(0.0, 1.0);
-                            if (next - u).abs() > 1e-3 {
-                                break;
-                            }
-                            u = next;
-                        }
-                        u
-                    };
-                    let q = match u {
-                        0.0 => a,
-                        1.0 => b,
-                        _ => c.at(u),
-                    };
-                    // t from the height, or, for a line nearer the
-                    // horizontal, from the radius (the root at that height).
-                    let mut t = (q.y - o.z) / d.z;
-                    if d.z.abs() * d.z.abs() < 0.25 * a2 {
-                        if let Roots::Two(t0, t1) = roots(a2, b2, c2 - q.x * q.x) {
-                            let off = |t: f64| (o.z + t * d.z - q.y).abs();
-                            t = if off(t0) <= off(t1) { t0 } else { t1 };
-                        }
-                    }
-                    cuts.push((t, k as u32));
-                });
-                return;
-            }
-            let (ga, gb) = sides.unwrap_or_else(|| (side(a), side(b)));
             // The edge's line n·(r, z) = c turned about the axis is a cone:
             // n_r ρ(t) = c − n_z z(t), squared a quadratic in t (as stable
             // as the cone's own), its roots kept where ρ ≥ 0 is the nappe.
@@ -407,26 +328,16 @@ impl Lathe {
             // distance from the axis along the line is convex in the height
             // (a norm of an affine map of it) and along the edge affine, so
             // the trace stays nearer than the edge between them, and the
-            // edge is not crossed. Each vertex's side is found once.
-            if e - s <= 2 * BLOCK {
-                let mut ga = side(run[s].0);
-                for (i, &(_, b)) in run.iter().enumerate().take(e).skip(s) {
-                    let gb = side(b);
-                    if !(ga && gb) {
-                        cross(first + i, Some((ga, gb)));
-                    }
-                    ga = gb;
-                }
-                continue;
-            }
-            // Many edges: block by block. A block's box the trace passes
-            // clear of (farther from the axis than all of it, or nearer at
-            // both ends of its heights and so between them) holds no edge
-            // crossed.
+            // edge is not crossed. Each vertex's side is found once. More
+            // than two blocks of edges are looked at block by block: a
+            // block's box the trace passes clear of (farther from the axis
+            // than all of it, or nearer at both ends of its heights and so
+            // between them) holds no edge crossed.
+            let by_block = e - s > 2 * BLOCK;
             let mut ga = None;
             for j in s / BLOCK..e.div_ceil(BLOCK) {
                 let (lo, hi) = self.blocks[ch.block as usize + j];
-                if apart_radially(lo, hi) {
+                if by_block && apart_radially(lo, hi) {
                     ga = None;
                     continue;
                 }
@@ -438,22 +349,105 @@ impl Lathe {
                 {
                     let (sa, sb) = (ga.unwrap_or_else(|| side(a)), side(b));
                     if !(sa && sb) {
-                        cross(first + i, Some((sa, sb)));
+                        line(first + i, sa, sb);
                     }
                     ga = Some(sb);
                 }
             }
         }
+        // Curved edge k.
+        let mut curve = |k: usize| {
+            let (a, b) = self.profile.edges[k];
+            let ctrl = self.profile.ctrl[k];
+            let (lo, hi) = self.boxes[k];
+            if !meets(lo, hi) {
+                return;
+            }
+            // A curve (r, z) = B(u): the line's height reaches z = Z(u)
+            // at t(u) = (Z(u) − o_z)/d_z, where its squared distance
+            // from the axis is ρ²(t(u)), so the curve's side of the
+            // line's trace is the sign of X(u)² − ρ²(t(u)), a
+            // polynomial of degree ≤ 6 (2·degree) in u.
+            let c = Curve::new(a, ctrl, b, DVec2::ZERO);
+            let deg = c.degree;
+            let mut xs = [0.0f64; MAX_DEGREE + 1];
+            let mut ts = [0.0f64; MAX_DEGREE + 1];
+            for i in 0..=deg {
+                xs[i] = c.k[i].x;
+                ts[i] = c.k[i].y / d.z;
+            }
+            ts[0] -= o.z / d.z;
+            let mul = |p: &Poly, q: &Poly| {
+                let mut r = [0.0f64; MAX_DEGREE + 1];
+                for i in 0..=deg {
+                    for j in 0..=deg {
+                        r[i + j] += p[i] * q[j];
+                    }
+                }
+                r
+            };
+            let (x2, t2) = (mul(&xs, &xs), mul(&ts, &ts));
+            let mut f = [0.0f64; MAX_DEGREE + 1];
+            for i in 0..=MAX_DEGREE {
+                f[i] = x2[i] - (a2 * t2[i] + b2 * ts[i]);
+            }
+            f[0] -= c2;
+            // The expanded polynomial cancels; each root is polished
+            // by Newton steps on X(u)² − |o_xy + t(u)·d_xy|² itself.
+            let g = |u: f64| {
+                let q = c.at(u);
+                let t = (q.y - o.z) / d.z;
+                let w = oxy + dxy * t;
+                let dq = c.tangent(u);
+                let val = q.x * q.x - w.length_squared();
+                let der = 2.0 * q.x * dq.x - 2.0 * w.dot(dxy) * dq.y / d.z;
+                (val, der)
+            };
+            side_changes(value(a), value(b), &f, 2 * deg, |u| {
+                let u = if u == 0.0 || u == 1.0 {
+                    u
+                } else {
+                    let mut u = u;
+                    for _ in 0..3 {
+                        let (v, dv) = g(u);
+                        if dv == 0.0 {
+                            break;
+                        }
+                        let next = (u - v / dv).clamp(0.0, 1.0);
+                        if (next - u).abs() > 1e-3 {
+                            break;
+                        }
+                        u = next;
+                    }
+                    u
+                };
+                let q = match u {
+                    0.0 => a,
+                    1.0 => b,
+                    _ => c.at(u),
+                };
+                // t from the height, or, for a line nearer the
+                // horizontal, from the radius (the root at that height).
+                let mut t = (q.y - o.z) / d.z;
+                if d.z.abs() * d.z.abs() < 0.25 * a2 {
+                    if let Roots::Two(t0, t1) = roots(a2, b2, c2 - q.x * q.x) {
+                        let off = |t: f64| (o.z + t * d.z - q.y).abs();
+                        t = if off(t0) <= off(t1) { t0 } else { t1 };
+                    }
+                }
+                cuts.push((t, k as u32));
+            });
+        };
         // The curves: those of a large profile through its tree, whose
         // boxes hold their edges' boxes (a box the line's trace misses
         // holds no edge it meets).
         match &self.profile.tree {
             Some(tree) if self.curves.len() > FLAT_EDGES => tree.visit_boxes(meets, &mut |k| {
                 if self.profile.ctrl[k as usize] != Ctrl::Line {
-                    cross(k as usize, None)
+                    curve(k as usize)
                 }
             }),
-            _ => self.curves.iter().for_each(|&k| cross(k as usize, None)),
+            _ => self.curves.iter().for_each(|&k| curve(k as usize)),
         }
     }
 }
@@ -621,18 +615,9 @@ impl Solid for Lathe {
 mod tests {
     use super::*;
     use crate::geometry::solid::Need;
+    use crate::plane::tests::uniform;
     use crate::plane::Outlines;
     use crate::stats::Stats;
-
-    /// Uniform numbers in [0, 1) from a linear congruential generator.
-    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
 
     /// A profile of `n` wall vertices between the axis's ends: their
     /// heights mostly rising, some level (repeated) and some falling, so
