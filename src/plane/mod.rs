@@ -667,12 +667,12 @@ pub fn side_changes(sa: f64, sb: f64, f: &Poly, degree: usize, mut at_u: impl Fn
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use glam::DVec3;
 
     /// Uniform numbers in [0, 1) from a linear congruential generator.
-    pub(super) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    pub(crate) fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
         move || {
             seed = seed
                 .wrapping_mul(6364136223846793005)

@@ -271,12 +271,9 @@ mod tests {
             let below = f64::from_bits(x.to_bits() - 1);
             vs.push(below / 255.0);
         }
-        let mut seed = 12345u64;
+        let mut next = crate::plane::tests::uniform(12345);
         for _ in 0..1_000_000 {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            vs.push((seed >> 11) as f64 / (1u64 << 53) as f64 * 1.2 - 0.1);
+            vs.push(next() * 1.2 - 0.1);
         }
         for v in vs {
             assert_eq!(to_byte(v), by_round(v), "{v:e}");
