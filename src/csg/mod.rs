@@ -560,6 +560,19 @@ impl Csg {
             });
             return;
         }
+        // The union's own box first, as [`Csg::push_spans`] tests every
+        // other node's: a ray that misses it misses every child's box
+        // within it (each of the box test's slab ranges holds a child's),
+        // so nothing changes but the boxes not tested one by one. (Not an
+        // unbounded box, such as a floor's, which every ray meets.)
+        let e = n.bounds.max - n.bounds.min;
+        if e.x + e.y + e.z < f64::INFINITY {
+            q.st.bound_tests += 1;
+            if !n.bounds.hit(ray, tmin, tmax) {
+                q.st.bound_culled += 1;
+                return;
+            }
+        }
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
         if n.lanes.is_empty() {
             for &c in ch {
