@@ -564,7 +564,11 @@ impl Csg {
         // other node's: a ray that misses it misses every child's box
         // within it (each of the box test's slab ranges holds a child's),
         // so nothing changes but the boxes not tested one by one. (Not an
-        // unbounded box, such as a floor's, which every ray meets.)
+        // unbounded box, such as a floor's, which every ray meets. The
+        // extents' sum asks what `Aabb::is_bounded` does, with no branch:
+        // that call, asked of every ray here, took 1 to 2 % more of
+        // rounded_box_union's and seed's instructions; an empty box, which
+        // it calls unbounded, is tested here and culls, as it should.)
         let e = n.bounds.max - n.bounds.min;
         if e.x + e.y + e.z < f64::INFINITY {
             q.st.bound_tests += 1;
