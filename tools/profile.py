@@ -35,7 +35,6 @@ WALK = re.compile(
     r"first_boundary_for|first_boundary|occluded|spans_with|prim_spans|leaf_first)|"
     r"Scratch::merge|spans::)|geometry::bvh::|LocalKey<T>::with|csgrt::csg::query|with_scratch"
 )
-LEAVES = re.compile(r"csgrt::(geometry::|plane::)")
 SHADING = re.compile(r"render::shade::|__ieee754_pow|__pow|__exp|__ieee754_exp|__sqrt")
 
 
@@ -47,15 +46,15 @@ def run(binary, scene, size):
         r = subprocess.run(cmd, capture_output=True, text=True)
         if r.returncode != 0:
             raise SystemExit(f"{scene}: callgrind run failed:\n{r.stderr[-2000:]}")
-        incl = annotate(out, inclusive=True)
-        own = annotate(out, inclusive=False)
-    return incl, own
+        incl, _, _ = annotate(out, inclusive=True)
+        _, rows, total = annotate(out, inclusive=False)
+    return incl, rows, total
 
 
 def annotate(path, inclusive):
-    """Inclusive: {function: count} (a function's largest entry, its own
-    symbol's). Own: [(source file, function, count)], each line of the
-    listing: inlined code keeps the file it comes from."""
+    """The listing's {function: count} (a function's largest entry: with
+    --inclusive, its own symbol's), its [(source file, function, count)]
+    lines (inlined code keeps the file it comes from), and the total."""
     args = ["callgrind_annotate", "--threshold=100"]
     if inclusive:
         args.append("--inclusive=yes")
@@ -75,8 +74,7 @@ def annotate(path, inclusive):
             continue
         counts[fn] = max(counts.get(fn, 0), n)
         rows.append((src, fn, n))
-    counts["TOTAL"] = total
-    return counts if inclusive else (rows, total)
+    return counts, rows, total
 
 
 def find(counts, pattern):
@@ -93,12 +91,9 @@ KIND = {"plane/mod.rs": "region crossings", "poly.rs": "polynomial roots",
         "solid.rs": "dispatch", "transform.rs": "transforms"}
 
 
-def kind_of(src):
-    """The work a line's source file does: walk, leaf kind, shading or None."""
-    m = re.search(r"src/(geometry|plane|csg|render)/(.*)$", src)
-    if not m:
-        return None
-    area, name = m.groups()
+def kind(area, name):
+    """The work of source file `name` of src/`area`: "walk", "shading",
+    ("leaf", kind of solid) or None."""
     if area == "csg" or name in ("bvh.rs", "aabb.rs"):
         return "walk"
     if area == "render":
@@ -107,8 +102,24 @@ def kind_of(src):
     return ("leaf", KIND.get(key, key.removesuffix(".rs")))
 
 
-def summary(scene, incl, own):
-    rows, total = own
+def kind_of(src, fn):
+    """The work of a listing line: by its source file, or for library code
+    inlined into a function, by the function's module (or its name)."""
+    m = re.search(r"src/(geometry|plane|csg|render)/(.*)$", src)
+    if m and (k := kind(*m.groups())) is not None:
+        return k
+    if WALK.search(fn):
+        return "walk"
+    if m := re.search(r"csgrt::(geometry|plane)::(\w+)", fn):
+        area, module = m.groups()
+        # A type of plane/mod.rs (`plane::Region`), or a module's file.
+        return kind(area, "mod.rs" if area == "plane" and module[0].isupper() else module + ".rs")
+    if SHADING.search(fn) or re.search(r"libm|e_pow|e_exp", src):
+        return "shading"
+    return None
+
+
+def summary(scene, incl, rows, total):
     render = find(incl, r"^csgrt::render::render$")
     shade = find(incl, r"csgrt::render::shade::Shader::shade$")
     groups = {"walk": 0, "leaves": 0, "shading": 0}
@@ -117,21 +128,7 @@ def summary(scene, incl, own):
         # Only the rendering's work: not reading or resolving the scene.
         if re.search(r"resolve|::new$|Bvh::(build|split|collapse)|syntax|pest", fn):
             continue
-        k = kind_of(src)
-        if k is None:
-            # Library code inlined into a function: that function's work.
-            if WALK.search(fn):
-                k = "walk"
-            elif m := re.search(r"csgrt::(geometry|plane)::(\w+)", fn):
-                # The module the function is in names the kind.
-                area, module = m.groups()
-                if area == "plane" and module[0].isupper():
-                    key = "plane/mod.rs"
-                else:
-                    key = module + ".rs"
-                k = "walk" if key in ("bvh.rs", "aabb.rs") else ("leaf", KIND.get(key, module))
-            elif SHADING.search(fn) or re.search(r"libm|e_pow|e_exp", src):
-                k = "shading"
+        k = kind_of(src, fn)
         if k == "walk":
             groups["walk"] += n
         elif k == "shading":
