@@ -1197,7 +1197,10 @@ def glyph_loops(glyph_set, name):
     return out
 
 
-def text_2d(rd, s, a, place):
+def text_2d(rd, s, a, place, placed=None):
+    """The text's glyphs as one 2-D tree; with `placed` (a list), also each
+    drawn glyph's (name, scale, shift): its font-unit point q lands at
+    place(scale * q + shift)."""
     import uharfbuzz as hb
 
     text = a.get("text", "")
@@ -1259,21 +1262,23 @@ def text_2d(rd, s, a, place):
             adv = np.array([0.0, -rnd(v_adv * em_asked / upem)]) / 1.024e5
             width = max(width, (hi[0] - lo[0]) / 1.024e5)
             asc += adv[1] * spacing
-            glyphs.append((loops, off, adv))
+            glyphs.append((loops, off, adv, name))
             continue
         asc, desc = max(asc, max(0.0, hi[1] / 1.024e5)), max(desc, max(0.0, -lo[1] / 1.024e5))
         adv = np.array([pos.x_advance, pos.y_advance], float) * k_met
         width += adv[0] * spacing
-        glyphs.append((loops, np.array([pos.x_offset, pos.y_offset], float) * k_met, adv))
+        glyphs.append((loops, np.array([pos.x_offset, pos.y_offset], float) * k_met, adv, name))
     halign, valign = a.get("halign", "left"), a.get("valign", "baseline")
     x0 = {"right": -width, "center": -width / 2}.get(halign, 0.0)
     y0 = {"top": -asc, "center": desc / 2 - asc / 2, "bottom": desc}.get(valign, 0.0)
     pen, parts = np.zeros(2), []
-    for loops, off, adv in glyphs:
+    for loops, off, adv, name in glyphs:
         shift = np.array([x0, y0]) + off + pen
         pen = pen + adv * spacing
         if not loops:
             continue
+        if placed is not None:
+            placed.append((name, size * k_out, size * shift))
         moved = [[(place([size * (q * k_out + shift)])[0], None if c is None else place([size * (c * k_out + shift)])[0]) for q, c in l] for l in loops]
         parts.append(("curves", moved))
     if not parts:
