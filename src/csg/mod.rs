@@ -13,6 +13,7 @@ use crate::geometry::aabb::AabbLanes;
 use crate::geometry::bvh::Bvh;
 use crate::geometry::robust::coincidence;
 use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
+use crate::plane::pencil::Pencil;
 use crate::stats::Stats;
 use glam::DVec3;
 use smallvec::SmallVec;
@@ -163,6 +164,45 @@ pub struct SurfaceHit {
 }
 
 impl Csg {
+    /// A copy whose straight prisms know the line families a render's rays
+    /// meet their regions along — through the camera's `eye` (a
+    /// perspective camera's rays), along each of `dirs` (a directional
+    /// light's shadow rays, an orthographic camera's rays) — so that a
+    /// ray of one tests only the edges it may cross ([`Pencil`]): the
+    /// same answers. Each family is taken into the prism's space as a
+    /// ray's origin and direction are, so a ray of it matches to the bit.
+    /// `None` when no prism gets one (nothing to copy).
+    pub fn viewed(&self, eye: Option<DVec3>, dirs: &[DVec3]) -> Option<Csg> {
+        let mut out: Option<Csg> = None;
+        for (i, p) in self.prims.iter().enumerate() {
+            let Shape::Prism(prism) = &p.shape else {
+                continue;
+            };
+            // A tapered prism's lines are not the rays' projections; a
+            // primitive in a section is met along the ray's foot.
+            if prism.top != 1.0 || p.section.is_some() {
+                continue;
+            }
+            let mut views = Vec::new();
+            if let Some(e) = eye {
+                let (o, _) = p.xf.ray_to_object(&Ray::new(e, DVec3::X));
+                views.extend(Pencil::through(&prism.region, o.truncate()));
+            }
+            for &d in dirs {
+                let (_, od) = p.xf.ray_to_object(&Ray::new(DVec3::ZERO, d));
+                views.extend(Pencil::along(&prism.region, od.truncate()));
+            }
+            if views.is_empty() {
+                continue;
+            }
+            let copy = out.get_or_insert_with(|| self.clone());
+            if let Shape::Prism(q) = &mut copy.prims[i].shape {
+                q.views = views;
+            }
+        }
+        out
+    }
+
     pub fn add_prim(&mut self, prim: Primitive) -> u32 {
         let bounds = prim.bounds;
         self.prims.push(prim);

@@ -17,6 +17,7 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
+use crate::plane::pencil::Pencil;
 use crate::plane::{side_changes, Ctrl, Curve, Region};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
@@ -35,9 +36,24 @@ pub struct Prism {
     /// keeps its own precision (the half height is not rounded into a
     /// translation of the world's size).
     pub centered: bool,
+    /// The line families of the view being rendered (its eye's, its
+    /// directional lights'), each with the edges its lines may cross: see
+    /// [`Csg::viewed`](crate::csg::Csg::viewed). Empty outside a render.
+    pub views: Vec<Pencil>,
 }
 
 impl Prism {
+    /// The region swept up by the taper `top`, from z = 0 (or −1/2 when
+    /// `centered`), with no view's line families yet.
+    pub fn new(region: Arc<Region>, top: f64, centered: bool) -> Prism {
+        Prism {
+            region,
+            top,
+            centered,
+            views: Vec::new(),
+        }
+    }
+
     /// The bottom's height.
     pub fn z_lo(&self) -> f64 {
         super::cone::bottom(self.centered)
@@ -177,7 +193,12 @@ impl Solid for Prism {
             return;
         }
         let slab = (z0, zp0, z1, zp1);
-        for pair in self.region.crossings(o2, d2).chunks_exact(2) {
+        // A line of a view's family: only the edges its piece lists.
+        let cuts = match self.views.iter().find_map(|p| p.edges(o2, d2)) {
+            Some(ids) => self.region.crossings_of(ids, o2, d2),
+            None => self.region.crossings(o2, d2),
+        };
+        for pair in cuts.chunks_exact(2) {
             let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
             clip(slab, (s0, SIDE + e0, s1, SIDE + e1), emit);
         }

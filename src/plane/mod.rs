@@ -12,6 +12,7 @@
 //! made of once the slab is clipped.
 
 pub mod offset;
+pub mod pencil;
 
 use crate::geometry::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};
@@ -384,6 +385,17 @@ impl Region {
             None => sorted_crossings(self.all_edges(), o, d),
             Some(_) => sorted_crossings(self.edges_near(o, d), o, d),
         }
+    }
+
+    /// [`Region::crossings`] over the edges `ids` only: the same, when every
+    /// edge left out has all its points strictly on one side of the line
+    /// (as a [`pencil::Pencil`]'s lists assure).
+    pub fn crossings_of(&self, ids: &[u32], o: DVec2, d: DVec2) -> Cuts {
+        let edges = ids.iter().map(|&k| {
+            let (a, b) = self.edges[k as usize];
+            (k, a, self.ctrl[k as usize], b)
+        });
+        sorted_crossings(edges, o, d)
     }
 
     /// Every edge in order, as [`Region::edges_meeting`] gives them: for a
@@ -773,11 +785,9 @@ pub(crate) mod tests {
         }
     }
 
-    #[test]
-    fn the_edge_tree_finds_every_crossing_testing_all_edges_finds() {
-        // A 240-point wavy ring with a curved hole: lines at random, lines
-        // through vertices and along edges, far away and near.
-        let mut next = uniform(99);
+    /// A 240-point wavy ring with a curved hole (a region with an edge
+    /// tree), and its outer points.
+    pub(crate) fn wavy_ring() -> (Vec<DVec2>, Region) {
         let outer: Vec<DVec2> = (0..240)
             .map(|i| {
                 let a = i as f64 * std::f64::consts::TAU / 240.0;
@@ -796,6 +806,15 @@ pub(crate) mod tests {
             ctrl,
         });
         assert!(r.tree.is_some());
+        (outer, r)
+    }
+
+    #[test]
+    fn the_edge_tree_finds_every_crossing_testing_all_edges_finds() {
+        // The wavy ring: lines at random, lines through vertices and
+        // along edges, far away and near.
+        let mut next = uniform(99);
+        let (outer, r) = wavy_ring();
         let brute = |o: DVec2, d: DVec2| {
             let all = r
                 .edges

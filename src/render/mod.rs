@@ -8,7 +8,7 @@ pub mod probe;
 pub mod sampler;
 pub mod shade;
 
-use crate::scene::Scene;
+use crate::scene::{Light, Scene};
 use crate::stats::Stats;
 use camera::Camera;
 use glam::DVec3;
@@ -86,7 +86,18 @@ pub fn to_byte(v: f64) -> u8 {
 /// last pass).
 pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Rendered {
     let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
-    let shader = Shader::new(scene, s.max_depth);
+    // The line families the rays come in: through the eye, or along the
+    // orthographic view; along each directional light's shadow rays.
+    let mut dirs: Vec<DVec3> = (scene.lights.iter())
+        .filter_map(|l| match l {
+            Light::Directional { direction, .. } => Some(-*direction),
+            _ => None,
+        })
+        .collect();
+    dirs.extend(cam.parallel);
+    let eye = cam.parallel.is_none().then_some(cam.eye);
+    let viewed = scene.csg.viewed(eye, &dirs);
+    let shader = Shader::with_csg(scene, viewed.as_ref().unwrap_or(&scene.csg), s.max_depth);
     // The mean of a pixel's `n` samples (non-finite ones counted, not
     // summed): of their colours, and of their radiance before the last
     // clamp.

@@ -21,6 +21,7 @@
 //! a transparent solid is lit too.
 
 use crate::csg::spans::Boundary;
+use crate::csg::Csg;
 use crate::geometry::robust::{offset_origin, point_error};
 use crate::geometry::Ray;
 use crate::scene::{Light, Material, Scene};
@@ -32,6 +33,9 @@ pub const MIN_WEIGHT: f64 = 1.0 / 512.0;
 
 pub struct Shader<'a> {
     pub scene: &'a Scene,
+    /// The scene's tree, or the copy of it prepared for this view
+    /// ([`Csg::viewed`]).
+    pub csg: &'a Csg,
     pub max_depth: u32,
     /// Whether any material transmits: if none does, shadow rays need only
     /// find a blocker, not multiply transmissions.
@@ -40,16 +44,22 @@ pub struct Shader<'a> {
 
 impl<'a> Shader<'a> {
     pub fn new(scene: &'a Scene, max_depth: u32) -> Shader<'a> {
+        Shader::with_csg(scene, &scene.csg, max_depth)
+    }
+
+    /// A shader that queries `csg`, the scene's tree prepared for a view.
+    pub fn with_csg(scene: &'a Scene, csg: &'a Csg, max_depth: u32) -> Shader<'a> {
         let any_transparent = scene.materials.iter().any(|m| m.kt > 0.0);
         Shader {
             scene,
+            csg,
             max_depth,
             any_transparent,
         }
     }
 
     fn material(&self, prim: u32) -> &Material {
-        let id = self.scene.csg.prims[prim as usize].material;
+        let id = self.csg.prims[prim as usize].material;
         &self.scene.materials[id as usize]
     }
 
@@ -68,7 +78,7 @@ impl<'a> Shader<'a> {
     /// The colour along `ray`, clamped to [0, 1] if it hits, and before
     /// that clamp; the background as it is given for a miss.
     fn unclamped(&self, ray: &Ray, depth: u32, weight: f64, st: &mut Stats) -> (DVec3, DVec3) {
-        match self.scene.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
+        match self.csg.first_boundary(ray, 0.0, f64::INFINITY, st) {
             Some(b) => {
                 let c = self.shade(ray, &b, depth, weight, st);
                 (c.clamp(DVec3::ZERO, DVec3::ONE), c)
@@ -78,7 +88,7 @@ impl<'a> Shader<'a> {
     }
 
     fn shade(&self, ray: &Ray, b: &Boundary, depth: u32, weight: f64, st: &mut Stats) -> DVec3 {
-        let hit = self.scene.csg.surface(ray, b, st);
+        let hit = self.csg.surface(ray, b, st);
         let m = *self.material(hit.prim);
         let p = hit.point;
         let n = hit.normal;
@@ -140,7 +150,7 @@ impl<'a> Shader<'a> {
     /// product of the transmissions of the solids it crosses, 0 at the
     /// first opaque one.
     fn transmittance(&self, ray: &Ray, dist: f64, st: &mut Stats) -> f64 {
-        let csg = &self.scene.csg;
+        let csg = &self.csg;
         if !self.any_transparent {
             return if csg.occluded(ray, 0.0, dist, st) {
                 0.0

@@ -906,11 +906,8 @@ impl Resolver<'_> {
         let even = sweep.top.x == sweep.top.y;
         match f {
             Flat::Polygon(o) if even && sweep.twist == 0.0 => {
-                let shape = Shape::Prism(Prism {
-                    region: Arc::new(Region::new(o.clone())),
-                    top,
-                    centered,
-                });
+                let shape =
+                    Shape::Prism(Prism::new(Arc::new(Region::new(o.clone())), top, centered));
                 self.leaf(s, shape, xf * local, mat)
             }
             Flat::Polygon(o) => {

@@ -194,11 +194,7 @@ fn cylinder(
         let lift = if r1 >= r2 || center { 0.0 } else { h };
         let local = DAffine3::from_translation(DVec3::new(0.0, 0.0, lift))
             * DAffine3::from_scale(DVec3::new(1.0, 1.0, flip * h));
-        let prism = Prism {
-            region,
-            top,
-            centered: center,
-        };
+        let prism = Prism::new(region, top, center);
         return res.leaf(s, Shape::Prism(prism), xf * local, mat);
     }
     let shape = Shape::Cone(Cone {

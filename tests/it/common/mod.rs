@@ -147,11 +147,11 @@ impl Rng {
 /// (a leaf that carries its region by reference) whose top section is
 /// scaled by `top` (1: straight).
 pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
-    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
-        region: std::sync::Arc::new(l_region()),
+    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism::new(
+        std::sync::Arc::new(l_region()),
         top,
-        centered: top < 0.5,
-    })
+        top < 0.5,
+    ))
 }
 
 /// The L region twisted by `twist` radians and scaled to `scale` at the
@@ -234,11 +234,11 @@ pub fn curved_lathe() -> csgrt::geometry::Shape {
 pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
     use csgrt::plane::Ctrl;
     let region = curved_region(|p| Ctrl::Cubic(p(2.6, 0.3), p(0.2, 1.3)), glam::DVec2::ZERO);
-    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism {
-        region: std::sync::Arc::new(region),
+    csgrt::geometry::Shape::Prism(csgrt::geometry::Prism::new(
+        std::sync::Arc::new(region),
         top,
-        centered: true,
-    })
+        true,
+    ))
 }
 
 /// The L of [`l_prism`] offset by `r` (grown or shrunk, round corners) and
