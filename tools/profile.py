@@ -88,7 +88,7 @@ KIND = {"plane/mod.rs": "region crossings", "poly.rs": "polynomial roots",
         "mesh.rs": "meshes", "convex.rs": "hulls", "twist.rs": "twisted prisms",
         "offset.rs": "offsets", "offset_prism.rs": "offset prisms", "robust.rs": "robust tests",
         "halfspace.rs": "half-spaces", "rounded.rs": "rounded solids", "shape.rs": "dispatch",
-        "solid.rs": "dispatch", "transform.rs": "transforms"}
+        "solid.rs": "dispatch", "transform.rs": "transforms", "pencil.rs": "line families"}
 
 
 def kind(area, name):
