@@ -88,11 +88,10 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
     let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
     // The line families the rays come in: through the eye, or along the
     // orthographic view; along each directional light's shadow rays.
-    let mut dirs: Vec<DVec3> = (scene.lights.iter())
-        .filter_map(|l| match l {
-            Light::Directional { direction, .. } => Some(-*direction),
-            _ => None,
-        })
+    let mut dirs: Vec<DVec3> = scene
+        .lights
+        .iter()
+        .filter_map(Light::shadow_direction)
         .collect();
     dirs.extend(cam.parallel);
     let eye = cam.parallel.is_none().then_some(cam.eye);

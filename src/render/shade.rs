@@ -102,7 +102,9 @@ impl<'a> Shader<'a> {
                     color += m.ka * ia * m.color;
                     continue;
                 }
-                Light::Directional { color, direction } => (-direction, f64::INFINITY, color),
+                Light::Directional { color, direction } => {
+                    (Light::towards(direction), f64::INFINITY, color)
+                }
                 Light::Point { color, position } => {
                     let to = position - p;
                     let d = to.length();

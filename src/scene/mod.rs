@@ -65,6 +65,24 @@ pub enum Light {
     },
 }
 
+impl Light {
+    /// For a directional light, the direction of every shadow ray it
+    /// asks for (towards it): one place, so that a render's line families
+    /// ([`Csg::viewed`](crate::csg::Csg::viewed)) are the shadow rays'
+    /// own to the bit.
+    pub fn shadow_direction(&self) -> Option<DVec3> {
+        match *self {
+            Light::Directional { direction, .. } => Some(Light::towards(direction)),
+            _ => None,
+        }
+    }
+
+    /// The way towards a directional light travelling along `direction`.
+    pub fn towards(direction: DVec3) -> DVec3 {
+        -direction
+    }
+}
+
 /// The seed's pinhole camera (slide 6); `fov` is the horizontal angle in
 /// degrees. Orthographic, it shows the same rectangle of the plane through
 /// `lookat` square to the view, with parallel rays.
