@@ -46,6 +46,10 @@ class _Reader:
 def glyph_objects(csg_text):
     """[(POV-Ray text object without texture, …)] for the scene's text
     statements, in order, and how many prisms they stand for."""
+    font_path = scene.font_file("")
+    tt = scene.font(font_path)[0]
+    upem = tt["head"].unitsPerEm
+    cmap = {name: code for code, name in tt.getBestCmap().items()}
     objects = []
     for line in csg_text.splitlines():
         line = line.strip()
@@ -59,10 +63,6 @@ def glyph_objects(csg_text):
         tx, ty, tz = (float(v) for v in m.group(1).split(","))
         height, string, size = float(m.group(2)), m.group(3), float(m.group(4))
         string = re.sub(r"\\(.)", r"\1", string)
-        font_path = scene.font_file("")
-        tt, _, _, order = scene.font(font_path)
-        upem = tt["head"].unitsPerEm
-        cmap = {name: code for code, name in tt.getBestCmap().items()}
         placed = []
         scene.text_2d(_Reader(), None, {"text": string, "size": size}, lambda pts: pts, placed)
         for name, k, shift in placed:

@@ -170,7 +170,8 @@ impl Csg {
     /// light's shadow rays, an orthographic camera's rays) — so that a
     /// ray of one tests only the edges it may cross ([`Pencil`]): the
     /// same answers. Each family is taken into the prism's space as a
-    /// ray's origin and direction are, so a ray of it matches to the bit.
+    /// ray's origin and direction are ([`Transform::ray_to_object`]'s
+    /// two halves), so a ray of it matches to the bit.
     /// `None` when no prism gets one (nothing to copy).
     pub fn viewed(&self, eye: Option<DVec3>, dirs: &[DVec3]) -> Option<Csg> {
         let mut out: Option<Csg> = None;
@@ -185,12 +186,12 @@ impl Csg {
             }
             let mut views = Vec::new();
             if let Some(e) = eye {
-                let (o, _) = p.xf.ray_to_object(&Ray::new(e, DVec3::X));
-                views.extend(Pencil::through(&prism.region, o.truncate()));
+                let o = p.xf.point_to_object(e).truncate();
+                views.extend(Pencil::through(&prism.region, o));
             }
             for &d in dirs {
-                let (_, od) = p.xf.ray_to_object(&Ray::new(DVec3::ZERO, d));
-                views.extend(Pencil::along(&prism.region, od.truncate()));
+                let od = p.xf.dir_to_object(d).truncate();
+                views.extend(Pencil::along(&prism.region, od));
             }
             if views.is_empty() {
                 continue;

@@ -66,13 +66,20 @@ impl Transform {
     /// far from the world origin the two terms of the latter are huge and
     /// cancel, while `o − c` is exact or nearly so for a ray near the part.
     pub fn ray_to_object(&self, ray: &Ray) -> (DVec3, DVec3) {
-        let m = self.to_object.matrix3;
-        (m * (ray.origin - self.to_world.translation), m * ray.dir)
+        (
+            self.point_to_object(ray.origin),
+            self.dir_to_object(ray.dir),
+        )
     }
 
     /// A world point in object space, computed the same careful way.
     pub fn point_to_object(&self, p: DVec3) -> DVec3 {
         self.to_object.matrix3 * (p - self.to_world.translation)
+    }
+
+    /// A world direction in object space, as a ray's.
+    pub fn dir_to_object(&self, d: DVec3) -> DVec3 {
+        self.to_object.matrix3 * d
     }
 
     /// A unit world normal from an object-space normal.

@@ -391,11 +391,7 @@ impl Region {
     /// edge left out has all its points strictly on one side of the line
     /// (as a [`pencil::Pencil`]'s lists assure).
     pub fn crossings_of(&self, ids: &[u32], o: DVec2, d: DVec2) -> Cuts {
-        let edges = ids.iter().map(|&k| {
-            let (a, b) = self.edges[k as usize];
-            (k, a, self.ctrl[k as usize], b)
-        });
-        sorted_crossings(edges, o, d)
+        sorted_crossings(ids.iter().map(|&k| self.edge(k)), o, d)
     }
 
     /// Every edge in order, as [`Region::edges_meeting`] gives them: for a
@@ -430,10 +426,13 @@ impl Region {
             // counts it.
             Some(t) => t.visit(line, &mut |k| ids.push(k)),
         }
-        ids.into_iter().map(move |k| {
-            let (a, b) = self.edges[k as usize];
-            (k, a, self.ctrl[k as usize], b)
-        })
+        ids.into_iter().map(move |k| self.edge(k))
+    }
+
+    /// Edge `k` as (index, start, how it runs, end).
+    fn edge(&self, k: u32) -> (u32, DVec2, Ctrl, DVec2) {
+        let (a, b) = self.edges[k as usize];
+        (k, a, self.ctrl[k as usize], b)
     }
 }
 

@@ -33,8 +33,9 @@ enum Family {
     /// the nearest point's distance from `at`: how much larger than a
     /// slope's the rounding of a side test may be.
     Through { at: DVec2, r: DVec2, spread: f64 },
-    /// Lines along `dir`; a point q has offset q·dir⊥.
-    Along { dir: DVec2 },
+    /// Lines along `dir`; a point q has offset q·dir⊥. `size` is the
+    /// largest coordinate of the region's points.
+    Along { dir: DVec2, size: f64 },
 }
 
 /// The least a point of the region (or a line's direction) may lie ahead
@@ -59,8 +60,6 @@ pub struct Pencil {
     /// Piece k's edges: `edges[starts[k]..starts[k + 1]]`.
     starts: Vec<u32>,
     edges: Vec<u32>,
-    /// The largest coordinate of the region's points.
-    size: f64,
 }
 
 impl Pencil {
@@ -91,7 +90,8 @@ impl Pencil {
         if dir == DVec2::ZERO || !dir.is_finite() {
             return None;
         }
-        Pencil::build(region, Family::Along { dir })
+        let size = points(region).fold(0.0f64, |m, q| m.max(q.abs().max_element()));
+        Pencil::build(region, Family::Along { dir, size })
     }
 
     fn param(&self, q: DVec2) -> f64 {
@@ -100,7 +100,7 @@ impl Pencil {
                 let v = q - at;
                 v.dot(r.perp()) / v.dot(r)
             }
-            Family::Along { dir } => q.dot(dir.perp()),
+            Family::Along { dir, .. } => q.dot(dir.perp()),
         }
     }
 
@@ -110,7 +110,6 @@ impl Pencil {
             cuts: Vec::new(),
             starts: Vec::new(),
             edges: Vec::new(),
-            size: points(region).fold(0.0, |m, q| m.max(q.abs().max_element())),
         };
         let ranges: Vec<(f64, f64)> = (region.edges.iter().zip(&region.ctrl))
             .map(|(&(a, b), c)| {
@@ -143,7 +142,7 @@ impl Pencil {
             return None;
         }
         let pieces = p.cuts.len() + 1;
-        let mut count = vec![0u32; pieces + 1];
+        let mut count = vec![0u32; pieces];
         for &(i, j) in &spans {
             for c in &mut count[i..j + 1] {
                 *c += 1;
@@ -152,7 +151,7 @@ impl Pencil {
         // Starts by running sums; then each edge written at its pieces'
         // next places, in edge order.
         p.starts = std::iter::once(0)
-            .chain(count[..pieces].iter().scan(0u32, |sum, &c| {
+            .chain(count.iter().scan(0u32, |sum, &c| {
                 *sum += c;
                 Some(*sum)
             }))
@@ -184,13 +183,13 @@ impl Pencil {
                 let s = d.dot(r.perp()) / ahead;
                 (s, 1e-9 * (1.0 + s.abs()) * spread)
             }
-            Family::Along { dir } => {
+            Family::Along { dir, size } => {
                 if d != dir {
                     return None;
                 }
                 let n = dir.perp();
                 let s = o.dot(n);
-                let tol = 1e-9 * (n.x.abs() + n.y.abs()) * (self.size + o.abs().max_element());
+                let tol = 1e-9 * (n.x.abs() + n.y.abs()) * (size + o.abs().max_element());
                 (s, tol)
             }
         };
@@ -282,7 +281,7 @@ mod tests {
                     }
                     let (o, d) = match p.family {
                         Family::Through { at, .. } => (at, (q - at) * (0.25 + next())),
-                        Family::Along { dir } => (q - dir * (10.0 * next()), dir),
+                        Family::Along { dir, .. } => (q - dir * (10.0 * next()), dir),
                     };
                     let got = p.edges(o, d);
                     if i % 3 == 0 {
