@@ -83,22 +83,24 @@ def peer_png(peer):
     return "pov_" + "".join(c if c.isalnum() else "_" for c in peer) + ".png"
 
 
-def differing_pixels(a, b):
-    """(pixels differing by more than 8 levels in some channel, pixels)."""
+def rgb(path):
+    """An image's 8-bit channels as floats, height x width x 3."""
     import numpy as np
     from PIL import Image
 
-    x = np.asarray(Image.open(a).convert("RGB"), dtype=int)
-    y = np.asarray(Image.open(b).convert("RGB"), dtype=int)
-    return int((np.abs(x - y).max(axis=2) > 8).sum()), x.shape[0] * x.shape[1]
+    return np.asarray(Image.open(path).convert("RGB"), dtype=float)
+
+
+def differing_pixels(a, b):
+    """(pixels differing by more than 8 levels in some channel, pixels)."""
+    x, y = rgb(a), rgb(b)
+    return int((abs(x - y).max(axis=2) > 8).sum()), x.shape[0] * x.shape[1]
 
 
 def rmse(a, b):
     import numpy as np
-    from PIL import Image
 
-    x = np.asarray(Image.open(a).convert("RGB"), dtype=float)
-    y = np.asarray(Image.open(b).convert("RGB"), dtype=float)
+    x, y = rgb(a), rgb(b)
     return float(np.sqrt(np.mean((x - y) ** 2)))
 
 
@@ -128,7 +130,7 @@ def silhouette_mismatch(a, scene):
         # The oracle's own reading of the file: its camera, background, mesh.
         sc = reader.read(scene)
         bg = np.round(np.clip(np.array(sc.background, dtype=float), 0, 1) * 255)
-        not_bg = lambda path: np.any(np.asarray(Image.open(path).convert("RGB"), dtype=float) != bg, axis=2)
+        not_bg = lambda path: np.any(rgb(path) != bg, axis=2)
         cmask = np.asarray(Image.open(mask).convert("L")) == 255
         if not np.array_equal(not_bg(img), cmask):
             raise SystemExit(f"{scene}: object pixels take the background colour; "
@@ -295,8 +297,8 @@ def main():
                 for threads in (1, cores):
                     row[threads] = tuple(statistics.median(x) for x in times[peer][threads])
                 # Each round's 1-thread and all-core renders ran a moment apart: the
-                # median of their ratios is the paired estimate of the speed-up.
-                # else on the machine (see the note under the table).
+                # median of their ratios is the paired estimate of the speed-up
+                # (see the note under the table).
                 row["paired"] = statistics.median(
                     one / many for one, many in zip(times[peer][1][2], times[peer][cores][2]))
                 if peer != name:
