@@ -851,6 +851,19 @@ impl Scratch {
             }
             None => {}
         }
+        // Two single spans: written out, not swept (the same answer).
+        if let ([x], [y]) = (a, b) {
+            let one = if op == Op::Union {
+                spans::union_one(x, y, scale).map(|s| ([s, s], 1))
+            } else {
+                spans::cut_one(op, x, y, scale)
+            };
+            if let Some((r, n)) = one {
+                self.stack[base..base + n].copy_from_slice(&r[..n]);
+                self.stack.truncate(base + n);
+                return;
+            }
+        }
         self.out.clear();
         spans::sweep_into(op, a, b, scale, &mut self.out);
         self.stack.truncate(base);
