@@ -546,21 +546,60 @@ impl Csg {
         if let NodeKind::Leaf(id) = self.nodes[root as usize].kind {
             return self.leaf_first(root, id, ray, tmin, tmax, st, need);
         }
+        let first = |acc: &[Span]| first_surface(acc, tmin);
         query(ray, tmin, tmax, st, |q| {
             match &self.nodes[root as usize].kind {
-                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q),
+                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
                 _ => self.push_spans(root, q),
             };
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
         })
     }
 
-    /// Pushes a union's spans, good up to its first boundary after `tmin`.
+    /// The whole tree's spans along `ray` handed to `f`, good up to the
+    /// entry of the first span after `tmin` that `stops` (a surface
+    /// entered: what lies beyond it is not needed), and over all of (tmin,
+    /// tmax) when none does.
+    pub fn spans_until<R>(
+        &self,
+        ray: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        stops: impl Fn(&Boundary) -> bool,
+        f: impl FnOnce(&[Span]) -> R,
+    ) -> R {
+        let Some(root) = self.root else {
+            return f(&[]);
+        };
+        let first = |acc: &[Span]| {
+            acc.iter()
+                .map(|s| s.enter)
+                .find(|b| b.t > tmin && b.is_surface() && stops(b))
+        };
+        query(ray, tmin, tmax, st, |q| {
+            match &self.nodes[root as usize].kind {
+                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
+                _ => self.push_spans(root, q),
+            };
+            f(&q.sc.stack)
+        })
+    }
+
+    /// Pushes a union's spans, good up to the boundary `first` finds in
+    /// them (its first boundary after `tmin`, say), or whole if it finds
+    /// none.
     ///
     /// Children are taken in the order the ray enters their boxes; once the
-    /// next box begins beyond the first boundary found, no child left can
+    /// next box begins beyond the boundary found, no child left can
     /// change the result before that boundary, and the walk stops.
-    fn union_first(&self, node: u32, ch: &[u32], q: &mut Query) {
+    fn union_first(
+        &self,
+        node: u32,
+        ch: &[u32],
+        q: &mut Query,
+        first: impl Fn(&[Span]) -> Option<Boundary>,
+    ) {
         let n = &self.nodes[node as usize];
         let (ray, tmin, tmax) = (q.ray, q.tmin, q.tmax);
         let scale = ray.origin.abs().max_element();
@@ -575,7 +614,7 @@ impl Csg {
         // merge it away (a part standing on a floor), and boundaries within
         // the coincidence bound are one: only boxes beyond that are cut.
         let cut = |acc: &[Span]| {
-            first_surface(acc, tmin).map_or(f64::INFINITY, |b| b.t + 2.0 * coincidence(b.t, scale))
+            first(acc).map_or(f64::INFINITY, |b| b.t + 2.0 * coincidence(b.t, scale))
         };
         // The hierarchy pays for wide unions and for those whose children
         // lie apart (see [`FILL_MAX`]); measured at 640×480 with one

@@ -160,10 +160,9 @@ impl<'a> Shader<'a> {
                 1.0
             };
         }
-        let Some(root) = csg.root else {
-            return 1.0;
-        };
-        csg.spans_with(root, ray, 0.0, dist, st, |list| {
+        // Past an opaque solid's surface, nothing matters.
+        let opaque = |b: &Boundary| self.material(b.prim).kt <= 0.0;
+        csg.spans_until(ray, 0.0, dist, st, opaque, |list| {
             let mut pass = 1.0;
             for s in list {
                 if s.exit.t <= 0.0 || s.enter.t >= dist {

@@ -5,7 +5,7 @@
 //! the whole stretch where the solids lie — and of points between the
 //! reported boundaries.
 
-use csgrt::csg::spans::{contains, Op};
+use csgrt::csg::spans::{contains, Boundary, Op, Span};
 use csgrt::csg::{Csg, Primitive};
 use csgrt::geometry::{Cone, Cuboid, Halfspace, Ray, Shape, Sphere, Torus, Transform};
 use csgrt::stats::Stats;
@@ -270,6 +270,79 @@ proptest! {
             let mut st = Stats::default();
             let got = csg.first_boundary(&ray, 0.0, f64::INFINITY, &mut st).map(|b| b.t);
             prop_assert_eq!(got, full_first(&csg, root, &ray), "{:?}", ray);
+        }
+    }
+}
+
+/// What a shadow ray lets through along a list (as the shader reads it):
+/// the product of the crossed solids' transmissions, a solid named by the
+/// surface the ray enters it by (or leaves by, from inside); here every
+/// third primitive is opaque and the others pass a fraction of their own.
+fn pass(list: &[Span]) -> f64 {
+    let mut pass = 1.0;
+    for s in list {
+        if s.exit.t <= 0.0 {
+            continue;
+        }
+        let face = if s.enter.t > 0.0 && s.enter.is_surface() {
+            s.enter
+        } else {
+            s.exit
+        };
+        pass *= kt(face.prim);
+        if pass <= 0.0 {
+            return 0.0;
+        }
+    }
+    pass
+}
+
+fn kt(prim: u32) -> f64 {
+    if prim % 3 == 0 {
+        0.0
+    } else {
+        0.5 + prim as f64 / 256.0
+    }
+}
+
+/// The spans up to and including the first one entered through an opaque
+/// surface, as (enter, exit) pairs, that one's exit left out (a solid
+/// beyond the stop may extend it).
+fn up_to_opaque(list: &[Span]) -> Vec<(f64, Option<f64>)> {
+    let mut out = Vec::new();
+    for s in list {
+        if s.enter.t > 0.0 && s.enter.is_surface() && kt(s.enter.prim) <= 0.0 {
+            out.push((s.enter.t, None));
+            break;
+        }
+        out.push((s.enter.t, Some(s.exit.t)));
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(150))]
+
+    /// A shadow ray's list stops early in a root union, at the first
+    /// opaque surface it enters; up to that span it must be the full
+    /// list, and let the same light through.
+    #[test]
+    fn spans_until_an_opaque_surface_agree_with_the_full_list(
+        tree in prop_oneof![arb_tree(), arb_wide(), arb_very_wide()],
+        rays in prop::collection::vec(arb_ray(), 12),
+    ) {
+        let mut csg = Csg::default();
+        let root = build(&mut csg, &tree);
+        csg.root = Some(root);
+        for ray in rays {
+            let mut st = Stats::default();
+            let full = csg.spans(root, &ray, 0.0, f64::INFINITY, &mut st);
+            let opaque = |b: &Boundary| kt(b.prim) <= 0.0;
+            let (got, through) = csg.spans_until(&ray, 0.0, f64::INFINITY, &mut st, opaque, |l| {
+                (up_to_opaque(l), pass(l))
+            });
+            prop_assert_eq!(got, up_to_opaque(&full), "{:?}", ray);
+            prop_assert_eq!(through, pass(&full), "{:?}", ray);
         }
     }
 }
