@@ -669,11 +669,13 @@ impl Csg {
         } else {
             // The same entries, four boxes at once.
             for (lanes, group) in n.lanes.iter().zip(ch.chunks(4)) {
-                let entries = lanes.entries(ray, tmin, tmax);
-                for (&c, e) in group.iter().zip(entries) {
-                    if let Some(t) = e {
-                        order.push((t, c));
-                    }
+                let (met, t) = lanes.entries_met(ray, tmin, tmax);
+                // The lanes filled, in order.
+                let mut m = met & ((1 << group.len()) - 1);
+                while m != 0 {
+                    let k = m.trailing_zeros() as usize;
+                    order.push((t[k], group[k]));
+                    m &= m - 1;
                 }
             }
             q.st.bound_tests += ch.len() as u64;

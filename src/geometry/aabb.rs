@@ -122,22 +122,34 @@ impl<const N: usize> AabbLanes<N> {
     /// compiler can do the lanes side by side.
     #[inline]
     pub fn entries(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; N] {
+        let (met, t) = self.entries_met(ray, tmin, tmax);
+        std::array::from_fn(|k| (met >> k & 1 != 0).then_some(t[k]))
+    }
+
+    /// [`entries`](Self::entries) as a bit a lane (set where the ray meets
+    /// the box) and the entries (meaningless where the bit is clear): what
+    /// a caller that gathers the lanes met reads with no `Option` a lane.
+    #[inline]
+    pub fn entries_met(&self, ray: &Ray, tmin: f64, tmax: f64) -> (u32, [f64; N]) {
         #[cfg(target_arch = "x86_64")]
         if N % 2 == 0 {
             return self.entries_sse(ray, tmin, tmax);
         }
-        self.entries_portable(ray, tmin, tmax)
+        let e = self.entries_portable(ray, tmin, tmax);
+        let met = (0..N).fold(0, |m, k| m | (e[k].is_some() as u32) << k);
+        (met, e.map(|e| e.unwrap_or(0.0)))
     }
 
-    /// [`entries`](Self::entries) two lanes a register: `minpd(a, b)` is
-    /// `if a < b { a } else { b }` and `maxpd(a, b)` `if a > b { a } else
-    /// { b }`, the portable test's selects exactly, NaN included (a unit
-    /// test compares the two).
+    /// [`entries_met`](Self::entries_met) two lanes a register: `minpd(a,
+    /// b)` is `if a < b { a } else { b }` and `maxpd(a, b)` `if a > b { a }
+    /// else { b }`, the portable test's selects exactly, NaN included (a
+    /// unit test compares the two).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    fn entries_sse(&self, ray: &Ray, tmin: f64, tmax: f64) -> [Option<f64>; N] {
+    fn entries_sse(&self, ray: &Ray, tmin: f64, tmax: f64) -> (u32, [f64; N]) {
         use std::arch::x86_64::*;
-        let mut out = [None; N];
+        let mut out = [0.0; N];
+        let mut met = 0;
         // SAFETY: SSE2 is part of x86_64; every load and store stays within
         // the arrays (N even, lanes k and k + 1).
         unsafe {
@@ -160,15 +172,13 @@ impl<const N: usize> AabbLanes<N> {
                 let ge = _mm_cmpge_pd(far, zero);
                 let m = _mm_or_pd(_mm_and_pd(ge, up), _mm_andnot_pd(ge, down));
                 let hi = _mm_min_pd(_mm_mul_pd(far, m), _mm_set1_pd(tmax));
-                let ok = _mm_movemask_pd(_mm_cmple_pd(lo, hi));
-                let mut l = [0.0; 2];
-                _mm_storeu_pd(l.as_mut_ptr(), lo);
-                out[k] = (ok & 1 != 0).then_some(l[0]);
-                out[k + 1] = (ok & 2 != 0).then_some(l[1]);
+                let ok = _mm_movemask_pd(_mm_cmple_pd(lo, hi)) as u32;
+                _mm_storeu_pd(out.as_mut_ptr().add(k), lo);
+                met |= ok << k;
                 k += 2;
             }
         }
-        out
+        (met, out)
     }
 
     /// [`entries`](Self::entries) in plain Rust.
@@ -326,6 +336,9 @@ mod tests {
             let l = AabbLanes::<4>::of(&boxes);
             let bits = |e: [Option<f64>; 4]| e.map(|e| e.map(f64::to_bits));
             prop_assert_eq!(bits(l.entries(&ray, tmin, tmax)), bits(l.entries_portable(&ray, tmin, tmax)));
+            let (met, t) = l.entries_met(&ray, tmin, tmax);
+            let gathered: [Option<f64>; 4] = std::array::from_fn(|k| (met >> k & 1 != 0).then_some(t[k]));
+            prop_assert_eq!(bits(gathered), bits(l.entries_portable(&ray, tmin, tmax)));
         }
 
         #[test]
