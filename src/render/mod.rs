@@ -173,15 +173,22 @@ fn rows(
         a.add(&b);
         a
     };
+    // A row a task: rayon otherwise splits the rows into about four
+    // pieces a thread and splits further only what another thread steals,
+    // so on two threads a picture whose work lies in a band (a turned
+    // part in the middle) left one thread idle for most of the render
+    // (a speed-up of 1.25 on two threads, 3.6 on four, measured).
     if lin.is_empty() {
         rgb.par_chunks_mut(3 * w)
             .enumerate()
+            .with_max_len(1)
             .map(|(y, row)| f(y as u32, row, &mut []))
             .reduce(Stats::default, reduce)
     } else {
         rgb.par_chunks_mut(3 * w)
             .zip(lin.par_chunks_mut(3 * w))
             .enumerate()
+            .with_max_len(1)
             .map(|(y, (row, lrow))| f(y as u32, row, lrow))
             .reduce(Stats::default, reduce)
     }

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""csgrt's speed-up with threads, on a machine with nothing else running.
+
+Renders each scene of the bench set (models/*.csg and bench/*.csg, or the
+scenes named) with csgrt at each thread count of --threads, the counts
+alternating within each of --rounds rounds so that a drift of the
+machine's speed falls on all of them alike, and writes a Markdown table:
+the median `render_seconds` (--stats-json) at each count, and each count's
+speed-up over one thread both from those medians and as the median of each
+round's own ratio. No peer is needed: this is the measure for a machine
+without POV-Ray (`tools/bench.py` times csgrt against POV-Ray, and on a
+shared machine its all-core figure drifts with whatever else runs).
+
+Usage: scaling.py [--csgrt BIN] [--size WxH] [--rounds N] [--threads 1,2,0]
+                  [--out FILE] [SCENE...]      (a count of 0: every core)
+"""
+
+import argparse
+import glob
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+
+def render_seconds(csgrt, scene, size, threads, tmp):
+    png = os.path.join(tmp, "out.png")
+    stats = os.path.join(tmp, "stats.json")
+    subprocess.run(
+        [csgrt, scene, "--size", size, "--spp", "1", "--threads", str(threads), "-q",
+         "-o", png, "--stats-json", stats],
+        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    with open(stats) as f:
+        return json.load(f)["render_seconds"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("scenes", nargs="*")
+    ap.add_argument("--csgrt", default="target/release/csgrt")
+    ap.add_argument("--size", default="640x480")
+    ap.add_argument("--rounds", type=int, default=7)
+    ap.add_argument("--threads", default="1,2,0")
+    ap.add_argument("--out", default=None)
+    a = ap.parse_args()
+    cores = os.cpu_count() or 1
+    counts = []
+    for x in a.threads.split(","):
+        n = int(x) or cores
+        if n not in counts:
+            counts.append(n)
+    if counts[0] != 1:
+        sys.exit("scaling.py: the first thread count must be 1 (the speed-ups are over it)")
+    scenes = a.scenes or sorted(glob.glob("models/*.csg")) + sorted(glob.glob("bench/*.csg"))
+    head = ["scene"] + [f"{n} thread{'s' if n > 1 else ''}" for n in counts]
+    for n in counts[1:]:
+        head += [f"speed-up on {n} (medians)", "(paired rounds)"]
+    rows = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    with tempfile.TemporaryDirectory() as tmp:
+        for scene in scenes:
+            times = {n: [] for n in counts}
+            for _ in range(a.rounds):
+                for n in counts:
+                    times[n].append(render_seconds(a.csgrt, scene, a.size, n, tmp))
+            med = {n: statistics.median(v) for n, v in times.items()}
+            cells = [os.path.splitext(os.path.basename(scene))[0]]
+            cells += [f"{med[n]:.4f} s" for n in counts]
+            for n in counts[1:]:
+                paired = statistics.median(t1 / tn for t1, tn in zip(times[1], times[n]))
+                cells += [f"{med[1] / med[n]:.2f}×", f"{paired:.2f}×"]
+            rows.append("| " + " | ".join(cells) + " |")
+            print(rows[-1], flush=True)
+    text = (f"csgrt {a.size}, one sample a pixel, median of {a.rounds} rounds, "
+            f"{cores} cores seen by the process.\n\n" + "\n".join(rows) + "\n")
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write(text)
+    else:
+        print(text)
+
+
+if __name__ == "__main__":
+    main()
