@@ -275,18 +275,18 @@ impl Bvh {
                 // later lane), and those beginning beyond the cut go
                 // straight to the skipped.
                 let n = &self.wide[c as usize];
-                let (met, t) = n.boxes.entries_met(ray, tmin, tmax);
+                let entries = n.boxes.entries(ray, tmin, tmax);
                 let lanes = n.lanes as usize;
                 st.bound_tests += lanes as u64;
                 let mut found = [(0.0, 0u32); 4];
                 let mut m = 0;
-                // The lanes filled and met, in order.
-                let mut bits = met & ((1 << lanes) - 1);
-                while bits != 0 {
-                    let k = bits.trailing_zeros() as usize;
-                    found[m] = (t[k], n.child[k]);
-                    m += 1;
-                    bits &= bits - 1;
+                // (By index: the zipped form took 2 % more instructions.)
+                #[allow(clippy::needless_range_loop)]
+                for k in 0..lanes {
+                    if let Some(e) = entries[k] {
+                        found[m] = (e, n.child[k]);
+                        m += 1;
+                    }
                 }
                 st.bound_culled += (lanes - m) as u64;
                 let found = &mut found[..m];
