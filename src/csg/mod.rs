@@ -174,34 +174,44 @@ impl Csg {
     /// two halves), so a ray of it matches to the bit.
     /// `None` when no prism gets one (nothing to copy).
     pub fn viewed(&self, eye: Option<DVec3>, dirs: &[DVec3]) -> Option<Csg> {
-        let mut out: Option<Csg> = None;
-        for (i, p) in self.prims.iter().enumerate() {
-            let Shape::Prism(prism) = &p.shape else {
-                continue;
-            };
-            // A tapered prism's lines are not the rays' projections; a
-            // primitive in a section is met along the ray's foot.
-            if prism.top != 1.0 || p.section.is_some() {
-                continue;
-            }
-            let mut views = Vec::new();
-            if let Some(e) = eye {
-                let o = p.xf.point_to_object(e).truncate();
-                views.extend(Pencil::through(&prism.region, o));
-            }
-            for &d in dirs {
-                let od = p.xf.dir_to_object(d).truncate();
-                views.extend(Pencil::along(&prism.region, od));
-            }
-            if views.is_empty() {
-                continue;
-            }
-            let copy = out.get_or_insert_with(|| self.clone());
+        use rayon::prelude::*;
+        // Each prism's families on its own, on every thread (a text of
+        // hundreds of glyphs took a few milliseconds on one).
+        let views: Vec<(usize, Vec<Pencil>)> = self
+            .prims
+            .par_iter()
+            .enumerate()
+            .filter_map(|(i, p)| {
+                let Shape::Prism(prism) = &p.shape else {
+                    return None;
+                };
+                // A tapered prism's lines are not the rays' projections; a
+                // primitive in a section is met along the ray's foot.
+                if prism.top != 1.0 || p.section.is_some() {
+                    return None;
+                }
+                let mut views = Vec::new();
+                if let Some(e) = eye {
+                    let o = p.xf.point_to_object(e).truncate();
+                    views.extend(Pencil::through(&prism.region, o));
+                }
+                for &d in dirs {
+                    let od = p.xf.dir_to_object(d).truncate();
+                    views.extend(Pencil::along(&prism.region, od));
+                }
+                (!views.is_empty()).then_some((i, views))
+            })
+            .collect();
+        if views.is_empty() {
+            return None;
+        }
+        let mut copy = self.clone();
+        for (i, v) in views {
             if let Shape::Prism(q) = &mut copy.prims[i].shape {
-                q.views = views;
+                q.views = v;
             }
         }
-        out
+        Some(copy)
     }
 
     pub fn add_prim(&mut self, prim: Primitive) -> u32 {
