@@ -691,12 +691,12 @@ impl Csg {
             q.st.bound_tests += ch.len() as u64;
             q.st.bound_culled += (ch.len() - order.len()) as u64;
         }
-        // Entries are never NaN (the box test keeps `tmin` over NaN).
-        order.sort_unstable_by(|a, b| {
-            (a.0, a.1)
-                .partial_cmp(&(b.0, b.1))
-                .unwrap_or(std::cmp::Ordering::Equal)
-        });
+        // Entries are never NaN (the box test keeps `tmin` over NaN). (The
+        // closure, not the function itself: the sort compiled from the
+        // function took 0.7 % more of nested_tori's instructions and 1.3 %
+        // more of seed's.)
+        #[allow(clippy::redundant_closure)]
+        order.sort_unstable_by(|a, b| by_entry(a, b));
         // The cut of what has been added so far (nothing yet: none).
         let mut now = f64::INFINITY;
         for &(entry, c) in &order {
@@ -802,6 +802,22 @@ pub const BEST_FIRST_MIN: usize = 64;
 /// lecture's seed scene (1.13, 2.02) and twelve interlocked tori (2.24)
 /// 17 % and 14 % more that way, so they sort.
 pub const FILL_MAX: f64 = 1.0;
+
+/// Children met by a ray, by box entry, then child: for entries that are
+/// not NaN and distinct children a total order, so a sort gives the one
+/// order whatever its algorithm — the order of the tuples' `partial_cmp`,
+/// which took half as many instructions again in the sort (nested_tori:
+/// 44 against 29 M of 830 M).
+#[inline(always)]
+fn by_entry(a: &(f64, u32), b: &(f64, u32)) -> std::cmp::Ordering {
+    if a.0 < b.0 {
+        std::cmp::Ordering::Less
+    } else if a.0 > b.0 {
+        std::cmp::Ordering::Greater
+    } else {
+        a.1.cmp(&b.1)
+    }
+}
 
 /// The first real surface crossing after `tmin` in a list.
 fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
@@ -942,4 +958,35 @@ fn with_scratch<R>(st: &mut Stats, f: impl FnOnce(&mut Scratch, &mut Stats) -> R
         }
         r
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::by_entry;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The written-out order is the tuples' own, ties in the entry
+        /// (zeros of both signs among them) broken by the child.
+        #[test]
+        fn children_sort_as_their_tuples_do(
+            entries in proptest::collection::vec(
+                prop_oneof![Just(0.0), Just(-0.0), Just(1.0), Just(f64::INFINITY), -5.0..5.0f64],
+                0..40,
+            ),
+        ) {
+            // Distinct children, in an order unrelated to the entries'.
+            let v: Vec<(f64, u32)> = entries
+                .iter()
+                .enumerate()
+                .map(|(k, &t)| (t, (k as u32 * 7919) % 1009))
+                .collect();
+            let mut want = v.clone();
+            want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+            let mut got = v;
+            got.sort_unstable_by(by_entry);
+            let bits = |l: &[(f64, u32)]| l.iter().map(|x| (x.0.to_bits(), x.1)).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&got), bits(&want));
+        }
+    }
 }
