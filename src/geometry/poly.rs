@@ -147,8 +147,8 @@ fn refine<const D: usize>(c: &Poly, d: &Poly, mut a: f64, mut b: f64, fa: f64) -
         };
         // The larger end by a plain select, not f64::max, whose care for
         // NaN sat in every step (3.7 % of nested_tori's instructions): the
-        // same value, a NaN end included (the difference is NaN then too,
-        // and the test fails either way).
+        // same value unless an end is NaN, and then b − a is NaN too and
+        // the test fails either way.
         let (ma, mb) = (a.abs(), b.abs());
         let wide = if ma > mb { ma } else { mb };
         if (next - x).abs() <= 2.0 * f64::EPSILON * x.abs() || b - a <= f64::EPSILON * wide {
