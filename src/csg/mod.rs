@@ -556,14 +556,20 @@ impl Csg {
         if let NodeKind::Leaf(id) = self.nodes[root as usize].kind {
             return self.leaf_first(root, id, ray, tmin, tmax, st, need);
         }
-        let first = |acc: &[Span]| first_surface(acc, tmin);
         query(ray, tmin, tmax, st, |q| {
-            match &self.nodes[root as usize].kind {
-                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
-                _ => self.push_spans(root, q),
-            };
+            self.push_root(root, q, |acc| first_surface(acc, tmin));
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
         })
+    }
+
+    /// Pushes the spans of `root`, the whole tree: a union's good up to
+    /// the boundary `first` finds in them ([`Csg::union_first`]), any other
+    /// node's whole.
+    fn push_root(&self, root: u32, q: &mut Query, first: impl Fn(&[Span]) -> Option<Boundary>) {
+        match &self.nodes[root as usize].kind {
+            NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
+            _ => self.push_spans(root, q),
+        }
     }
 
     /// The whole tree's spans along `ray` handed to `f`, good up to the
@@ -588,10 +594,7 @@ impl Csg {
                 .find(|b| b.t > tmin && b.is_surface() && stops(b))
         };
         query(ray, tmin, tmax, st, |q| {
-            match &self.nodes[root as usize].kind {
-                NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
-                _ => self.push_spans(root, q),
-            };
+            self.push_root(root, q, first);
             f(&q.sc.stack)
         })
     }

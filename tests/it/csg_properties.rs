@@ -243,35 +243,12 @@ fn arb_very_wide() -> impl Strategy<Value = Tree> {
     prop::collection::vec(leaf, 65..90).prop_map(|kids| Tree::Node(Op::Union, kids))
 }
 
-/// The first surface crossing after t = 0 of the full span list.
-fn full_first(csg: &Csg, root: u32, ray: &Ray) -> Option<f64> {
-    let mut st = Stats::default();
-    csg.spans(root, ray, 0.0, f64::INFINITY, &mut st)
-        .iter()
+/// The first surface crossing after t = 0 of a full span list.
+fn full_first(full: &[Span]) -> Option<f64> {
+    full.iter()
         .flat_map(|s| [s.enter, s.exit])
         .find(|b| b.t > 0.0 && b.is_surface())
         .map(|b| b.t)
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(150))]
-
-    /// The first-hit query stops early in unions; it must find the same
-    /// first surface as the full span list, from outside and from inside.
-    #[test]
-    fn first_hit_agrees_with_the_full_span_list(
-        tree in prop_oneof![arb_tree(), arb_wide(), arb_very_wide()],
-        rays in prop::collection::vec(arb_ray(), 12),
-    ) {
-        let mut csg = Csg::default();
-        let root = build(&mut csg, &tree);
-        csg.root = Some(root);
-        for ray in rays {
-            let mut st = Stats::default();
-            let got = csg.first_boundary(&ray, 0.0, f64::INFINITY, &mut st).map(|b| b.t);
-            prop_assert_eq!(got, full_first(&csg, root, &ray), "{:?}", ray);
-        }
-    }
 }
 
 /// What a shadow ray lets through along a list (as the shader reads it):
@@ -323,11 +300,13 @@ fn up_to_opaque(list: &[Span]) -> Vec<(f64, Option<f64>)> {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(150))]
 
-    /// A shadow ray's list stops early in a root union, at the first
-    /// opaque surface it enters; up to that span it must be the full
-    /// list, and let the same light through.
+    /// Two queries stop early in a root union; each must agree with the
+    /// full span list, from outside and from inside: the first-hit query
+    /// on the first surface, and a shadow ray's list, which stops at the
+    /// first opaque surface it enters, on every span up to that one and
+    /// on the light let through.
     #[test]
-    fn spans_until_an_opaque_surface_agree_with_the_full_list(
+    fn early_stopping_queries_agree_with_the_full_span_list(
         tree in prop_oneof![arb_tree(), arb_wide(), arb_very_wide()],
         rays in prop::collection::vec(arb_ray(), 12),
     ) {
@@ -337,6 +316,8 @@ proptest! {
         for ray in rays {
             let mut st = Stats::default();
             let full = csg.spans(root, &ray, 0.0, f64::INFINITY, &mut st);
+            let got = csg.first_boundary(&ray, 0.0, f64::INFINITY, &mut st).map(|b| b.t);
+            prop_assert_eq!(got, full_first(&full), "{:?}", ray);
             let opaque = |b: &Boundary| kt(b.prim) <= 0.0;
             let (got, through) = csg.spans_until(&ray, 0.0, f64::INFINITY, &mut st, opaque, |l| {
                 (up_to_opaque(l), pass(l))
