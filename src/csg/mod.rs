@@ -922,17 +922,10 @@ impl Scratch {
             None => {}
         }
         // Two single spans: written out, not swept (the same answer).
-        if let ([x], [y]) = (a, b) {
-            let one = if op == Op::Union {
-                spans::union_one(x, y, scale).map(|s| ([s, s], 1))
-            } else {
-                spans::cut_one(op, x, y, scale)
-            };
-            if let Some((r, n)) = one {
-                self.stack[base..base + n].copy_from_slice(&r[..n]);
-                self.stack.truncate(base + n);
-                return;
-            }
+        if let Some((r, n)) = spans::single(op, a, b, scale) {
+            self.stack[base..base + n].copy_from_slice(&r[..n]);
+            self.stack.truncate(base + n);
+            return;
         }
         self.out.clear();
         spans::sweep_into(op, a, b, scale, &mut self.out);

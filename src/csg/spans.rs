@@ -314,20 +314,23 @@ pub fn cut_one(op: Op, a: &Span, b: &Span, scale: f64) -> Option<([Span; 2], usi
     }
 }
 
+/// `a op b` written out when both lists hold one span ([`union_one`],
+/// [`cut_one`]): up to two spans and how many, or `None` for the sweep.
+/// For lists that [`quick`] left to the sweep (a union's not [`apart`]).
+#[inline]
+pub fn single(op: Op, a: &[Span], b: &[Span], scale: f64) -> Option<([Span; 2], usize)> {
+    let ([x], [y]) = (a, b) else {
+        return None;
+    };
+    if op == Op::Union {
+        union_one(x, y, scale).map(|s| ([s, s], 1))
+    } else {
+        cut_one(op, x, y, scale)
+    }
+}
+
 /// [`combine`], appending the result to `out`.
 pub fn combine_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Span>) {
-    if let ([x], [y]) = (a, b) {
-        if op == Op::Union && apart(a, b, scale).is_none() {
-            if let Some(s) = union_one(x, y, scale) {
-                out.push(s);
-                return;
-            }
-        }
-        if let Some((r, n)) = cut_one(op, x, y, scale) {
-            out.extend_from_slice(&r[..n]);
-            return;
-        }
-    }
     match quick(op, a, b, scale) {
         Some(Quick::A) => out.extend_from_slice(a),
         Some(Quick::B) => out.extend_from_slice(b),
@@ -340,7 +343,10 @@ pub fn combine_into(op: Op, a: &[Span], b: &[Span], scale: f64, out: &mut Vec<Sp
             out.extend_from_slice(b);
             out.extend_from_slice(a);
         }
-        None => sweep_into(op, a, b, scale, out),
+        None => match single(op, a, b, scale) {
+            Some((r, n)) => out.extend_from_slice(&r[..n]),
+            None => sweep_into(op, a, b, scale, out),
+        },
     }
 }
 
