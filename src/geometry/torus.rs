@@ -4,10 +4,11 @@
 //! (|p|² + 1 − r²)² − 4(x² + y²) = 0 is a quartic in t. As POV-Ray does, the
 //! ray origin is first moved to where the line enters the torus's box and
 //! the direction made unit, which keeps the coefficients small; the roots
-//! are then isolated and polished by [`super::poly::roots_in`], never by a
-//! closed form.
+//! are then isolated and polished by [`super::poly::roots_in_from`], its
+//! Newton steps starting from Ferrari's closed form (a guarded start: a root
+//! is still only accepted inside a bracket where the quartic changes sign).
 
-use super::poly::{eval, roots_in, Poly};
+use super::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::{DAffine3, DVec3};
@@ -148,7 +149,9 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
         1.0,
     ]);
     let mut roots = [0.0; super::poly::MAX_DEGREE];
-    let n = roots_in(&poly, 4, 0.0, span, &mut roots);
+    let mut starts = [0.0; 4];
+    let ns = quartic_estimates(&poly, &mut starts);
+    let n = roots_in_from(&poly, 4, 0.0, span, &starts[..ns], &mut roots);
     // The box ends are outside the torus; spans are where the quartic < 0.
     let mut prev = 0.0;
     let mut inside_from = None;
