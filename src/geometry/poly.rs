@@ -149,8 +149,9 @@ pub fn quartic_estimates(c: &Poly, out: &mut [f64; 4]) -> usize {
         }
     };
     // The resolvent m³ + p m² + (p²/4 − r) m − q²/8 = 0 has a root m > 0
-    // (it is −q²/8 ≤ 0 at 0): its largest, by the trigonometric or
-    // Cardano form of the depressed cubic m = z − p/3.
+    // (it is −q²/8 ≤ 0 at 0): its largest, from the depressed cubic
+    // (m = z − p/3) by Cardano's form where that has one real root, by
+    // Newton from above where it has three.
     let (c2, c1, c0) = (p, 0.25 * p * p - r, -0.125 * q * q);
     let pp = c1 - c2 * c2 / 3.0;
     let qq = 2.0 * c2 * c2 * c2 / 27.0 - c2 * c1 / 3.0 + c0;
@@ -237,8 +238,9 @@ fn quadratic_in(c: &Poly, lo: f64, hi: f64, out: &mut Roots) -> usize {
 }
 
 /// The one root in `[a, b]`, where the polynomial is monotonic and changes
-/// sign: Newton steps from `x0` (inside), falling back to bisection when a step leaves the
-/// bracket or does not shrink it fast enough.
+/// sign: Newton steps from `x0` (inside the bracket), falling back to
+/// bisection when a step leaves the bracket or does not shrink it fast
+/// enough.
 fn refine<const D: usize>(c: &Poly, d: &Poly, mut a: f64, mut b: f64, fa: f64, x0: f64) -> f64 {
     let rising = fa < 0.0;
     let mut x = x0;
