@@ -78,7 +78,7 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     // Clip the line to the box [-(1+r), 1+r]² × [-r, r].
     let e = DVec3::new(1.0 + minor, 1.0 + minor, minor);
     // Plain selects rather than f64::min and max, whose care for NaN cost
-    // some 80 instructions a call (8 % of nested_tori's): the same ends for
+    // some 40 instructions a call (4 % of nested_tori's): the same ends for
     // any numbers (a zero's sign aside, which no use below can see), and a
     // NaN end fails both comparisons and is passed over, as max and min do.
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
