@@ -228,22 +228,7 @@ class Prim:
                     return [lo, hi]
             return []
         if k == "torus":
-            R, r = s, s / 4
-            # (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) as a quartic in t
-            A, B, C = dot(d, d), 2 * dot(o, d), dot(o, o) + R * R - r * r
-            axy = d[0] ** 2 + d[1] ** 2
-            bxy = 2 * (o[0] * d[0] + o[1] * d[1])
-            cxy = o[0] ** 2 + o[1] ** 2
-            coeffs = [
-                A * A,
-                2 * A * B,
-                B * B + 2 * A * C - 4 * R * R * axy,
-                2 * B * C - 4 * R * R * bxy,
-                C * C - 4 * R * R * cxy,
-            ]
-            roots = mp.polyroots(coeffs, maxsteps=200, extraprec=200)
-            real = sorted(mp.re(x) for x in roots if abs(mp.im(x)) < mp.mpf(10) ** -30)
-            return real
+            return torus_crossings(o, d, s, s / 4)
         raise ValueError(k)
 
     def first(self, o, d):
@@ -896,6 +881,25 @@ def cubic_roots(c):
         return [-c[1] / c[0]]
     rs = mp.polyroots(c, maxsteps=200, extraprec=200)
     return sorted(mp.re(r) for r in rs if abs(mp.im(r)) <= mp.mpf(10) ** -30 * (1 + abs(r)))
+
+
+def torus_crossings(o, d, R, r):
+    """Sorted exact t of every crossing of the line o + t d with the torus
+    about the z axis of major radius R and tube radius r."""
+    # (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) as a quartic in t
+    A, B, C = dot(d, d), 2 * dot(o, d), dot(o, o) + R * R - r * r
+    axy = d[0] ** 2 + d[1] ** 2
+    bxy = 2 * (o[0] * d[0] + o[1] * d[1])
+    cxy = o[0] ** 2 + o[1] ** 2
+    coeffs = [
+        A * A,
+        2 * A * B,
+        B * B + 2 * A * C - 4 * R * R * axy,
+        2 * B * C - 4 * R * R * bxy,
+        C * C - 4 * R * R * cxy,
+    ]
+    roots = mp.polyroots(coeffs, maxsteps=200, extraprec=200)
+    return sorted(mp.re(x) for x in roots if abs(mp.im(x)) < mp.mpf(10) ** -30)
 
 
 def real_roots(c):
