@@ -122,6 +122,11 @@ pub struct Node {
     /// group in the children's order, tested four at once (empty for
     /// other nodes).
     pub lanes: Vec<AabbLanes<4>>,
+    /// Whether a query whose root this is tests its box before the query
+    /// is set up ([`Csg::root_box`]): a bounded box (an empty one counts,
+    /// and culls) of a node that is not a union walking its hierarchy.
+    /// Set by [`Csg::add_node`].
+    pub pretest: bool,
 }
 
 /// From how many children a union's boxes are kept four to a group (fewer
@@ -223,6 +228,7 @@ impl Csg {
             bounds,
             index: None,
             lanes: Vec::new(),
+            pretest: false,
         })
     }
 
@@ -268,6 +274,7 @@ impl Csg {
             bounds,
             index,
             lanes,
+            pretest: false,
         })
     }
 
@@ -295,6 +302,7 @@ impl Csg {
             bounds: Aabb::EVERYTHING,
             index: None,
             lanes: Vec::new(),
+            pretest: false,
         })
     }
 
@@ -338,7 +346,10 @@ impl Csg {
         }))
     }
 
-    fn add_node(&mut self, node: Node) -> u32 {
+    fn add_node(&mut self, mut node: Node) -> u32 {
+        let e = node.bounds.max - node.bounds.min;
+        node.pretest =
+            e.x + e.y + e.z < f64::INFINITY && !node.index.as_ref().is_some_and(|ix| ix.near_first);
         self.nodes.push(node);
         self.nodes.len() as u32 - 1
     }
@@ -556,18 +567,50 @@ impl Csg {
         if let NodeKind::Leaf(id) = self.nodes[root as usize].kind {
             return self.leaf_first(root, id, ray, tmin, tmax, st, need);
         }
+        if !self.root_box(root, ray, tmin, tmax, st) {
+            return None;
+        }
         query(ray, tmin, tmax, st, |q| {
             self.push_root(root, q, |acc| first_surface(acc, tmin));
             first_surface(&q.sc.stack, tmin).filter(|b| b.t < tmax)
         })
     }
 
-    /// Pushes the spans of `root`, the whole tree: a union's good up to
-    /// the boundary `first` finds in them ([`Csg::union_first`]), any other
+    /// Whether the ray may meet the root's own box: tested before a query
+    /// is set up (the thread's scratch, the query's frame: some 100
+    /// instructions, which a ray that misses the whole scene — most of a
+    /// background — need not pay) where [`Node::pretest`] says so, else
+    /// left to the root's walk (true here).
+    ///
+    /// A ray that misses a union's box misses every child's box within it
+    /// (each of the box test's slab ranges holds a child's), so nothing
+    /// changes but the boxes not tested one by one; any other node's walk
+    /// would test its box first ([`Csg::push_spans`]), counted the same.
+    /// Not an unbounded box, such as a floor's, which every ray meets; an
+    /// empty box is tested, and culls, as it should. Not a union that
+    /// walks its hierarchy, whose walk begins with the hierarchy's own box.
+    #[inline(always)]
+    fn root_box(&self, root: u32, ray: &Ray, tmin: f64, tmax: f64, st: &mut Stats) -> bool {
+        let n = &self.nodes[root as usize];
+        if n.pretest {
+            st.bound_tests += 1;
+            if !n.bounds.hit(ray, tmin, tmax) {
+                st.bound_culled += 1;
+                return false;
+            }
+        }
+        true
+    }
+
+    /// Pushes the spans of `root`, the whole tree, whose box the ray meets
+    /// if [`Csg::root_box`] has tested it: a union's good up to the
+    /// boundary `first` finds in them ([`Csg::union_first`]), any other
     /// node's whole.
     fn push_root(&self, root: u32, q: &mut Query, first: impl Fn(&[Span]) -> Option<Boundary>) {
-        match &self.nodes[root as usize].kind {
+        let n = &self.nodes[root as usize];
+        match &n.kind {
             NodeKind::Op(Op::Union, ch) => self.union_first(root, ch, q, first),
+            _ if n.pretest => self.push_spans_within(root, q),
             _ => self.push_spans(root, q),
         }
     }
@@ -593,15 +636,18 @@ impl Csg {
                 .map(|s| s.enter)
                 .find(|b| b.t > tmin && b.is_surface() && stops(b))
         };
+        if !self.root_box(root, ray, tmin, tmax, st) {
+            return f(&[]);
+        }
         query(ray, tmin, tmax, st, |q| {
             self.push_root(root, q, first);
             f(&q.sc.stack)
         })
     }
 
-    /// Pushes a union's spans, good up to the boundary `first` finds in
-    /// them (its first boundary after `tmin`, say), or whole if it finds
-    /// none.
+    /// Pushes the root union's spans, good up to the boundary `first`
+    /// finds in them (its first boundary after `tmin`, say), or whole if
+    /// it finds none.
     ///
     /// Children are taken in the order the ray enters their boxes; once the
     /// next box begins beyond the boundary found, no child left can
@@ -653,23 +699,8 @@ impl Csg {
             });
             return;
         }
-        // The union's own box first, as [`Csg::push_spans`] tests every
-        // other node's: a ray that misses it misses every child's box
-        // within it (each of the box test's slab ranges holds a child's),
-        // so nothing changes but the boxes not tested one by one. (Not an
-        // unbounded box, such as a floor's, which every ray meets. The
-        // extents' sum asks what `Aabb::is_bounded` does, with no branch:
-        // that call, asked of every ray here, took 1 to 2 % more of
-        // rounded_box_union's and seed's instructions; an empty box, which
-        // it calls unbounded, is tested here and culls, as it should.)
-        let e = n.bounds.max - n.bounds.min;
-        if e.x + e.y + e.z < f64::INFINITY {
-            q.st.bound_tests += 1;
-            if !n.bounds.hit(ray, tmin, tmax) {
-                q.st.bound_culled += 1;
-                return;
-            }
-        }
+        // The union's own box has been tested by [`Csg::root_box`] (the
+        // root is the only union walked here) if it is bounded.
         let mut order: SmallVec<[(f64, u32); 32]> = SmallVec::new();
         if n.lanes.is_empty() {
             for &c in ch {
