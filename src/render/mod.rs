@@ -82,6 +82,15 @@ pub fn to_byte(v: f64) -> u8 {
     whole + (x - whole as f64 >= 0.5) as u8
 }
 
+/// Whether every component of `a` and `b` is finite: each times zero is
+/// zero (NaN for ±∞ and NaN), and so is their sum — one test, not the six
+/// branches of `is_finite` on each (a unit test compares them).
+#[inline]
+fn both_finite(a: DVec3, b: DVec3) -> bool {
+    let z = a * 0.0 + b * 0.0;
+    z.x + z.y + z.z == 0.0
+}
+
 /// Renders the scene; `on_row` is called once per finished row (of the
 /// last pass).
 pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Rendered {
@@ -100,18 +109,29 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
     // The mean of a pixel's `n` samples (non-finite ones counted, not
     // summed): of their colours, and of their radiance before the last
     // clamp.
+    let sample = |x: f64, y: f64, st: &mut Stats| {
+        st.primary_rays += 1;
+        let (c, r) = shader.primary(&cam.ray(x, y), st);
+        if both_finite(c, r) {
+            Some((c, r))
+        } else {
+            st.nonfinite_samples += 1;
+            None
+        }
+    };
     let pixel = |x: u32, y: u32, n: u32, st: &mut Stats| {
+        if n == 1 {
+            // The sum of one sample, divided by one: the same bits (zero
+            // plus the sample, which turns −0 into +0, as the sum does).
+            let (c, r) = sample(x as f64 + 0.5, y as f64 + 0.5, st).unwrap_or_default();
+            return (DVec3::ZERO + c, DVec3::ZERO + r);
+        }
         let (mut sum, mut lin) = (DVec3::ZERO, DVec3::ZERO);
         for k in 0..n {
             let (ox, oy) = sampler::offset(x, y, k, n);
-            let ray = cam.ray(x as f64 + ox, y as f64 + oy);
-            st.primary_rays += 1;
-            let (c, r) = shader.primary(&ray, st);
-            if c.is_finite() && r.is_finite() {
+            if let Some((c, r)) = sample(x as f64 + ox, y as f64 + oy, st) {
                 sum += c;
                 lin += r;
-            } else {
-                st.nonfinite_samples += 1;
             }
         }
         (sum / n as f64, lin / n as f64)
@@ -294,6 +314,34 @@ mod tests {
         }
         for v in vs {
             assert_eq!(to_byte(v), by_round(v), "{v:e}");
+        }
+    }
+
+    #[test]
+    fn both_finite_is_every_component_finite() {
+        let vals = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            f64::MIN_POSITIVE / 8.0,
+            f64::MAX,
+            f64::MIN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ];
+        // Every value in every one of the six places, the others drawn
+        // from the list by a rotating index.
+        for (i, &v) in vals.iter().enumerate() {
+            for place in 0..6 {
+                let mut c = [0.0; 6];
+                for (k, x) in c.iter_mut().enumerate() {
+                    *x = if k == place { v } else { vals[(i + 3 * k) % 6] };
+                }
+                let (a, b) = (DVec3::from_slice(&c[..3]), DVec3::from_slice(&c[3..]));
+                assert_eq!(both_finite(a, b), a.is_finite() && b.is_finite(), "{c:?}");
+            }
         }
     }
 }
