@@ -98,6 +98,9 @@ def kind(area, name):
         return "walk"
     if area == "render":
         return "shading" if name == "shade.rs" else None
+    if area == "geometry" and name == "mod.rs":
+        # The ray itself (`Ray::new`, `Ray::at`), not a solid's work.
+        return None
     key = "plane/mod.rs" if (area == "plane" and name == "mod.rs") else name
     return ("leaf", KIND.get(key, key.removesuffix(".rs")))
 
