@@ -29,10 +29,12 @@ Usage: accuracy.py [--csgrt BIN] [--rays N] [--check] [--report FILE]
 """
 
 import argparse
+import atexit
 import math
 import multiprocessing
 import os
 import random
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -250,7 +252,19 @@ VASE = [((5, 30),), ((20, 30), (32, 10), (8, -10)), ((18, -30),), ((15, -30), (4
 # The cubic prism: an SVG path of two cubic Bézier curves and two lines
 # (file units, times the size; y points down in the file, up once read).
 CUBIC_PATH = [((-0.4, -0.3), (-0.1, -0.6), (0.3, 0.1)), ((0.4, -0.35),), ((0.45, 0.3), (0.1, 0.0), (-0.2, 0.6)), ((-0.45, 0.25),)]
-SVG_DIR = tempfile.mkdtemp(prefix="csgrt-accuracy-")
+_SVG_DIR = []
+
+
+def svg_dir():
+    """A temporary directory for the SVG files of the cases, made by the
+    first case that needs one and removed when this process exits (an
+    importer such as explain_shadows.py makes none)."""
+    if not _SVG_DIR:
+        _SVG_DIR.append(tempfile.mkdtemp(prefix="csgrt-accuracy-"))
+        atexit.register(shutil.rmtree, _SVG_DIR[0], True)
+    return _SVG_DIR[0]
+
+
 # The twisted ellipse: the unit circle under x -> A x + c (times the size).
 ELLIPSE_A, ELLIPSE_C = ((0.3, 0.12), (-0.05, 0.2)), (0.12, 0.08)
 TAPER = 0.5
@@ -286,7 +300,7 @@ class Extruded(Prim):
         elif kind == "cubic":
             # Points of the file at x, y are read at (x, -y) (no page size).
             pts = [[float(x * s) for x in q] for seg in CUBIC_PATH for q in seg]
-            self.svg = os.path.join(SVG_DIR, f"cubic_{s!r}.svg")
+            self.svg = os.path.join(svg_dir(), f"cubic_{s!r}.svg")
             d = f"M {pts[0][0]!r} {pts[0][1]!r} C {pts[1][0]!r} {pts[1][1]!r} {pts[2][0]!r} {pts[2][1]!r} {pts[3][0]!r} {pts[3][1]!r} L {pts[4][0]!r} {pts[4][1]!r} C {pts[5][0]!r} {pts[5][1]!r} {pts[6][0]!r} {pts[6][1]!r} {pts[7][0]!r} {pts[7][1]!r} Z"
             with open(self.svg, "w") as f:
                 f.write(f'<svg xmlns="http://www.w3.org/2000/svg"><path d="{d}"/></svg>\n')
@@ -294,7 +308,7 @@ class Extruded(Prim):
             self.edges = [[P[0], P[1], P[2], P[3]], [P[3], P[4]], [P[4], P[5], P[6], P[7]], [P[7], P[0]]]
         elif kind == "turned_cubic":
             pts = [[float(x * s / 60) for x in q] for seg in VASE for q in seg]
-            self.svg = os.path.join(SVG_DIR, f"vase_{s!r}.svg")
+            self.svg = os.path.join(svg_dir(), f"vase_{s!r}.svg")
             f_ = lambda q: f"{q[0]!r} {q[1]!r}"
             d = f"M {f_(pts[0])} L {f_(pts[1])} C {f_(pts[2])} {f_(pts[3])} {f_(pts[4])} L {f_(pts[5])} C {f_(pts[6])} {f_(pts[7])} {f_(pts[8])} Z"
             with open(self.svg, "w") as f:
