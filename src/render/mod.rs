@@ -336,8 +336,8 @@ mod tests {
             f64::NEG_INFINITY,
             f64::NAN,
         ];
-        // Every value in every one of the six places, the others drawn
-        // from the list by a rotating index.
+        // Every value in every one of the six places, the other five
+        // finite (the list's first six, by a rotating index).
         for (i, &v) in vals.iter().enumerate() {
             for place in 0..6 {
                 let mut c = [0.0; 6];
