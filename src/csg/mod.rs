@@ -712,16 +712,7 @@ impl Csg {
             }
         } else {
             // The same entries, four boxes at once.
-            for (lanes, group) in n.lanes.iter().zip(ch.chunks(4)) {
-                let (met, t) = lanes.entries_met(ray, tmin, tmax);
-                // The lanes filled, in order.
-                let mut m = met & ((1 << group.len()) - 1);
-                while m != 0 {
-                    let k = m.trailing_zeros() as usize;
-                    order.push((t[k], group[k]));
-                    m &= m - 1;
-                }
-            }
+            AabbLanes::gather(&n.lanes, ch, ray, tmin, tmax, |t, c| order.push((t, c)));
             q.st.bound_tests += ch.len() as u64;
             q.st.bound_culled += (ch.len() - order.len()) as u64;
         }
