@@ -270,6 +270,31 @@ impl AabbLanes<4> {
         Self::gather_with::<false>(lanes, ids, ray, tmin, tmax, met)
     }
 
+    /// [`entries_met`](Self::entries_met) by [`entries_met_avx`] where the
+    /// processor has AVX (a call, for a caller not itself compiled for it:
+    /// a wide hierarchy's node), else by SSE2: the same bits.
+    ///
+    /// [`entries_met_avx`]: Self::entries_met_avx
+    #[inline]
+    pub fn entries_met_any(&self, ray: &Ray, tmin: f64, tmax: f64) -> (u32, [f64; 4]) {
+        #[cfg(target_arch = "x86_64")]
+        if has_avx() {
+            // SAFETY: the processor has AVX.
+            return unsafe { self.entries_met_avx_call(ray, tmin, tmax) };
+        }
+        self.entries_met(ray, tmin, tmax)
+    }
+
+    /// [`entries_met_avx`](Self::entries_met_avx) compiled for AVX.
+    ///
+    /// # Safety
+    /// The processor must have AVX.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx")]
+    unsafe fn entries_met_avx_call(&self, ray: &Ray, tmin: f64, tmax: f64) -> (u32, [f64; 4]) {
+        self.entries_met_avx(ray, tmin, tmax)
+    }
+
     /// [`gather`](Self::gather) compiled for AVX.
     ///
     /// # Safety
@@ -480,8 +505,9 @@ mod tests {
         /// Where the processor has AVX (the machines this project runs on
         /// do): its four lanes a register give the SSE2 lanes' bits and met
         /// lanes, special entries (origins on slab planes, zero direction
-        /// components, infinite and negative ranges) included; `gather`
-        /// gives the same children and entries as the per-lane tests.
+        /// components, infinite and negative ranges) included, called
+        /// inlined or through `entries_met_any`; `gather` gives the same
+        /// children and entries as the per-box tests.
         #[cfg(target_arch = "x86_64")]
         #[test]
         fn avx_lanes_give_the_same_bits_as_sse_ones(
@@ -498,10 +524,13 @@ mod tests {
                 // SAFETY: the processor has AVX (assumed above).
                 let (am, at) = unsafe { avx_entries(l, &ray, tmin, tmax) };
                 let (sm, st) = l.entries_met(&ray, tmin, tmax);
+                let (ym, yt) = l.entries_met_any(&ray, tmin, tmax);
                 prop_assert_eq!(am, sm);
+                prop_assert_eq!(ym, sm);
                 for k in 0..4 {
                     if sm >> k & 1 != 0 {
                         prop_assert_eq!(at[k].to_bits(), st[k].to_bits());
+                        prop_assert_eq!(yt[k].to_bits(), st[k].to_bits());
                     }
                 }
             }

@@ -275,7 +275,7 @@ impl Bvh {
                 // later lane), and those beginning beyond the cut go
                 // straight to the skipped.
                 let n = &self.wide[c as usize];
-                let entries = n.boxes.entries(ray, tmin, tmax);
+                let (met, t) = n.boxes.entries_met_any(ray, tmin, tmax);
                 let lanes = n.lanes as usize;
                 st.bound_tests += lanes as u64;
                 let mut found = [(0.0, 0u32); 4];
@@ -283,8 +283,8 @@ impl Bvh {
                 // (By index: the zipped form took 2 % more instructions.)
                 #[allow(clippy::needless_range_loop)]
                 for k in 0..lanes {
-                    if let Some(e) = entries[k] {
-                        found[m] = (e, n.child[k]);
+                    if met >> k & 1 != 0 {
+                        found[m] = (t[k], n.child[k]);
                         m += 1;
                     }
                 }
