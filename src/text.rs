@@ -13,7 +13,7 @@
 //! at the em asked, 138889 units, not the rounded E. Vertical text
 //! (`direction` "ttb", "btt") places each glyph by FreeType's synthesized
 //! vertical metrics, as HarfBuzz reads them through FreeType
-//! ([`vertical_position`]). `halign` moves the line by its width (the sum
+//! (`vertical_position`). `halign` moves the line by its width (the sum
 //! of advances times spacing), `valign` by the largest ascent and descent
 //! of the glyphs' grid-fitted control boxes. The differences from OpenSCAD
 //! are FreeType's: it hints the outline at 2170 ppem and rounds points to

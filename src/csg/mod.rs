@@ -123,9 +123,9 @@ pub struct Node {
     /// other nodes).
     pub lanes: Vec<AabbLanes<4>>,
     /// Whether a query whose root this is tests its box before the query
-    /// is set up ([`Csg::root_box`]): a bounded box (an empty one counts,
+    /// is set up (`Csg::root_box`): a bounded box (an empty one counts,
     /// and culls) of a node that is not a union walking its hierarchy.
-    /// Set by [`Csg::add_node`].
+    /// Set by `Csg::add_node`.
     pub pretest: bool,
 }
 

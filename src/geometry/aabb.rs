@@ -188,7 +188,7 @@ impl<const N: usize> AabbLanes<N> {
     ///
     /// # Safety
     /// The processor must have AVX; only worth calling where inlined into
-    /// a function compiled for it (such as [`AabbLanes::gather_avx`]),
+    /// a function compiled for it (such as `AabbLanes::gather_avx`),
     /// else every intrinsic is a call.
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]

@@ -39,7 +39,7 @@ use smallvec::SmallVec;
 use std::mem::MaybeUninit;
 
 /// The most triangles in a leaf (at most 8: the count is kept in 3 bits).
-/// A node's parts of more than [`SPLIT_ABOVE`] are split while it has
+/// A node's parts of more than `SPLIT_ABOVE` are split while it has
 /// lanes left; a part of three left when its eight lanes are taken is a
 /// leaf, not a node of two leaves and six empty lanes. On the bench's
 /// 1.3-million-triangle mesh (eight-wide, 2026-12-03): leaves of at most

@@ -76,7 +76,7 @@ impl Ctrl {
 
 /// One edge from `a` to `b`: its point at u ∈ [0, 1] is B(u), a polynomial
 /// of degree ≤ 3, kept in the power basis about an origin o:
-/// B(u) − o = k[0] + k[1]·u + k[2]·u² + k[3]·u³.
+/// `B(u) − o = k[0] + k[1]·u + k[2]·u² + k[3]·u³`.
 #[derive(Clone, Copy, Debug)]
 pub struct Curve {
     pub k: [DVec2; 4],

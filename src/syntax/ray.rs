@@ -1,7 +1,7 @@
 //! The seed's display list (`.ray`, `grammar/ray.pest`) → [`Scene`].
 //!
 //! The format is flat, so it is read straight into a scene (through the one
-//! [`SceneBuilder`](crate::scene::builder::SceneBuilder)): the camera and
+//! [`SceneBuilder`]): the camera and
 //! background statements set the view, `light` adds a light, `surface`
 //! sets the material of the spheres after it, `sphere` adds one. All the
 //! spheres form a union. Colours and coefficients are in [0, 1] (the
