@@ -153,12 +153,13 @@ impl Node {
     }
 }
 
-/// Whether this processor has AVX and `popcnt` (asked once: the answers are
+/// Whether this processor has AVX ([`super::aabb::has_avx`], which the
+/// union's box lanes ask too) and `popcnt` (asked once: the answers are
 /// kept).
 #[cfg(target_arch = "x86_64")]
 #[inline]
 fn has_avx() -> bool {
-    std::arch::is_x86_feature_detected!("avx") && std::arch::is_x86_feature_detected!("popcnt")
+    super::aabb::has_avx() && std::arch::is_x86_feature_detected!("popcnt")
 }
 
 /// How many bits of a four-bit mask are set (a table: `count_ones` is a
