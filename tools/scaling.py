@@ -47,8 +47,11 @@ def render_seconds(csgrt, scene, size, threads, tmp, copies=1):
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE))
         files.append(stats)
     for p in procs:
-        if p.wait() != 0:
-            sys.exit(f"scaling.py: csgrt failed on {scene}: {p.stderr.read().decode()}")
+        # communicate, not wait: a child whose stderr filled the pipe would
+        # never end.
+        _, err = p.communicate()
+        if p.returncode != 0:
+            sys.exit(f"scaling.py: csgrt failed on {scene}: {err.decode()}")
     times = []
     for stats in files:
         with open(stats) as f:
