@@ -8,7 +8,7 @@
 //!
 //! Usage: cargo run --release --example samples -- SCENE [WxH] > out.txt
 
-use csgrt::geometry::robust::{offset_origin, point_error};
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::Ray;
 use csgrt::render::camera::Camera;
 use csgrt::render::sampler;

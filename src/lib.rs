@@ -17,6 +17,7 @@ pub mod drawing;
 pub mod dump;
 pub mod error;
 pub mod geometry;
+pub mod math;
 #[doc(hidden)]
 pub mod harness;
 pub mod meshfile;

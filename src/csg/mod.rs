@@ -11,7 +11,7 @@ pub mod spans;
 
 use crate::geometry::aabb::AabbLanes;
 use crate::geometry::bvh::Bvh;
-use crate::geometry::robust::coincidence;
+use crate::math::robust::coincidence;
 use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
 use crate::plane::pencil::Pencil;
 use crate::stats::Stats;

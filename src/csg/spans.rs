@@ -9,7 +9,7 @@
 //! every change of both operands at once, and writes a boundary only if the
 //! result's membership changes there. Two operands' boundaries closer than
 //! [`coincidence`] (a few hundred ulps of the ray's scale: see
-//! `geometry::robust`) count as the same `t`, so faces shared by two
+//! `math::robust`) count as the same `t`, so faces shared by two
 //! primitives resolve the same way in every pixel even though each was
 //! reached through its own transform. So touching spans merge (`[0,1] ∪
 //! [1,2] = [0,2]`), spans that only touch intersect to nothing, and `A − A`
@@ -19,7 +19,7 @@
 //! when neither alone would. Surfaces credited to the subtracted operand of
 //! a difference have their normals flipped.
 
-use crate::geometry::robust::coincidence;
+use crate::math::robust::coincidence;
 use crate::geometry::{Part, NO_PART};
 
 /// One end of a span: where a ray crosses a primitive's surface.

@@ -1,6 +1,6 @@
 //! Axis-aligned bounding boxes and the slab test.
 
-use super::robust::GAMMA3;
+use crate::math::robust::GAMMA3;
 use super::Ray;
 use glam::DVec3;
 

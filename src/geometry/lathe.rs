@@ -26,7 +26,7 @@
 //! over a block of edges at a time where the trace stays clear of the
 //! block's box.
 
-use super::poly::{Poly, MAX_DEGREE};
+use crate::math::poly::{Poly, MAX_DEGREE};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region, FLAT_EDGES};

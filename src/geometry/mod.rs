@@ -15,9 +15,7 @@ pub mod lathe;
 pub mod mesh;
 pub mod mesh_bvh;
 pub mod offset_prism;
-pub mod poly;
 pub mod prism;
-pub mod robust;
 pub mod rounded;
 pub mod shadow;
 pub mod shape;
@@ -25,7 +23,6 @@ pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
-pub mod trig;
 pub mod twist;
 
 pub use aabb::Aabb;

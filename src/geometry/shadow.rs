@@ -8,13 +8,13 @@
 //! and the union of those intervals is the shadow's, merged where they
 //! touch. An edge two triangles share is crossed at the same parameter by
 //! both (each computes it from the edge's ends taken in one order), and
-//! ends closer than the coincidence bound (`geometry::robust`) meet. A box
+//! ends closer than the coincidence bound (`math::robust`) meet. A box
 //! tree over the triangles ([`EdgeTree`]) keeps the search to those near
 //! the line. Parts: 0 the bottom, 1 the top, 2 + 3·k + j the side over edge
 //! j of triangle k.
 
 use super::prism::{clip, slab};
-use super::robust::coincidence;
+use crate::math::robust::coincidence;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::plane::EdgeTree;

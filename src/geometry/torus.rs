@@ -4,11 +4,11 @@
 //! (|p|² + 1 − r²)² − 4(x² + y²) = 0 is a quartic in t. As POV-Ray does, the
 //! ray origin is first moved to where the line enters the torus's box and
 //! the direction made unit, which keeps the coefficients small; the roots
-//! are then isolated and polished by [`super::poly::roots_in_from`], its
+//! are then isolated and polished by [`crate::math::poly::roots_in_from`], its
 //! Newton steps starting from Ferrari's closed form (a guarded start: a root
 //! is still only accepted inside a bracket where the quartic changes sign).
 
-use super::poly::{eval, quartic_estimates, roots_in_from, Poly};
+use crate::math::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use glam::{DAffine3, DVec3};
@@ -141,14 +141,14 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
         return;
     }
     // (s² + 2b s + c)² − 4(axy s² + 2 bxy s + cxy), |u| = 1.
-    let poly: Poly = super::poly::poly(&[
+    let poly: Poly = crate::math::poly::poly(&[
         c * c - 4.0 * cxy,
         4.0 * b * c - 8.0 * bxy,
         4.0 * b * b + 2.0 * c - 4.0 * axy,
         4.0 * b,
         1.0,
     ]);
-    let mut roots = [0.0; super::poly::MAX_DEGREE];
+    let mut roots = [0.0; crate::math::poly::MAX_DEGREE];
     let mut starts = [0.0; 4];
     let ns = quartic_estimates(&poly, &mut starts);
     let n = roots_in_from(&poly, 4, 0.0, span, &starts[..ns], &mut roots);

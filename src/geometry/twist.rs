@@ -23,14 +23,14 @@
 //!
 //! quartics in t (quadratics under an even scale, where w = x and σ̄ = σ
 //! serve, the common factor σ² left out), the second harmonic only for an
-//! ellipse that is not a circle. Roots are isolated by [`super::trig`]
+//! ellipse that is not a circle. Roots are isolated by [`crate::math::trig`]
 //! over pieces in which φ turns by at most a radian, searched only where
 //! the path's distance from the axis can reach the edge or ellipse. A root
 //! on an edge's line counts where p(t) lies on the edge itself. A ray at
 //! constant z sees a straight path and the section's own crossings.
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use super::trig::{Pol, Trig};
+use crate::math::trig::{Pol, Trig};
 use super::{Aabb, Part, NO_PART};
 use crate::plane::Region;
 use glam::{DAffine2, DMat2, DVec2, DVec3};

@@ -14,7 +14,7 @@
 pub mod offset;
 pub mod pencil;
 
-use crate::geometry::poly::{self, roots_in, Poly};
+use crate::math::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};
 
 /// The plane's part of a space transform, as OpenSCAD applies it to 2-D

@@ -29,7 +29,7 @@
 //! the side changed at.
 
 use super::{Ctrl, Curve, EdgeTree, Region};
-use crate::geometry::poly::{self, roots_in};
+use crate::math::poly::{self, roots_in};
 use glam::{DVec2, DVec3};
 use smallvec::SmallVec;
 

@@ -22,7 +22,7 @@
 
 use crate::csg::spans::Boundary;
 use crate::csg::Csg;
-use crate::geometry::robust::{offset_origin, point_error};
+use crate::math::robust::{offset_origin, point_error};
 use crate::geometry::Ray;
 use crate::scene::{Light, Material, Scene};
 use crate::stats::Stats;

@@ -6,7 +6,7 @@
 //! plane is outside, 1° below is inside).
 
 use csgrt::csg::{Csg, Primitive, SurfaceHit};
-use csgrt::geometry::robust::{offset_origin, point_error};
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Torus, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};

@@ -1,9 +1,9 @@
 //! A ray that leaves a surface does not hit that surface again: secondary
 //! rays start from the hit point offset by its error bound
-//! (`geometry::robust`), at every scale and distance from the origin.
+//! (`math::robust`), at every scale and distance from the origin.
 
 use csgrt::csg::{Csg, Primitive};
-use csgrt::geometry::robust::{offset_origin, point_error};
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Transform};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};

@@ -15,7 +15,7 @@
 //! and G changes sign, and is halved otherwise (at most 60 times); the root
 //! is then bisected to the last bit.
 
-use super::poly;
+use crate::math::poly;
 
 /// Coefficients up to degree 4, lowest first.
 type Poly = [f64; 5];

@@ -1,0 +1,7 @@
+//! Numbers below geometry: real roots of polynomials ([`poly`]), the sign
+//! changes of trigonometric polynomials ([`trig`]) and the floating-point
+//! error policy for secondary rays ([`robust`]). No geometric type here.
+
+pub mod poly;
+pub mod robust;
+pub mod trig;
