@@ -26,7 +26,7 @@ fn main() {
         .map(|(a, b)| (a.parse().unwrap(), b.parse().unwrap()))
         .unwrap_or((640u32, 480u32));
     let step: u32 = args.get(3).map_or(4, |s| s.parse().unwrap());
-    let scene = match csgrt::cli::load(Path::new(path)) {
+    let scene = match csgrt::load(Path::new(path)) {
         Ok(s) => s,
         Err(e) => {
             eprintln!("{e}");

@@ -21,7 +21,7 @@ fn main() {
     let rays = csgrt::render::probe::parse_rays(&csgrt::Source::new(rays, text)).unwrap();
     let ext = path.rsplit('.').next().unwrap().to_ascii_lowercase();
     let run: Box<Query> = if ext == "csg" {
-        let scene = csgrt::cli::load(std::path::Path::new(&path)).unwrap();
+        let scene = csgrt::load(std::path::Path::new(&path)).unwrap();
         Box::new(move |r, st| csgrt::render::probe::trace(&scene, r, st).is_some())
     } else {
         let bytes = std::fs::read(&path).unwrap();

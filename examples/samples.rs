@@ -8,8 +8,8 @@
 //!
 //! Usage: cargo run --release --example samples -- SCENE [WxH] > out.txt
 
-use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::Ray;
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::render::camera::Camera;
 use csgrt::render::sampler;
 use csgrt::stats::Stats;
@@ -17,7 +17,7 @@ use std::io::Write;
 use std::path::Path;
 fn main() {
     let a: Vec<String> = std::env::args().collect();
-    let scene = csgrt::cli::load(Path::new(&a[1])).unwrap();
+    let scene = csgrt::load(Path::new(&a[1])).unwrap();
     let (w, h) = a
         .get(2)
         .and_then(|s| s.split_once('x'))

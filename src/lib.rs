@@ -9,17 +9,17 @@
 //! Data flows one way:
 //! [`syntax`] (pest grammar → AST with spans) → [`scene`] (AST → [`Scene`]:
 //! transforms, materials, defaults) → [`render`] (camera rays → [`csg`]
-//! span lists → shading → pixels). [`cli`] wires them to the command line.
+//! span lists → shading → pixels). The command line (`src/main.rs` and
+//! `src/cli/`) is the binary's, outside the library.
 
-pub mod cli;
 pub mod csg;
 pub mod drawing;
 pub mod dump;
 pub mod error;
 pub mod geometry;
-pub mod math;
 #[doc(hidden)]
 pub mod harness;
+pub mod math;
 pub mod meshfile;
 #[doc(hidden)]
 pub mod mutant;
@@ -28,14 +28,17 @@ pub mod pov;
 pub mod render;
 pub mod scad;
 pub mod scene;
+pub mod source;
 pub mod stats;
 pub mod svg;
 pub mod syntax;
 pub mod text;
-mod watch;
 
-pub use error::{Error, Result, Source};
+pub use error::{Error, Result};
+pub use source::Source;
+
 pub use scene::Scene;
+use std::path::Path;
 
 /// Parses and resolves `.csg` text into a scene.
 pub fn load_csg(src: &Source) -> Result<Scene> {
@@ -46,4 +49,27 @@ pub fn load_csg(src: &Source) -> Result<Scene> {
 pub fn load_csg_with(src: &Source, facets: scene::Facets) -> Result<Scene> {
     let ast = syntax::parse_csg(src)?;
     scene::resolve_with(src, &ast, facets)
+}
+
+/// Loads a model by its extension.
+pub fn load(path: &Path) -> Result<Scene> {
+    load_with(path, crate::scene::Facets::default())
+}
+
+/// [`load`] with `$fn`, `$fa`, `$fs` read as `facets` says (`.csg` only).
+pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
+    load_model(path, facets, &[])
+}
+
+/// [`load_with`], a `.scad` model exported with OpenSCAD's `-D` `defines`.
+pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String]) -> Result<Scene> {
+    match source::extension(path).as_deref() {
+        Some("csg") => crate::load_csg_with(&source::read_source(path)?, facets),
+        Some("ray") => crate::syntax::ray::load_ray(&source::read_source(path)?),
+        Some("scad") => crate::load_csg_with(&crate::scad::export(path, defines)?, facets),
+        _ => Err(Error::Usage(format!(
+            "{}: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program",
+            path.display()
+        ))),
+    }
 }

@@ -5,7 +5,8 @@
 //! lines are those of `openscad -o x.scad.csg x.scad`; nothing is written
 //! there.
 
-use crate::error::{Error, Result, Source};
+use crate::error::{Error, Result};
+use crate::source::Source;
 use std::path::{Path, PathBuf};
 
 /// The program run, looked up on PATH.
@@ -28,7 +29,7 @@ pub fn export(path: &Path, defines: &[String]) -> Result<Source> {
 /// includes and uses, what it imports), from OpenSCAD's `-d` dependency
 /// file; empty without.
 pub fn export_with(path: &Path, defines: &[String], deps: bool) -> Result<(Source, Vec<PathBuf>)> {
-    crate::cli::model_file(path)?;
+    crate::source::model_file(path)?;
     for d in defines {
         if !d
             .split_once('=')
@@ -84,7 +85,7 @@ pub fn export_with(path: &Path, defines: &[String], deps: bool) -> Result<(Sourc
             }
         }
     }
-    let text = crate::cli::read_source(&out)?.text;
+    let text = crate::source::read_source(&out)?.text;
     let mut name = path.as_os_str().to_owned();
     name.push(".csg");
     let mut files = Vec::new();

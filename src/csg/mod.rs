@@ -11,8 +11,8 @@ pub mod spans;
 
 use crate::geometry::aabb::AabbLanes;
 use crate::geometry::bvh::Bvh;
-use crate::math::robust::coincidence;
 use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
+use crate::math::robust::coincidence;
 use crate::plane::pencil::Pencil;
 use crate::stats::Stats;
 use glam::DVec3;

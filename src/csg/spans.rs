@@ -19,8 +19,8 @@
 //! when neither alone would. Surfaces credited to the subtracted operand of
 //! a difference have their normals flipped.
 
-use crate::math::robust::coincidence;
 use crate::geometry::{Part, NO_PART};
+use crate::math::robust::coincidence;
 
 /// One end of a span: where a ray crosses a primitive's surface.
 ///

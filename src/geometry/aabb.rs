@@ -1,7 +1,7 @@
 //! Axis-aligned bounding boxes and the slab test.
 
-use crate::math::robust::GAMMA3;
 use super::Ray;
+use crate::math::robust::GAMMA3;
 use glam::DVec3;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

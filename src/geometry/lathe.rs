@@ -26,9 +26,9 @@
 //! over a block of edges at a time where the trace stays clear of the
 //! block's box.
 
-use crate::math::poly::{Poly, MAX_DEGREE};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
+use crate::math::poly::{Poly, MAX_DEGREE};
 use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region, FLAT_EDGES};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;

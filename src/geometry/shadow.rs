@@ -14,9 +14,9 @@
 //! j of triangle k.
 
 use super::prism::{clip, slab};
-use crate::math::robust::coincidence;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
+use crate::math::robust::coincidence;
 use crate::plane::EdgeTree;
 use glam::{DVec2, DVec3};
 use std::sync::Arc;

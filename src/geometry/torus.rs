@@ -8,9 +8,9 @@
 //! Newton steps starting from Ferrari's closed form (a guarded start: a root
 //! is still only accepted inside a bracket where the quartic changes sign).
 
-use crate::math::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
+use crate::math::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use glam::{DAffine3, DVec3};
 
 /// A torus around the z axis, major radius 1, tube radius `minor` < 1.

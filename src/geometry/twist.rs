@@ -30,8 +30,8 @@
 //! constant z sees a straight path and the section's own crossings.
 
 use super::solid::{Param, Probe, RawSpan, Solid};
-use crate::math::trig::{Pol, Trig};
 use super::{Aabb, Part, NO_PART};
+use crate::math::trig::{Pol, Trig};
 use crate::plane::Region;
 use glam::{DAffine2, DMat2, DVec2, DVec3};
 use smallvec::SmallVec;

@@ -7,9 +7,10 @@
 //! back to the same f64 — or `miss`.
 
 use crate::csg::SurfaceHit;
-use crate::error::{Result, Source, TextRange};
+use crate::error::{Result, TextRange};
 use crate::geometry::Ray;
 use crate::scene::Scene;
+use crate::source::Source;
 use crate::stats::Stats;
 use glam::DVec3;
 use std::fmt::Write as _;

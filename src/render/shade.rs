@@ -22,8 +22,8 @@
 
 use crate::csg::spans::Boundary;
 use crate::csg::Csg;
-use crate::math::robust::{offset_origin, point_error};
 use crate::geometry::Ray;
+use crate::math::robust::{offset_origin, point_error};
 use crate::scene::{Light, Material, Scene};
 use crate::stats::Stats;
 use glam::DVec3;

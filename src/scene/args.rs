@@ -1,7 +1,8 @@
 //! Binding a statement's arguments to its parameters, with typed getters
 //! that report problems at the argument's place in the file.
 
-use crate::error::{Error, Result, Source, TextRange};
+use crate::error::{Error, Result, TextRange};
+use crate::source::Source;
 use crate::syntax::ast::{Statement, Value, ValueKind};
 use crate::syntax::one_of;
 use glam::DVec3;

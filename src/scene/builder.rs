@@ -6,8 +6,9 @@
 use super::{defaults, CameraSpec, Light, Material, Scene};
 use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
-use crate::error::{Diagnostic, Severity, Source, TextRange};
+use crate::error::{Diagnostic, Severity, TextRange};
 use crate::geometry::{Shape, Transform};
+use crate::source::Source;
 
 #[derive(Default)]
 pub struct SceneBuilder {

@@ -7,7 +7,8 @@
 pub mod ast;
 pub mod ray;
 
-use crate::error::{Error, Result, Source, TextRange};
+use crate::error::{Error, Result, TextRange};
+use crate::source::Source;
 use ast::{Arg, Modifiers, Statement, Value, ValueKind};
 use pest::iterators::Pair;
 use pest::Parser;

@@ -8,11 +8,12 @@
 //! lecture's applet divided kr and kt by 255 because its colours were
 //! bytes; csgrt's are not).
 
-use crate::error::{Error, Result, Source, TextRange};
+use crate::error::{Error, Result, TextRange};
 use crate::geometry::transform::MAX_MAGNITUDE;
 use crate::geometry::{Shape, Transform};
 use crate::scene::builder::SceneBuilder;
 use crate::scene::{defaults, CameraSpec, Light, Material, Scene};
+use crate::source::Source;
 use glam::{DAffine3, DVec3};
 use pest::iterators::Pair;
 use pest::Parser;

@@ -118,14 +118,14 @@ fn a_file_over_the_size_limit_is_refused_before_it_is_read() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("huge.csg");
     let f = std::fs::File::create(&path).unwrap();
-    f.set_len(csgrt::cli::MAX_FILE_BYTES + 1).unwrap();
+    f.set_len(csgrt::source::MAX_FILE_BYTES + 1).unwrap();
     let r = csgrt(dir.path(), &["huge.csg", "-q"]);
     assert_eq!(r.status, 2);
     assert_eq!(
         r.stderr,
         format!(
             "error: huge.csg: the file has {} bytes; the limit is 64 MiB\n",
-            csgrt::cli::MAX_FILE_BYTES + 1
+            csgrt::source::MAX_FILE_BYTES + 1
         )
     );
     assert_eq!(files(dir.path()), ["huge.csg"]);

@@ -6,8 +6,8 @@
 //! plane is outside, 1° below is inside).
 
 use csgrt::csg::{Csg, Primitive, SurfaceHit};
-use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Torus, Transform};
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 

@@ -3,8 +3,8 @@
 //! (`math::robust`), at every scale and distance from the origin.
 
 use csgrt::csg::{Csg, Primitive};
-use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::geometry::{Cone, Cuboid, Ray, Shape, Sphere, Transform};
+use csgrt::math::robust::{offset_origin, point_error};
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;

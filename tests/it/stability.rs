@@ -268,8 +268,7 @@ fn shells_down_to_a_millionth_of_the_radius_are_crossed_exactly() {
             // Entering the shell: the next surface is the inner sphere, the
             // exact wall thickness along the chord away, not the same point.
             let err = csgrt::math::robust::point_error(hit.point, o, hit.t * DVec3::Z);
-            let start =
-                csgrt::math::robust::offset_origin(hit.point, hit.normal, err, DVec3::Z);
+            let start = csgrt::math::robust::offset_origin(hit.point, hit.normal, err, DVec3::Z);
             let next = first(&s, start, DVec3::Z).expect("the inner sphere");
             // The new ray starts a little off the old one (moved along the
             // normal), so it meets the inner sphere at its own x.

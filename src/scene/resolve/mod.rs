@@ -25,10 +25,11 @@ use super::args::Args;
 use super::builder::SceneBuilder;
 use super::{defaults, Material, Scene};
 use crate::csg::spans::Op;
-use crate::error::{Result, Source, TextRange};
+use crate::error::{Result, TextRange};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Shape, Transform};
 use crate::mutant;
+use crate::source::Source;
 use crate::syntax::ast::Statement;
 use glam::DAffine3;
 

@@ -8,8 +8,10 @@
 //! reported like any other and leaves the last good image in place; the
 //! watch goes on until the process is stopped.
 
-use crate::cli::{render_files, watched_scene, Cli, Job};
-use crate::error::{Error, Result};
+use super::jobs::{watched_scene, Job};
+use super::output::render_files;
+use super::Cli;
+use csgrt::error::{Error, Result};
 use notify::{RecursiveMode, Watcher};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,379 @@
+//! What a render writes: images in their formats, `--trace-rays`,
+//! `--stats-json`, `--dump-scene` and `--export-pov`, each computed before
+//! any is written and written atomically beside its target.
+
+use super::jobs::Job;
+use super::Cli;
+use csgrt::error::{Error, Result};
+use csgrt::render::{self, probe, Settings};
+use csgrt::source::{extension, read_source};
+use csgrt::stats::Stats;
+use csgrt::{dump, Scene, Source};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::{IsTerminal, Read, Write};
+use std::path::Path;
+use std::time::Instant;
+
+pub(super) fn trace_rays(cli: &Cli, job: &Job, scene: &Scene, input: &Path) -> Result<()> {
+    let src = if input == Path::new("-") {
+        let mut text = String::new();
+        std::io::stdin()
+            .read_to_string(&mut text)
+            .map_err(|e| Error::io("<stdin>", e))?;
+        Source::new("<stdin>", text)
+    } else {
+        read_source(input)?
+    };
+    let rays = probe::parse_rays(&src)?;
+    let start = Instant::now();
+    let mut stats = Stats::default();
+    // Timed: the hits and their normals; their printing is not.
+    let hits: Vec<_> = rays
+        .iter()
+        .map(|ray| probe::trace(scene, ray, &mut stats))
+        .collect();
+    let seconds = start.elapsed().as_secs_f64();
+    let mut out = String::with_capacity(rays.len() * 64);
+    for h in &hits {
+        out.push_str(&probe::line(h.as_ref()));
+        out.push('\n');
+    }
+    if let Some(p) = &cli.stats_json {
+        write_atomic(p, &job.model, stats_json(&stats, seconds).as_bytes())?;
+    }
+    to_stdout(out.as_bytes())
+}
+
+/// Bytes to standard output; a closed pipe (`| head`) is the reader's
+/// choice, not an error.
+fn to_stdout(bytes: &[u8]) -> Result<()> {
+    let mut stdout = std::io::stdout().lock();
+    match stdout.write_all(bytes).and_then(|_| stdout.flush()) {
+        Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Error::io("<stdout>", e)),
+        _ => Ok(()),
+    }
+}
+
+pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
+    let (width, height) = cli.imgsize.unwrap_or(cli.size);
+    let output = &job.output;
+    for p in [
+        Some(output),
+        cli.mask.as_ref(),
+        cli.stats_json.as_ref(),
+        cli.dump_scene.as_ref(),
+        cli.export_pov.as_ref(),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        refuse_model(p, &job.model)?;
+    }
+    // Formats before rendering: nothing is drawn for an output csgrt cannot
+    // write.
+    let format = ImageFormat::of(output)?;
+    let mask_format = cli.mask.as_deref().map(ImageFormat::of).transpose()?;
+    if let (Some(p), Some(f)) = (&cli.mask, mask_format) {
+        if f.is_linear() {
+            return Err(Error::Usage(format!(
+                "{}: a mask is an 8-bit grey image; expected .png, .jpg, .bmp, .tif or .webp",
+                p.display()
+            )));
+        }
+    }
+    let settings = Settings {
+        width,
+        height,
+        spp: cli.spp.unwrap_or(render::ADAPTIVE_SPP),
+        max_depth: cli.max_depth,
+        adaptive: cli.spp.is_none().then_some(render::Adaptive {
+            threshold: render::ADAPTIVE_THRESHOLD,
+        }),
+        radiance: format.is_linear(),
+    };
+
+    if output == Path::new("-") && cli.mask.as_deref() == Some(Path::new("-")) {
+        return Err(Error::Usage(
+            "the image and the mask cannot both go to standard output".into(),
+        ));
+    }
+    let bar = (bar && !cli.quiet && std::io::stderr().is_terminal()).then(|| {
+        let b = ProgressBar::new(height as u64);
+        b.set_style(
+            ProgressStyle::with_template(
+                "{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left",
+            )
+            .expect("a valid template")
+            .progress_chars("=> "),
+        );
+        b
+    });
+    let start = Instant::now();
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let image = render::render(scene, &settings, &tick);
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
+    // Everything is computed; now write.
+    let rgb = if format.is_linear() {
+        format.encode_linear(&image.radiance, width, height)?
+    } else {
+        format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?
+    };
+    write_image(output, &job.model, &rgb)?;
+    if let (Some(p), Some(m), Some(f)) = (&cli.mask, &mask, mask_format) {
+        let grey = f.encode(m, width, height, image::ExtendedColorType::L8)?;
+        write_image(p, &job.model, &grey)?;
+    }
+    if let Some(p) = &cli.dump_scene {
+        let cam = scene.view(width, height);
+        let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
+            .expect("JSON of plain values");
+        write_atomic(p, &job.model, json.as_bytes())?;
+    }
+    if let Some(p) = &cli.export_pov {
+        let cam = scene.view(width, height);
+        let sdl = csgrt::pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
+        write_atomic(p, &job.model, sdl.as_bytes())?;
+    }
+    if let Some(p) = &cli.stats_json {
+        write_atomic(p, &job.model, stats_json(&image.stats, seconds).as_bytes())?;
+    }
+    if !cli.quiet {
+        let name = if output == Path::new("-") {
+            "<stdout>".to_string()
+        } else {
+            output.display().to_string()
+        };
+        let sampling = match settings.adaptive {
+            None => format!("{} spp", settings.spp),
+            Some(_) => {
+                let again = (image.stats.primary_rays - image.stats.pixels) / settings.spp as u64;
+                format!(
+                    "adaptive: {again} of {} pixels at {} spp",
+                    image.stats.pixels, settings.spp
+                )
+            }
+        };
+        eprintln!("csgrt: wrote {name} ({width}x{height}, {sampling}) in {seconds:.3} s");
+    }
+    Ok(())
+}
+
+/// The image formats csgrt writes, chosen by the output's extension
+/// (`-`: PNG on standard output).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ImageFormat {
+    Png,
+    Jpeg,
+    Bmp,
+    Tiff,
+    WebP,
+    /// Radiance RGBE, linear.
+    Hdr,
+    /// OpenEXR, linear 32-bit float.
+    Exr,
+}
+
+impl ImageFormat {
+    fn of(path: &Path) -> Result<ImageFormat> {
+        // (A folder is refused when written, as any output is.)
+        if path == Path::new("-") || path.is_dir() {
+            return Ok(ImageFormat::Png);
+        }
+        Ok(match extension(path).as_deref() {
+            Some("png") => ImageFormat::Png,
+            Some("jpg" | "jpeg") => ImageFormat::Jpeg,
+            Some("bmp") => ImageFormat::Bmp,
+            Some("tif" | "tiff") => ImageFormat::Tiff,
+            Some("webp") => ImageFormat::WebP,
+            Some("hdr") => ImageFormat::Hdr,
+            Some("exr") => ImageFormat::Exr,
+            other => {
+                let what = other.map_or("no extension".to_string(), |e| format!("`.{e}`"));
+                return Err(Error::Usage(format!(
+                    "{}: {what} names no image format csgrt writes; expected .png, .jpg, \
+                     .jpeg, .bmp, .tif, .tiff, .webp, .hdr or .exr (or `-` for PNG on \
+                     standard output)",
+                    path.display()
+                )));
+            }
+        })
+    }
+
+    /// Whether the format holds linear radiance (HDR, EXR) rather than
+    /// 8-bit colour.
+    fn is_linear(self) -> bool {
+        matches!(self, ImageFormat::Hdr | ImageFormat::Exr)
+    }
+
+    /// Linear RGB radiance (three `f32` a pixel) as an HDR or EXR file.
+    fn encode_linear(self, rgb: &[f32], w: u32, h: u32) -> Result<Vec<u8>> {
+        use image::ImageEncoder;
+        let mut out = std::io::Cursor::new(Vec::new());
+        let done = match self {
+            ImageFormat::Hdr => {
+                let px: Vec<image::Rgb<f32>> = rgb
+                    .chunks_exact(3)
+                    .map(|c| image::Rgb([c[0], c[1], c[2]]))
+                    .collect();
+                image::codecs::hdr::HdrEncoder::new(&mut out).encode(&px, w as usize, h as usize)
+            }
+            _ => image::codecs::openexr::OpenExrEncoder::new(&mut out).write_image(
+                &rgb.iter()
+                    .flat_map(|v| v.to_ne_bytes())
+                    .collect::<Vec<u8>>(),
+                w,
+                h,
+                image::ExtendedColorType::Rgb32F,
+            ),
+        };
+        done.map_err(|e| Error::io(format!("<{self:?}>"), std::io::Error::other(e)))?;
+        Ok(out.into_inner())
+    }
+
+    /// The encoded file (JPEG at quality 90; WebP lossless).
+    fn encode(
+        self,
+        data: &[u8],
+        w: u32,
+        h: u32,
+        color: image::ExtendedColorType,
+    ) -> Result<Vec<u8>> {
+        use image::ImageEncoder;
+        let mut out = std::io::Cursor::new(Vec::new());
+        let done = match self {
+            ImageFormat::Png => {
+                image::codecs::png::PngEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::Jpeg => image::codecs::jpeg::JpegEncoder::new_with_quality(&mut out, 90)
+                .write_image(data, w, h, color),
+            ImageFormat::Bmp => {
+                image::codecs::bmp::BmpEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::Tiff => {
+                image::codecs::tiff::TiffEncoder::new(&mut out).write_image(data, w, h, color)
+            }
+            ImageFormat::WebP => image::codecs::webp::WebPEncoder::new_lossless(&mut out)
+                .write_image(data, w, h, color),
+            ImageFormat::Hdr | ImageFormat::Exr => {
+                unreachable!("linear formats are written from radiance, by encode_linear")
+            }
+        };
+        done.map_err(|e| Error::io(format!("<{self:?}>"), std::io::Error::other(e)))?;
+        Ok(out.into_inner())
+    }
+}
+
+/// An image to its file, or to standard output for `-`.
+fn write_image(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
+    if path == Path::new("-") {
+        to_stdout(bytes)
+    } else {
+        write_atomic(path, model, bytes)
+    }
+}
+
+/// Refuses an output path that names the model itself.
+fn refuse_model(out: &Path, model: &Path) -> Result<()> {
+    let same = match (out.canonicalize(), model.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => out == model,
+    };
+    if same {
+        return Err(Error::Usage(format!(
+            "{}: an output may not overwrite the model",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it.
+fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
+    refuse_model(path, model)?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".csgrt-");
+    // An image is an ordinary file: readable by all, like one `create`d.
+    #[cfg(unix)]
+    builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
+    let refuse = |why: String| {
+        Err(Error::io(
+            path,
+            std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
+        ))
+    };
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => return refuse(format!("{} is not a folder", dir.display())),
+        Err(_) => return refuse(format!("no such folder: {}", dir.display())),
+    }
+    // The rename would replace a device or a pipe (say `/dev/null`) with a
+    // file, and a folder cannot be replaced at all: only regular files.
+    if let Ok(m) = std::fs::symlink_metadata(path) {
+        let m = if m.file_type().is_symlink() {
+            std::fs::metadata(path).unwrap_or(m)
+        } else {
+            m
+        };
+        if m.is_dir() {
+            return refuse("it is a folder".to_string());
+        }
+        if !m.is_file() {
+            return refuse(
+                "it exists and is not a regular file; outputs replace regular files only"
+                    .to_string(),
+            );
+        }
+    }
+    // tempfile's errors name its random file; say only what went wrong.
+    let mut tmp = builder.tempfile_in(dir).map_err(|e| {
+        let why = match e.kind() {
+            std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+            std::io::ErrorKind::NotFound => "it takes no new files".to_string(),
+            k => k.to_string(),
+        };
+        Error::io(
+            path,
+            std::io::Error::new(
+                e.kind(),
+                format!("cannot create a file in {}: {why}", dir.display()),
+            ),
+        )
+    })?;
+    tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
+    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
+    Ok(())
+}
+
+/// The counters as one JSON object.
+pub fn stats_json(s: &Stats, seconds: f64) -> String {
+    let v = serde_json::json!({
+        "pixels": s.pixels,
+        "primary_rays": s.primary_rays,
+        "shadow_rays": s.shadow_rays,
+        "reflected_rays": s.reflected_rays,
+        "refracted_rays": s.refracted_rays,
+        "primitive_tests": s.primitive_tests,
+        "bound_tests": s.bound_tests,
+        "triangle_tests": s.triangle_tests,
+        "convex_steps": s.convex_steps,
+        "bound_culled": s.bound_culled,
+        "normals_computed": s.normals_computed,
+        "span_allocations": s.span_allocations,
+        "max_spans": s.max_spans,
+        "nonfinite_samples": s.nonfinite_samples,
+        "render_seconds": seconds,
+    });
+    serde_json::to_string_pretty(&v).expect("JSON of plain values") + "\n"
+}
