@@ -22,7 +22,7 @@ fn main() {
     let ext = path.rsplit('.').next().unwrap().to_ascii_lowercase();
     println!("read file   {:.3} s, {}", t.elapsed().as_secs_f64(), peak());
     let t = Instant::now();
-    let m = csgrt::meshfile::read(&ext, &bytes).unwrap();
+    let m = csgrt::import::meshfile::read(&ext, &bytes).unwrap();
     println!(
         "parse+merge {:.3} s ({} points, {} faces), {}",
         t.elapsed().as_secs_f64(),

@@ -25,7 +25,7 @@ fn main() {
         Box::new(move |r, st| csgrt::render::probe::trace(&scene, r, st).is_some())
     } else {
         let bytes = std::fs::read(&path).unwrap();
-        let m = csgrt::meshfile::read(&ext, &bytes).unwrap();
+        let m = csgrt::import::meshfile::read(&ext, &bytes).unwrap();
         drop(bytes);
         let mut tris = Vec::new();
         for f in &m.faces {

@@ -57,12 +57,12 @@ pub fn exercise(data: &[u8]) {
 /// OpenSCAD's dependency list: an error or a drawing, a layout or the
 /// fallback, a list of names, never a panic.
 pub fn exercise_readers(data: &[u8]) {
-    if let Ok(d) = crate::drawing::read(data, "", glam::DVec2::ZERO, 1.0) {
+    if let Ok(d) = crate::import::dxf::read(data, "", glam::DVec2::ZERO, 1.0) {
         assert!(d.paths.iter().all(|p| p.pts.len() == p.arcs.len()));
     }
-    let _ = crate::text::layout_with_font_bytes(data, "AVo fi");
+    let _ = crate::import::text::layout_with_font_bytes(data, "AVo fi");
     // And as OpenSCAD's `-d` dependency list (`--watch` of a `.scad`).
-    let deps = crate::scad::make_deps(&String::from_utf8_lossy(data));
+    let deps = crate::import::scad::make_deps(&String::from_utf8_lossy(data));
     assert!(
         deps.iter().all(|p| !p.as_os_str().is_empty()),
         "an empty name"
@@ -120,7 +120,7 @@ pub fn exercise_mesh(ext: &str, data: &[u8]) {
     use crate::geometry::mesh::{triangulate, Mesh, MeshData};
     use crate::geometry::mesh_bvh::too_far;
     use crate::geometry::{Probe, Solid};
-    let Ok(m) = crate::meshfile::read(ext, data) else {
+    let Ok(m) = crate::import::meshfile::read(ext, data) else {
         return;
     };
     assert!(m.points.iter().all(|p| p.is_finite()));

@@ -13,26 +13,22 @@
 //! `src/cli/`) is the binary's, outside the library.
 
 pub mod csg;
-pub mod drawing;
 pub mod dump;
 pub mod error;
 pub mod geometry;
 #[doc(hidden)]
 pub mod harness;
+pub mod import;
 pub mod math;
-pub mod meshfile;
 #[doc(hidden)]
 pub mod mutant;
 pub mod plane;
 pub mod pov;
 pub mod render;
-pub mod scad;
 pub mod scene;
 pub mod source;
 pub mod stats;
-pub mod svg;
 pub mod syntax;
-pub mod text;
 
 pub use error::{Error, Result};
 pub use source::Source;
@@ -66,7 +62,7 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
     match source::extension(path).as_deref() {
         Some("csg") => crate::load_csg_with(&source::read_source(path)?, facets),
         Some("ray") => crate::syntax::ray::load_ray(&source::read_source(path)?),
-        Some("scad") => crate::load_csg_with(&crate::scad::export(path, defines)?, facets),
+        Some("scad") => crate::load_csg_with(&crate::import::scad::export(path, defines)?, facets),
         _ => Err(Error::Usage(format!(
             "{}: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program",
             path.display()

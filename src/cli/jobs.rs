@@ -152,7 +152,7 @@ pub(super) fn watched_scene(cli: &Cli, job: &Job) -> Result<(Scene, Vec<PathBuf>
     if !is_scad(&job.model) {
         return Ok((scene_of(cli, job)?, vec![job.model.clone()]));
     }
-    let (src, deps) = csgrt::scad::export_with(&job.model, &job.defines, true)?;
+    let (src, deps) = csgrt::import::scad::export_with(&job.model, &job.defines, true)?;
     let mut scene = csgrt::load_csg_with(&src, cli.facets)?;
     finish_scene(cli, &mut scene);
     Ok((scene, deps))

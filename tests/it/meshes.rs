@@ -341,8 +341,8 @@ fn stl_binary_and_ascii_of_the_same_triangles_are_the_same_mesh() {
         ascii += "  endloop\n endfacet\n";
     }
     ascii += "endsolid t\n";
-    let a = csgrt::meshfile::read("stl", &bin).unwrap();
-    let b = csgrt::meshfile::read("stl", ascii.as_bytes()).unwrap();
+    let a = csgrt::import::meshfile::read("stl", &bin).unwrap();
+    let b = csgrt::import::meshfile::read("stl", ascii.as_bytes()).unwrap();
     assert_eq!(a.points, b.points);
     assert_eq!(a.faces, b.faces);
     // Shared corners are merged: 4 points, each face three of them.
@@ -355,10 +355,10 @@ fn obj_and_3mf_bring_the_points_and_faces_they_list() {
     // The same tetrahedron (corners 0 and 10 on each axis) as OBJ text
     // (1-based indices, one face a quad split later) and as a 3MF package.
     let obj = b"v 0 0 0\nv 10 0 0\nv 0 10 0\nv 0 0 10\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
-    let a = csgrt::meshfile::read("obj", obj).unwrap();
+    let a = csgrt::import::meshfile::read("obj", obj).unwrap();
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let tmf = std::fs::read(root.join("tests/openscad/meshes/tetra.3mf")).unwrap();
-    let b = csgrt::meshfile::read("3mf", &tmf).unwrap();
+    let b = csgrt::import::meshfile::read("3mf", &tmf).unwrap();
     let corners = [
         [0.0, 0.0, 0.0],
         [10.0, 0.0, 0.0],

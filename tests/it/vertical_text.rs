@@ -13,8 +13,8 @@
 //! of 26.6 a glyph) fails it after five glyphs. The last line is
 //! horizontal, laid out by the same rules.
 
+use csgrt::import::text::{layout, Params};
 use csgrt::plane::Curve;
-use csgrt::text::{layout, Params};
 use glam::DVec2;
 
 /// The LINE entities of a DXF drawing, as (start, end).

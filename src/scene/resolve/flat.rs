@@ -172,15 +172,15 @@ pub(super) const IMPORT_PARAMS: &[&str] = &[
     "timestamp",
 ];
 
-/// A drawing as a 2-D tree (see [`crate::drawing`]). Each closed path is
+/// A drawing as a 2-D tree (see [`crate::import::dxf`]). Each closed path is
 /// the polygon of its chords, minus the circular segments (disc ∩ the
 /// chord's half-plane on the arc's side) of arcs bulging inward, plus
 /// those bulging outward; a whole circle is a disc. Paths that do not
 /// cross nest: one is inside another when a point of its boundary is, its
 /// depth how many hold it; the even-odd region is each path of even depth
 /// minus the paths directly inside it.
-fn drawing_flat(d: &crate::drawing::Drawing) -> Option<Flat> {
-    use crate::drawing::Arc;
+fn drawing_flat(d: &crate::import::dxf::Drawing) -> Option<Flat> {
+    use crate::import::dxf::Arc;
     let disc = Flat::disc;
     // Each region: its tree, an inside test, and a point of its boundary.
     struct Piece {
@@ -654,17 +654,17 @@ impl Resolver<'_> {
         ];
         let a = Args::bind(self.src, s, PARAMS)?;
         let text = a.string("text")?.unwrap_or("");
-        if text.chars().count() > crate::text::MAX_TEXT_CHARS {
+        if text.chars().count() > crate::import::text::MAX_TEXT_CHARS {
             return Err(a.error(
                 a.span_of("text"),
                 "this text is too long",
                 format!(
                     "expected at most {} characters",
-                    crate::text::MAX_TEXT_CHARS
+                    crate::import::text::MAX_TEXT_CHARS
                 ),
             ));
         }
-        let p = crate::text::Params {
+        let p = crate::import::text::Params {
             text,
             size: a.number("size")?.unwrap_or(10.0),
             font: a.string("font")?.unwrap_or(""),
@@ -675,7 +675,7 @@ impl Resolver<'_> {
             language: a.string("language")?.unwrap_or("en"),
             script: a.string("script")?.unwrap_or(""),
         };
-        let laid = crate::text::layout(&p);
+        let laid = crate::import::text::layout(&p);
         for (param, w) in &laid.warnings {
             let place = if a.has(param) {
                 a.span_of(param)
@@ -760,7 +760,7 @@ impl Resolver<'_> {
             return self.import_svg(s, &a, span, &path, m);
         }
         if ext != "dxf" {
-            let (message, label) = if crate::meshfile::FORMATS.contains(&ext.as_str()) {
+            let (message, label) = if crate::import::meshfile::FORMATS.contains(&ext.as_str()) {
                 (
                     format!("a `.{ext}` mesh is a solid and cannot stand in a 2-D shape"),
                     "expected a DXF or SVG drawing here",
@@ -788,7 +788,7 @@ impl Resolver<'_> {
             "drawing",
             "expected a DXF file beside the scene",
         )?;
-        let d = crate::drawing::read(&bytes, layer, origin, scale).map_err(|e| {
+        let d = crate::import::dxf::read(&bytes, layer, origin, scale).map_err(|e| {
             self.src.error(
                 span,
                 format!(
@@ -846,7 +846,7 @@ impl Resolver<'_> {
             "drawing",
             "expected an SVG file beside the scene",
         )?;
-        let d = crate::svg::read(&bytes, dpi, center).map_err(|e| {
+        let d = crate::import::svg::read(&bytes, dpi, center).map_err(|e| {
             let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
             self.src.error(
                 span,

@@ -384,11 +384,11 @@ fn import(
 ) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, super::flat::IMPORT_PARAMS)?;
     let (_, span, ext, path) = res.import_file(&a)?;
-    if !crate::meshfile::FORMATS.contains(&ext.as_str()) {
+    if !crate::import::meshfile::FORMATS.contains(&ext.as_str()) {
         return res.slab(s, xf, mat);
     }
     let bytes = res.read_named(span, &path, "mesh", "expected a mesh file beside the scene")?;
-    let m = crate::meshfile::read(&ext, &bytes).map_err(|e| {
+    let m = crate::import::meshfile::read(&ext, &bytes).map_err(|e| {
         res.src.error(
             span,
             file_message(&path, &e),
@@ -401,7 +401,7 @@ fn import(
 
 /// `surface(file, center, invert, convexity)`: OpenSCAD's solid over a
 /// height grid from a `.dat` file or a PNG image (see
-/// [`crate::meshfile::heights`]), a mesh leaf.
+/// [`crate::import::meshfile::heights`]), a mesh leaf.
 fn surface(
     res: &mut Resolver,
     s: &Statement,
@@ -422,7 +422,7 @@ fn surface(
     let path = res.named_file(file);
     let label = "expected a .dat grid or a PNG image beside the scene";
     let bytes = res.read_named(span, &path, "heights", label)?;
-    let (h, warning) = crate::meshfile::heights(&bytes, invert).map_err(|e| {
+    let (h, warning) = crate::import::meshfile::heights(&bytes, invert).map_err(|e| {
         res.src.error(
             span,
             file_message(&path, &e),
@@ -439,12 +439,12 @@ fn surface(
     if h.rows < 2 || h.columns < 2 {
         return res.empty(s, "its grid has fewer than 2 rows or columns");
     }
-    let m = crate::meshfile::surface_mesh(&h, center);
+    let m = crate::import::meshfile::surface_mesh(&h, center);
     res.mesh_leaf(s, span, m.points, m.faces, xf, mat)
 }
 
 /// "`path`, line N: what" for what is wrong in a file the model names.
-fn file_message(path: &std::path::Path, e: &crate::meshfile::FileError) -> String {
+fn file_message(path: &std::path::Path, e: &crate::import::meshfile::FileError) -> String {
     let at = e.line.map_or(String::new(), |l| format!(", line {l}"));
     format!("`{}`{at}: {}", path.display(), e.message)
 }

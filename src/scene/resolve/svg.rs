@@ -1,4 +1,4 @@
-//! An SVG drawing ([`crate::svg`]) as a 2-D tree, exactly.
+//! An SVG drawing ([`crate::import::svg`]) as a 2-D tree, exactly.
 //!
 //! One element's outlines are filled even-odd. Its closed loops of lines
 //! and Bézier curves are one [`Outlines`] (even-odd already); an elliptical
@@ -23,8 +23,8 @@
 
 use super::flat::Flat;
 use crate::csg::spans::Op;
+use crate::import::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
 use crate::plane::{Ctrl, Outlines};
-use crate::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
 use glam::{DAffine2, DVec2};
 
 /// The drawing's tree in OpenSCAD's plane (before the import's own
@@ -70,7 +70,7 @@ fn shape_flat(s: &Shape) -> Option<Flat> {
     let (mut loops, mut ctrl, mut odd) = (Vec::new(), Vec::new(), Vec::new());
     for part in &s.parts {
         match part {
-            crate::svg::Part::Loop(l) => {
+            crate::import::svg::Part::Loop(l) => {
                 let n = l.pts.len();
                 let mut cs = Vec::with_capacity(n);
                 for (i, seg) in l.segs.iter().enumerate() {
@@ -129,7 +129,7 @@ pub(super) fn stroke_flat(st: &Stroke) -> Option<Flat> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::svg::{Cap, Join};
+    use crate::import::svg::{Cap, Join};
 
     /// Whether `p` is in the tree (the ops' meanings, point by point).
     fn inside(f: &Flat, p: DVec2) -> bool {
