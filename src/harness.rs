@@ -3,8 +3,9 @@
 //! stable in the normal test line).
 
 use crate::error::Error;
+use crate::export::{dump, pov};
 use crate::render::{self, Settings};
-use crate::{dump, pov, syntax, Source};
+use crate::{syntax, Source};
 
 /// Any bytes → parse → resolve → a tiny render, the mask, the JSON dump and
 /// the POV-Ray export. The first byte picks the format (odd: `.ray`, even:

@@ -13,8 +13,8 @@
 //! `src/cli/`) is the binary's, outside the library.
 
 pub mod csg;
-pub mod dump;
 pub mod error;
+pub mod export;
 pub mod geometry;
 #[doc(hidden)]
 pub mod harness;
@@ -23,7 +23,6 @@ pub mod math;
 #[doc(hidden)]
 pub mod mutant;
 pub mod plane;
-pub mod pov;
 pub mod render;
 pub mod scene;
 pub mod source;

@@ -5,10 +5,11 @@
 use super::jobs::Job;
 use super::Cli;
 use csgrt::error::{Error, Result};
+use csgrt::export::{dump, pov};
 use csgrt::render::{self, probe, Settings};
 use csgrt::source::{extension, read_source};
 use csgrt::stats::Stats;
-use csgrt::{dump, Scene, Source};
+use csgrt::{Scene, Source};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::{IsTerminal, Read, Write};
 use std::path::Path;
@@ -139,7 +140,7 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
     }
     if let Some(p) = &cli.export_pov {
         let cam = scene.view(width, height);
-        let sdl = csgrt::pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
+        let sdl = pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
         write_atomic(p, &job.model, sdl.as_bytes())?;
     }
     if let Some(p) = &cli.stats_json {
