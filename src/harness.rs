@@ -5,7 +5,7 @@
 use crate::error::Error;
 use crate::export::{dump, pov};
 use crate::render::{self, Settings};
-use crate::{syntax, Source};
+use crate::Source;
 
 /// Any bytes → parse → resolve → a tiny render, the mask, the JSON dump and
 /// the POV-Ray export. The first byte picks the format (odd: `.ray`, even:
@@ -24,7 +24,7 @@ pub fn exercise(data: &[u8]) {
     let name = if ray { "fuzz.ray" } else { "fuzz.csg" };
     let src = Source::new(name, text);
     let loaded = if ray {
-        syntax::ray::load_ray(&src)
+        crate::load_ray(&src)
     } else {
         crate::load_csg(&src)
     };

@@ -46,6 +46,11 @@ pub fn load_csg_with(src: &Source, facets: scene::Facets) -> Result<Scene> {
     scene::resolve_with(src, &ast, facets)
 }
 
+/// Parses and resolves a `.ray` display list into a scene.
+pub fn load_ray(src: &Source) -> Result<Scene> {
+    scene::resolve_ray(src, &syntax::ray::parse_ray(src)?)
+}
+
 /// Loads a model by its extension.
 pub fn load(path: &Path) -> Result<Scene> {
     load_with(path, crate::scene::Facets::default())
@@ -60,7 +65,7 @@ pub fn load_with(path: &Path, facets: crate::scene::Facets) -> Result<Scene> {
 pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String]) -> Result<Scene> {
     match source::extension(path).as_deref() {
         Some("csg") => crate::load_csg_with(&source::read_source(path)?, facets),
-        Some("ray") => crate::syntax::ray::load_ray(&source::read_source(path)?),
+        Some("ray") => load_ray(&source::read_source(path)?),
         Some("scad") => crate::load_csg_with(&crate::import::scad::export(path, defines)?, facets),
         _ => Err(Error::Usage(format!(
             "{}: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program",

@@ -4,9 +4,11 @@
 pub mod args;
 pub mod builder;
 pub mod defaults;
+mod display_list;
 pub mod openscad_view;
 mod resolve;
 
+pub use display_list::resolve_ray;
 pub use resolve::{resolve, resolve_with, unsupported};
 
 /// How `$fn`, `$fa` and `$fs` are read (`--facets`).
