@@ -2,8 +2,9 @@
 //! combination. `cargo bench --bench spans`.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use csgrt::csg::spans::{combine, Boundary, Op, Span};
+use csgrt::csg::spans::{combine, Boundary, Span};
 use csgrt::geometry::{Cone, Cuboid, Halfspace, Probe, Shape, Sphere, Torus};
+use csgrt::math::boolean::Op;
 use glam::DVec3;
 
 /// Rays from a sphere of radius 4 towards points near the origin, in

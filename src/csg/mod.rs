@@ -12,12 +12,13 @@ pub mod spans;
 use crate::geometry::aabb::AabbLanes;
 use crate::geometry::bvh::Bvh;
 use crate::geometry::{Aabb, Need, Probe, Ray, Shape, Transform};
+use crate::math::boolean::Op;
 use crate::math::robust::coincidence;
 use crate::plane::pencil::Pencil;
 use crate::stats::Stats;
 use glam::DVec3;
 use smallvec::SmallVec;
-use spans::{Boundary, Op, Quick, Span};
+use spans::{Boundary, Quick, Span};
 
 /// A primitive placed in the world.
 #[derive(Clone, Debug, PartialEq)]

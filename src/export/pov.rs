@@ -14,8 +14,8 @@
 //! * `assumed_gamma 1.0` and `max_trace_level`, `adc_bailout 1/512` as
 //!   csgrt's ray tree. Render with `+FN +W… +H… File_Gamma=1.0` to match.
 
-use crate::csg::spans::Op;
 use crate::csg::{Csg, NodeKind};
+use crate::math::boolean::Op;
 use crate::scene::{CameraSpec, Light, Projection, Scene};
 use glam::{DAffine3, DVec3};
 use std::fmt::Write;

@@ -1,7 +1,8 @@
-//! Numbers below geometry: real roots of polynomials ([`poly`]), the sign
+//! Numbers below geometry: the set operations ([`boolean`]), real roots of polynomials ([`poly`]), the sign
 //! changes of trigonometric polynomials ([`trig`]) and the floating-point
 //! error policy for secondary rays ([`robust`]). No geometric type here.
 
+pub mod boolean;
 pub mod poly;
 pub mod robust;
 pub mod trig;

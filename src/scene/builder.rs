@@ -4,10 +4,10 @@
 //! default (lights, material, background) are applied in one place.
 
 use super::{defaults, CameraSpec, Light, Material, Scene};
-use crate::csg::spans::Op;
 use crate::csg::{Csg, Primitive};
 use crate::error::{Diagnostic, Severity, TextRange};
 use crate::geometry::{Shape, Transform};
+use crate::math::boolean::Op;
 use crate::source::Source;
 
 #[derive(Default)]

@@ -5,9 +5,10 @@
 //! the whole stretch where the solids lie — and of points between the
 //! reported boundaries.
 
-use csgrt::csg::spans::{contains, Boundary, Op, Span};
+use csgrt::csg::spans::{contains, Boundary, Span};
 use csgrt::csg::{Csg, Primitive};
 use csgrt::geometry::{Cone, Cuboid, Halfspace, Ray, Shape, Sphere, Torus, Transform};
+use csgrt::math::boolean::Op;
 use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;

@@ -15,12 +15,12 @@
 //! convex region is the region scaled, so both are the same convex solid.
 
 use super::Resolver;
-use crate::csg::spans::Op;
 use crate::csg::NodeKind;
 use crate::error::Result;
 use crate::geometry::convex::{Convex, Part};
 use crate::geometry::solid::Solid;
 use crate::geometry::{Mesh, Rounded, Shape};
+use crate::math::boolean::Op;
 use crate::scene::Material;
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DVec3};

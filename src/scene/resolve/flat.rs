@@ -20,11 +20,11 @@ use super::facet_mesh::Cut;
 use super::offset::Join;
 use super::transforms::{basis_from_z, facet_sin_cos, sin_cos_deg};
 use super::{combine, Resolver};
-use crate::csg::spans::Op;
 use crate::error::Result;
 use crate::geometry::{
     Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Section, Shape, Sphere, Torus, Twisted,
 };
+use crate::math::boolean::Op;
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
 use crate::scene::Material;

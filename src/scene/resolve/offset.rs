@@ -33,7 +33,7 @@
 
 use super::flat::{is_circle, Flat};
 use super::sites::{bounds, clip, Site, Stroke};
-use crate::csg::spans::Op;
+use crate::math::boolean::Op;
 use crate::plane::offset::{offsettable, Offset};
 use crate::plane::{Outlines, Region};
 use glam::{DAffine2, DVec2};

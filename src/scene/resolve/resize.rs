@@ -13,9 +13,9 @@
 
 use super::flat::Flat;
 use super::{Resolver, TRANSFORMS};
-use crate::csg::spans::Op;
 use crate::csg::{Csg, NodeKind};
 use crate::error::Result;
+use crate::math::boolean::Op;
 use crate::scene::args::Args;
 use crate::scene::Material;
 use crate::syntax::ast::{Statement, ValueKind};

@@ -12,11 +12,11 @@
 //! ellipses) is "not supported yet" at the projection.
 
 use super::Resolver;
-use crate::csg::spans::Op;
 use crate::csg::NodeKind;
 use crate::error::Result;
 use crate::geometry::shadow::Soup;
 use crate::geometry::{Cone, Shadow, Shape};
+use crate::math::boolean::Op;
 use crate::scene::Material;
 use crate::syntax::ast::Statement;
 use glam::{DAffine3, DMat2, DMat3, DVec2, DVec3};

@@ -20,7 +20,7 @@
 //! cap lies in the hull, as the hull of its arc.
 
 use super::flat::{is_circle, Flat};
-use crate::csg::spans::Op;
+use crate::math::boolean::Op;
 use glam::DVec2;
 use std::f64::consts::TAU;
 

@@ -22,8 +22,8 @@
 //! csgrt does neither.
 
 use super::flat::Flat;
-use crate::csg::spans::Op;
 use crate::import::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
+use crate::math::boolean::Op;
 use crate::plane::{Ctrl, Outlines};
 use glam::{DAffine2, DVec2};
 
