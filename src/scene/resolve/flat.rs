@@ -44,9 +44,9 @@ pub(crate) enum Flat {
     Ellipse(DAffine2),
     /// `projection(cut)`: the slice z = 0 of its children (cut = true) or
     /// their shadow on it, moved in the plane by the transform. The
-    /// children are read only when it is extruded, in the extrusion's
-    /// frame.
-    Section(Box<Statement>, DAffine2),
+    /// statement is the resolver's, by this number: its children are read
+    /// only when the tree is extruded, in the extrusion's frame.
+    Section(u32, DAffine2),
     Op(Op, Vec<Flat>),
     /// `hull()` of 2-D shapes: extruded, the hull of their extrusions.
     Hull(Vec<Flat>),
@@ -124,7 +124,7 @@ impl Flat {
         match self {
             Flat::Polygon(o) => Flat::Polygon(o.map(|p| m.transform_point2(p))),
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
-            Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
+            Flat::Section(s, at) => Flat::Section(*s, m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
             Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.moved(m)).collect()),
             Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
@@ -137,17 +137,17 @@ impl Flat {
         match self {
             Flat::Polygon(o) => Flat::Polygon(o.map(|p| DVec2::new(-p.x, p.y))),
             Flat::Ellipse(e) => Flat::Ellipse(m * *e),
-            Flat::Section(s, at) => Flat::Section(s.clone(), m * *at),
+            Flat::Section(s, at) => Flat::Section(*s, m * *at),
             Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
             Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.mirrored_x()).collect()),
             Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
         }
     }
 
-    /// The first `projection` in the tree, if any.
-    pub(super) fn section(&self) -> Option<&Statement> {
+    /// The number of the first `projection` in the tree, if any.
+    pub(super) fn section(&self) -> Option<u32> {
         match self {
-            Flat::Section(s, _) => Some(s),
+            Flat::Section(s, _) => Some(*s),
             Flat::Op(_, kids) | Flat::Hull(kids) => kids.iter().find_map(|k| k.section()),
             _ => None,
         }
@@ -415,7 +415,9 @@ impl Resolver<'_> {
             if s.children.iter().all(super::skipped) {
                 return Ok(None);
             }
-            return Ok(Some(Flat::Section(Box::new(s.clone()), m)));
+            let id = self.projections.len() as u32;
+            self.projections.push(s.clone());
+            return Ok(Some(Flat::Section(id, m)));
         }
         if super::APPEARANCE.contains(&name) {
             // An extrusion is one new solid: colours below it are dropped,
@@ -957,6 +959,7 @@ impl Resolver<'_> {
                 self.leaf(s, shape, xf * local, mat)
             }
             Flat::Section(p, at) => {
+                let p = &self.projections[*p as usize].clone();
                 if !even || top != 1.0 || sweep.twist != 0.0 {
                     return Err(self.src.error(
                         s.name_span,
@@ -1200,7 +1203,7 @@ impl Resolver<'_> {
         }
         if let Some(p) = f.section() {
             return Err(self.src.error(
-                p.name_span,
+                self.projections[p as usize].name_span,
                 "turning a projection is not supported yet",
                 "csgrt extrudes a projection with linear_extrude",
             ));

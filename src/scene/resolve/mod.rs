@@ -59,6 +59,7 @@ pub fn resolve_with(src: &Source, stmts: &[Statement], facets: super::Facets) ->
         camera_at: None,
         subtracted: false,
         facets,
+        projections: Vec::new(),
     };
     // Scene statements are read first, wherever they stand at the top level.
     for s in stmts {
@@ -135,6 +136,10 @@ pub(crate) struct Resolver<'a> {
     subtracted: bool,
     /// How `$fn`, `$fa`, `$fs` are read.
     facets: super::Facets,
+    /// The `projection` statements read in 2-D trees, by the number their
+    /// [`Figure::Section`](crate::plane::figure::Figure::Section) holds:
+    /// their children are read only when the tree is extruded.
+    projections: Vec<Statement>,
 }
 
 /// OpenSCAD's smallest radius that is still a circle (`grid.h`).
