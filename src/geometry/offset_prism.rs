@@ -1,4 +1,4 @@
-//! The straight prism of an offset region ([`crate::plane::offset`]): a
+//! The straight prism of an offset region ([`crate::plane::round_offset`]): a
 //! curved outline (text) under `offset(r)` — or the round part of
 //! `offset(delta)` — swept from z = 0 to 1 (the height is the transform's).
 //! A line meets it where its projection on the plane is inside the offset
@@ -9,7 +9,7 @@
 use super::prism::{clip, slab};
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
-use crate::plane::offset::Offset;
+use crate::plane::round_offset::RoundOffset;
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -19,7 +19,7 @@ const SIDE: Part = 2;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct OffsetPrism {
-    pub region: Arc<Offset>,
+    pub region: Arc<RoundOffset>,
     /// From z = −1/2 to 1/2 rather than 0 to 1 (OpenSCAD's `center`).
     pub centered: bool,
 }

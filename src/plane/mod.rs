@@ -11,8 +11,8 @@
 //! crossings of its edges ([`Outlines::spans`]) — what a prism's spans are
 //! made of once the slab is clipped.
 
-pub mod offset;
 pub mod pencil;
+pub mod round_offset;
 
 use crate::math::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};

@@ -52,7 +52,7 @@ pub(crate) enum Flat {
     Hull(Vec<Flat>),
     /// Curved outlines offset with round joins, in their own frame, placed
     /// in the plane by the map (an offset is not one after any map).
-    Offset(Arc<crate::plane::offset::Offset>, DAffine2),
+    Offset(Arc<crate::plane::round_offset::RoundOffset>, DAffine2),
 }
 
 impl Flat {

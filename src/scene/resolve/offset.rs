@@ -23,7 +23,7 @@
 //! the union is reflex), shrinking over intersection and over a union of
 //! shapes whose boxes are apart (the glyphs of a text, mostly); a circle
 //! grows to the circle of radius R + d. Curved outlines offset as one leaf
-//! of their own ([`crate::plane::offset`]). What needs the boundary of a
+//! of their own ([`crate::plane::round_offset`]). What needs the boundary of a
 //! combination — shrinking a union whose parts' boxes meet, growing an
 //! intersection, either of a difference — is done on the loops of its
 //! boundary when it is made of straight polygons
@@ -34,7 +34,7 @@
 use super::flat::{is_circle, Flat};
 use super::sites::{bounds, clip, Site, Stroke};
 use crate::math::boolean::Op;
-use crate::plane::offset::{offsettable, Offset};
+use crate::plane::round_offset::{offsettable, RoundOffset};
 use crate::plane::{Outlines, Region};
 use glam::{DAffine2, DVec2};
 use std::f64::consts::{PI, TAU};
@@ -447,7 +447,7 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
 
 /// Outlines with curved (quadratic) edges offset: with round joins the
 /// region of points within |d| of R (grown) or of R farther than |d| from
-/// its outline (shrunk), one leaf ([`crate::plane::offset`]); with miter or
+/// its outline (shrunk), one leaf ([`crate::plane::round_offset`]); with miter or
 /// square joins that leaf joined with the kites at its sharp corners the
 /// offset side sees as convex (grown: R ⊕ D ⊆ the mitered offset, and the
 /// kites hold the rest), or less the kites at the corners the outside sees
@@ -493,7 +493,7 @@ fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
             start += m;
         }
     }
-    let leaf = Flat::Offset(Arc::new(Offset::new(region, d)), DAffine2::IDENTITY);
+    let leaf = Flat::Offset(Arc::new(RoundOffset::new(region, d)), DAffine2::IDENTITY);
     if kites.is_empty() {
         return Ok(Some(leaf));
     }

@@ -245,7 +245,7 @@ pub fn curved_prism(top: f64) -> csgrt::geometry::Shape {
 /// extruded.
 pub fn l_offset(r: f64) -> csgrt::geometry::Shape {
     csgrt::geometry::Shape::OffsetPrism(csgrt::geometry::OffsetPrism {
-        region: std::sync::Arc::new(csgrt::plane::offset::Offset::new(l_region(), r)),
+        region: std::sync::Arc::new(csgrt::plane::round_offset::RoundOffset::new(l_region(), r)),
         centered: false,
     })
 }

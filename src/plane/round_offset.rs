@@ -38,7 +38,7 @@ const FLAT_EDGES: usize = 16;
 
 /// A region offset with round joins (see the module's text).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Offset {
+pub struct RoundOffset {
     pub region: Region,
     /// The signed distance: > 0 grown, < 0 shrunk (never 0).
     pub r: f64,
@@ -56,9 +56,9 @@ pub fn offsettable(c: Ctrl) -> bool {
     !matches!(c, Ctrl::Cubic(..))
 }
 
-impl Offset {
+impl RoundOffset {
     /// `region` offset by `r` (not zero; no cubic edges).
-    pub fn new(region: Region, r: f64) -> Offset {
+    pub fn new(region: Region, r: f64) -> RoundOffset {
         let k = r.abs();
         // A filter only: widened past |r| by far more than the rounding of
         // a boundary point, which lies at |r| from its edge.
@@ -80,7 +80,7 @@ impl Offset {
         } else {
             (region.lo, region.hi)
         };
-        Offset {
+        RoundOffset {
             region,
             r,
             boxes,
@@ -535,7 +535,7 @@ mod tests {
         let o = blob();
         let mut next = crate::plane::tests::uniform(0x2545_f491_4f6c_dd1du64);
         for r in [0.4, 1.3, -0.3, -0.7] {
-            let off = Offset::new(Region::new(o.clone()), r);
+            let off = RoundOffset::new(Region::new(o.clone()), r);
             for _ in 0..200 {
                 let a = DVec2::new(next() * 10.0 - 3.0, next() * 10.0 - 3.5);
                 let b = DVec2::new(next() * 10.0 - 3.0, next() * 10.0 - 3.5);
@@ -581,7 +581,7 @@ mod tests {
     #[test]
     fn normals_point_away_from_the_nearest_point() {
         let o = blob();
-        let off = Offset::new(Region::new(o.clone()), 0.5);
+        let off = RoundOffset::new(Region::new(o.clone()), 0.5);
         // Straight right of the quadratic's far point (x ≈ 4.75 at y = 1.5):
         // the normal is +x.
         let mut hit = None;
@@ -606,7 +606,7 @@ mod tests {
         let o = blob();
         let mut next = crate::plane::tests::uniform(0x1234_5678_9abc_def1u64);
         for r in [0.4, -0.3] {
-            let off = Offset::new(Region::new(o.clone()), r);
+            let off = RoundOffset::new(Region::new(o.clone()), r);
             for _ in 0..2000 {
                 let a = DVec2::new(next() * 10.0 - 3.0, next() * 10.0 - 3.5);
                 let d = (DVec2::new(next() * 10.0 - 3.0, next() * 10.0 - 3.5) - a).normalize();
