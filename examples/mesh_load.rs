@@ -33,7 +33,7 @@ fn main() {
     let t = Instant::now();
     let mut tris = Vec::new();
     for f in &m.faces {
-        tris.extend(csgrt::geometry::mesh::triangulate(&m.points, f));
+        tris.extend(csgrt::geometry::triangulate::triangulate(&m.points, f));
     }
     println!("triangulate {:.3} s, {}", t.elapsed().as_secs_f64(), peak());
     drop(m.faces);

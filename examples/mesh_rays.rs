@@ -29,7 +29,7 @@ fn main() {
         drop(bytes);
         let mut tris = Vec::new();
         for f in &m.faces {
-            tris.extend(csgrt::geometry::mesh::triangulate(&m.points, f));
+            tris.extend(csgrt::geometry::triangulate::triangulate(&m.points, f));
         }
         let d = csgrt::geometry::mesh::MeshData::new(m.points, tris);
         Box::new(move |r, st| d.nearest(r.origin, r.dir, 0.0, f64::INFINITY, st).is_some())

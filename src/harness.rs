@@ -118,8 +118,9 @@ pub const MESH_TARGETS: &[(&str, &str)] = &[
 /// the reader must answer a mesh or an error, never panic, and a mesh it
 /// answers must be one csgrt can place and cast rays through.
 pub fn exercise_mesh(ext: &str, data: &[u8]) {
-    use crate::geometry::mesh::{triangulate, Mesh, MeshData};
+    use crate::geometry::mesh::{Mesh, MeshData};
     use crate::geometry::mesh_bvh::too_far;
+    use crate::geometry::triangulate::triangulate;
     use crate::geometry::{Probe, Solid};
     let Ok(m) = crate::import::meshfile::read(ext, data) else {
         return;

@@ -6,6 +6,7 @@
 //! direction, so the ray parameter `t` is the same in both spaces.
 
 pub mod aabb;
+pub mod ball_sum;
 pub mod bvh;
 pub mod cone;
 pub mod convex;
@@ -23,6 +24,7 @@ pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
+pub mod triangulate;
 pub mod twist;
 
 pub use aabb::Aabb;

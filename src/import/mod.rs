@@ -7,7 +7,9 @@
 //! triangles, glyph curves, CSG text); the scene turns it into solids.
 
 pub mod dxf;
+pub mod dxf_figure;
 pub mod meshfile;
 pub mod scad;
 pub mod svg;
+pub mod svg_figure;
 pub mod text;

@@ -38,3 +38,27 @@ impl Op {
         matches!(self, Op::Union | Op::Xor)
     }
 }
+
+/// The combination of `parts` by `op` (`None` for empty operands, with
+/// OpenSCAD's meaning: an empty operand empties an intersection; a
+/// difference with an empty first operand is empty).
+pub fn combine<T>(
+    op: Op,
+    parts: Vec<Option<T>>,
+    mut wrap: impl FnMut(Op, Vec<T>) -> T,
+) -> Option<T> {
+    let mut live = Vec::new();
+    for (i, p) in parts.into_iter().enumerate() {
+        match p {
+            Some(p) => live.push(p),
+            None if op == Op::Intersection => return None,
+            None if op == Op::Difference && i == 0 => return None,
+            None => {}
+        }
+    }
+    match live.len() {
+        0 => None,
+        1 => live.pop(),
+        _ => Some(wrap(op, live)),
+    }
+}

@@ -11,8 +11,13 @@
 //! crossings of its edges ([`Outlines::spans`]) — what a prism's spans are
 //! made of once the slab is clipped.
 
+pub mod figure;
+pub mod hull;
+pub mod offset;
 pub mod pencil;
 pub mod round_offset;
+pub mod sites;
+pub mod sum;
 
 use crate::math::poly::{self, roots_in, Poly};
 use glam::{DAffine2, DAffine3, DMat2, DVec2, DVec3};

@@ -129,9 +129,9 @@ impl Resolver<'_> {
         mat: Material,
     ) -> Result<Option<u32>> {
         // A polytope rounded by a ball: written out as exact primitives.
-        let rounded = super::rounded::as_rounded(&hulls)
-            .and_then(|(pts, r)| super::rounded::pieces(&pts, r))
-            .or_else(|| super::rounded::as_cylinders(&hulls));
+        let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
+            .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
+            .or_else(|| crate::geometry::ball_sum::as_cylinders(&hulls));
         if let Some(pieces) = rounded.filter(|_| !crate::mutant::active("hull_gjk_normals")) {
             let shape = Rounded::new(pieces.parts, hulls).map_err(|_| {
                 self.src.error(
@@ -222,8 +222,8 @@ impl Resolver<'_> {
         self.cut_back(marks);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
-                let pieces = super::rounded::mesh_rounded(&mesh, to, r);
-                let limit = super::rounded::MAX_ROUNDED_TRIANGLES;
+                let pieces = crate::geometry::ball_sum::mesh_rounded(&mesh, to, r);
+                let limit = crate::geometry::ball_sum::MAX_ROUNDED_TRIANGLES;
                 self.pieces_leaf(
                     s,
                     pieces,
@@ -233,8 +233,8 @@ impl Resolver<'_> {
                 )
             }
             Summed::MeshPlus(mesh, to, rest) => {
-                let pieces = super::rounded::mesh_plus(&mesh, to, &rest);
-                let limit = super::rounded::MAX_SUMMED_TRIANGLES;
+                let pieces = crate::geometry::ball_sum::mesh_plus(&mesh, to, &rest);
+                let limit = crate::geometry::ball_sum::MAX_SUMMED_TRIANGLES;
                 let what = format!(
                     "a mesh of more than {limit} triangles plus a convex solid other than a ball"
                 );
@@ -255,7 +255,7 @@ impl Resolver<'_> {
     fn pieces_leaf(
         &mut self,
         s: &Statement,
-        pieces: Option<super::rounded::Pieces>,
+        pieces: Option<crate::geometry::ball_sum::Pieces>,
         what: &str,
         xf: DAffine3,
         mat: Material,
@@ -287,7 +287,7 @@ impl Resolver<'_> {
                 shape: prim.shape.clone(),
                 to_world: prim.xf.to_world,
             };
-            match (&part.shape, super::rounded::ball(&part)) {
+            match (&part.shape, crate::geometry::ball_sum::ball(&part)) {
                 (_, Some((c, radius))) if leaves.len() == 1 => {
                     centre += c;
                     r += radius;
@@ -378,7 +378,7 @@ fn is_convex(shape: &Shape) -> bool {
         Shape::Rounded(r) => !r.hulls.is_empty(),
         Shape::Prism(p) => {
             let o = &p.region.outlines;
-            o.loops.len() == 1 && !o.curved() && convex_polygon(&o.loops[0])
+            o.loops.len() == 1 && !o.curved() && crate::plane::hull::convex_polygon(&o.loops[0])
         }
         Shape::Mesh(m) => {
             let d = &m.data;
@@ -397,17 +397,4 @@ fn is_convex(shape: &Shape) -> bool {
         }
         _ => false,
     }
-}
-
-/// Whether a simple loop turns one way only.
-pub(super) fn convex_polygon(l: &[glam::DVec2]) -> bool {
-    let n = l.len();
-    let (mut pos, mut neg) = (false, false);
-    for i in 0..n {
-        let (a, b, c) = (l[i], l[(i + 1) % n], l[(i + 2) % n]);
-        let x = (b - a).perp_dot(c - b);
-        pos |= x > 0.0;
-        neg |= x < 0.0;
-    }
-    !(pos && neg)
 }

@@ -1,7 +1,7 @@
 //! OpenSCAD's 2-D shapes and the extrusions that lift them into space.
 //!
 //! Below `linear_extrude` and `rotate_extrude` the statements live in the
-//! plane: [`Resolver::flat`] reads them into a [`Flat`] tree — polygons
+//! plane: [`Resolver::flat`] reads them into a [`Figure`] tree — polygons
 //! and ellipses (a circle under the plane's part of its transforms, see
 //! [`plane::from_space`]) combined by the 2-D `union`, `intersection` and
 //! `difference`. An extrusion maps every point of the plane one to one
@@ -17,14 +17,17 @@
 //! through), under its full 3-D transform.
 
 use super::facet_mesh::Cut;
-use super::offset::Join;
 use super::transforms::{basis_from_z, facet_sin_cos, sin_cos_deg};
-use super::{combine, Resolver};
+use super::Resolver;
 use crate::error::Result;
 use crate::geometry::{
     Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Section, Shape, Sphere, Torus, Twisted,
 };
-use crate::math::boolean::Op;
+use crate::import::dxf_figure;
+use crate::math::boolean::{combine, Op};
+use crate::plane::figure::{clip_right, is_circle, Figure};
+use crate::plane::offset::Join;
+use crate::plane::sum;
 use crate::plane::{self, Outlines, Region};
 use crate::scene::args::Args;
 use crate::scene::Material;
@@ -34,125 +37,6 @@ use std::sync::Arc;
 
 /// The 2-D primitives.
 pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon", "text"];
-
-/// A region of the plane, as a tree.
-#[derive(Clone, Debug)]
-pub(crate) enum Flat {
-    /// Outlines filled by the even-odd rule, in the plane's coordinates.
-    Polygon(Outlines),
-    /// The image of the unit disc.
-    Ellipse(DAffine2),
-    /// `projection(cut)`: the slice z = 0 of its children (cut = true) or
-    /// their shadow on it, moved in the plane by the transform. The
-    /// statement is the resolver's, by this number: its children are read
-    /// only when the tree is extruded, in the extrusion's frame.
-    Section(u32, DAffine2),
-    Op(Op, Vec<Flat>),
-    /// `hull()` of 2-D shapes: extruded, the hull of their extrusions.
-    Hull(Vec<Flat>),
-    /// Curved outlines offset with round joins, in their own frame, placed
-    /// in the plane by the map (an offset is not one after any map).
-    Offset(Arc<crate::plane::round_offset::RoundOffset>, DAffine2),
-}
-
-impl Flat {
-    /// The extent in x (exact for leaves; a union or symmetric difference
-    /// joins, an intersection meets, a difference keeps its first
-    /// operand's).
-    fn x_range(&self) -> (f64, f64) {
-        self.range(DVec2::X)
-    }
-
-    /// The extent along `axis`, by the rules of [`Flat::x_range`].
-    pub(super) fn range(&self, axis: DVec2) -> (f64, f64) {
-        match self {
-            Flat::Polygon(o) => o.extent(axis),
-            Flat::Ellipse(e) => {
-                let h = (e.matrix2.transpose() * axis).length();
-                let c = e.translation.dot(axis);
-                (c - h, c + h)
-            }
-            // Not asked: a section is refused before (see `has_section`).
-            Flat::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
-            // Along the axis seen in the offset's own frame: R's extent
-            // moved out by r when grown (exact), R's own when shrunk (a
-            // bound: refused where exactness matters, by resize).
-            Flat::Offset(o, m) => {
-                let v = m.matrix2.transpose() * axis;
-                let c = m.translation.dot(axis);
-                let reach = |v: DVec2| {
-                    let q = o.region.farthest(v);
-                    q.dot(v) + o.r.max(0.0) * v.length()
-                };
-                (c - reach(-v), c + reach(v))
-            }
-            // A hull reaches as far as its farthest shape.
-            Flat::Hull(kids) => kids
-                .iter()
-                .map(|k| k.range(axis))
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
-                    (a.min(c), b.max(d))
-                }),
-            Flat::Op(op, kids) => {
-                let rs = kids.iter().map(|k| k.range(axis));
-                match op {
-                    Op::Union | Op::Xor => rs
-                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
-                            (a.min(c), b.max(d))
-                        }),
-                    Op::Intersection => rs
-                        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (c, d)| {
-                            (a.max(c), b.min(d))
-                        }),
-                    Op::Difference => kids[0].range(axis),
-                }
-            }
-        }
-    }
-
-    /// The disc of radius r about c.
-    pub(super) fn disc(c: DVec2, r: f64) -> Flat {
-        Flat::Ellipse(DAffine2::from_scale_angle_translation(
-            DVec2::splat(r),
-            0.0,
-            c,
-        ))
-    }
-
-    /// The tree moved by `m`.
-    pub(super) fn moved(&self, m: DAffine2) -> Flat {
-        match self {
-            Flat::Polygon(o) => Flat::Polygon(o.map(|p| m.transform_point2(p))),
-            Flat::Ellipse(e) => Flat::Ellipse(m * *e),
-            Flat::Section(s, at) => Flat::Section(*s, m * *at),
-            Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
-            Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.moved(m)).collect()),
-            Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
-        }
-    }
-
-    /// The mirror image in x = 0.
-    fn mirrored_x(&self) -> Flat {
-        let m = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
-        match self {
-            Flat::Polygon(o) => Flat::Polygon(o.map(|p| DVec2::new(-p.x, p.y))),
-            Flat::Ellipse(e) => Flat::Ellipse(m * *e),
-            Flat::Section(s, at) => Flat::Section(*s, m * *at),
-            Flat::Op(op, kids) => Flat::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
-            Flat::Hull(kids) => Flat::Hull(kids.iter().map(|k| k.mirrored_x()).collect()),
-            Flat::Offset(o, at) => Flat::Offset(o.clone(), m * *at),
-        }
-    }
-
-    /// The number of the first `projection` in the tree, if any.
-    pub(super) fn section(&self) -> Option<u32> {
-        match self {
-            Flat::Section(s, _) => Some(*s),
-            Flat::Op(_, kids) | Flat::Hull(kids) => kids.iter().find_map(|k| k.section()),
-            _ => None,
-        }
-    }
-}
 
 /// The arguments `import` takes (OpenSCAD's, and the `timestamp` its CSG
 /// export adds).
@@ -172,152 +56,6 @@ pub(super) const IMPORT_PARAMS: &[&str] = &[
     "timestamp",
 ];
 
-/// A drawing as a 2-D tree (see [`crate::import::dxf`]). Each closed path is
-/// the polygon of its chords, minus the circular segments (disc ∩ the
-/// chord's half-plane on the arc's side) of arcs bulging inward, plus
-/// those bulging outward; a whole circle is a disc. Paths that do not
-/// cross nest: one is inside another when a point of its boundary is, its
-/// depth how many hold it; the even-odd region is each path of even depth
-/// minus the paths directly inside it.
-fn drawing_flat(d: &crate::import::dxf::Drawing) -> Option<Flat> {
-    use crate::import::dxf::Arc;
-    let disc = Flat::disc;
-    // Each region: its tree, an inside test, and a point of its boundary.
-    struct Piece {
-        flat: Flat,
-        probe: DVec2,
-        chord: Option<Outlines>,
-        segs: Vec<(DVec2, DVec2, Arc, bool)>,
-        circle: Option<(DVec2, f64)>,
-    }
-    fn in_segment(x: DVec2, a: DVec2, b: DVec2, arc: &Arc) -> bool {
-        let n = (b - a).perp();
-        (x - arc.center).length() <= arc.radius
-            && ((x - a).dot(n) > 0.0) == ((arc.mid - a).dot(n) > 0.0)
-    }
-    impl Piece {
-        fn contains(&self, x: DVec2) -> bool {
-            if let Some((c, r)) = self.circle {
-                return (x - c).length() <= r;
-            }
-            let mut inside = self.chord.as_ref().is_some_and(|o| o.contains(x));
-            for (a, b, arc, outward) in &self.segs {
-                if in_segment(x, *a, *b, arc) {
-                    inside = *outward;
-                }
-            }
-            inside
-        }
-    }
-    let mut pieces: Vec<Piece> = d
-        .circles
-        .iter()
-        .map(|&(c, r)| Piece {
-            flat: disc(c, r),
-            probe: c + DVec2::new(r, 0.0),
-            chord: None,
-            segs: Vec::new(),
-            circle: Some((c, r)),
-        })
-        .collect();
-    for p in &d.paths {
-        let n = p.pts.len();
-        let chord = (n >= 3).then(|| Outlines::polygons(vec![p.pts.clone()]));
-        let mut segs = Vec::new();
-        let (mut inward, mut outward) = (Vec::new(), Vec::new());
-        for (i, arc) in p.arcs.iter().enumerate() {
-            let Some(arc) = arc else { continue };
-            let (a, b) = (p.pts[i], p.pts[(i + 1) % n]);
-            let (t, r) = ((b - a).normalize_or_zero(), arc.radius);
-            let mut nn = t.perp();
-            if (arc.mid - a).dot(nn) < 0.0 {
-                nn = -nn;
-            }
-            let rect = vec![
-                a - t * 2.0 * r,
-                b + t * 2.0 * r,
-                b + t * 2.0 * r + nn * 2.0 * r,
-                a - t * 2.0 * r + nn * 2.0 * r,
-            ];
-            let seg = Flat::Op(
-                Op::Intersection,
-                vec![
-                    disc(arc.center, r),
-                    Flat::Polygon(Outlines::polygons(vec![rect])),
-                ],
-            );
-            let out = !chord.as_ref().is_some_and(|o| o.contains(arc.mid));
-            if out {
-                outward.push(seg);
-            } else {
-                inward.push(seg);
-            }
-            segs.push((a, b, *arc, out));
-        }
-        let body = match chord.clone() {
-            Some(o) if inward.is_empty() => Some(Flat::Polygon(o)),
-            Some(o) => {
-                let mut v = vec![Flat::Polygon(o)];
-                v.extend(inward);
-                Some(Flat::Op(Op::Difference, v))
-            }
-            None => None,
-        };
-        let mut parts: Vec<Flat> = body.into_iter().collect();
-        parts.extend(outward);
-        let flat = match parts.len() {
-            0 => continue,
-            1 => parts.pop().unwrap(),
-            _ => Flat::Op(Op::Union, parts),
-        };
-        // A point of the boundary: the middle of the first edge (on its arc
-        // when it has one).
-        let probe = p.arcs[0].map_or(0.5 * (p.pts[0] + p.pts[1 % n]), |a| a.mid);
-        pieces.push(Piece {
-            flat,
-            probe,
-            chord,
-            segs,
-            circle: None,
-        });
-    }
-    let m = pieces.len();
-    let holders: Vec<Vec<usize>> = (0..m)
-        .map(|q| {
-            (0..m)
-                .filter(|&p| p != q && pieces[p].contains(pieces[q].probe))
-                .collect()
-        })
-        .collect();
-    let depth: Vec<usize> = if crate::mutant::active("drawing_unnested") {
-        vec![0; m]
-    } else {
-        holders.iter().map(|h| h.len()).collect()
-    };
-    let mut parts = Vec::new();
-    for p in 0..m {
-        if depth[p] % 2 == 1 {
-            continue;
-        }
-        let inner: Vec<Flat> = (0..m)
-            .filter(|&q| depth[q] == depth[p] + 1 && holders[q].contains(&p))
-            .map(|q| pieces[q].flat.clone())
-            .collect();
-        if inner.is_empty() {
-            parts.push(pieces[p].flat.clone());
-        } else {
-            let mut v = vec![pieces[p].flat.clone()];
-            v.extend(inner);
-            parts.push(Flat::Op(Op::Difference, v));
-        }
-    }
-    match parts.len() {
-        0 => None,
-        1 => parts.pop(),
-        _ => Some(Flat::Op(Op::Union, parts)),
-    }
-}
-
 /// How a linear extrusion sweeps its section: the top's scale in x and y,
 /// and the twist (radians, OpenSCAD's clockwise).
 #[derive(Clone, Copy, Debug)]
@@ -326,13 +64,6 @@ pub(super) struct Sweep {
     pub twist: f64,
     /// From −h/2 to h/2 (OpenSCAD's `center`), kept in the leaf itself.
     pub centered: bool,
-}
-
-/// Whether a 2×2 matrix maps the unit circle to a circle.
-pub(super) fn is_circle(m: glam::DMat2) -> bool {
-    let (x, y) = (m.x_axis, m.y_axis);
-    let r2 = x.length_squared();
-    x.dot(y).abs() <= 1e-12 * r2 && (y.length_squared() - r2).abs() <= 1e-12 * r2
 }
 
 /// A regular polygon of `n` vertices on the circle of radius r, vertex i
@@ -347,30 +78,6 @@ pub(super) fn regular_polygon(n: usize, r: f64) -> Outlines {
     Outlines::polygons(vec![pts])
 }
 
-/// Each loop of `o` cut to the half-plane x ≥ 0 (Sutherland–Hodgman: a
-/// loop stays one loop, with edges along x = 0 where it was cut).
-fn clip_right(o: &Outlines) -> Outlines {
-    let mut loops = Vec::new();
-    for l in &o.loops {
-        let mut out: Vec<DVec2> = Vec::new();
-        for i in 0..l.len() {
-            let (a, b) = (l[i], l[(i + 1) % l.len()]);
-            if a.x >= 0.0 {
-                out.push(a);
-            }
-            if (a.x >= 0.0) != (b.x >= 0.0) {
-                let f = a.x / (a.x - b.x);
-                out.push(DVec2::new(0.0, a.y + f * (b.y - a.y)));
-            }
-        }
-        out.dedup();
-        if out.len() >= 3 {
-            loops.push(out);
-        }
-    }
-    Outlines::polygons(loops)
-}
-
 impl Resolver<'_> {
     /// A 2-D statement under the plane transform `m`; `None` when empty.
     pub(super) fn flat(
@@ -378,7 +85,7 @@ impl Resolver<'_> {
         s: &Statement,
         m: DAffine2,
         depth: usize,
-    ) -> Result<Option<Flat>> {
+    ) -> Result<Option<Figure>> {
         if super::skipped(s) {
             return Ok(None);
         }
@@ -417,7 +124,7 @@ impl Resolver<'_> {
             }
             let id = self.projections.len() as u32;
             self.projections.push(s.clone());
-            return Ok(Some(Flat::Section(id, m)));
+            return Ok(Some(Figure::Section(id, m)));
         }
         if super::APPEARANCE.contains(&name) {
             // An extrusion is one new solid: colours below it are dropped,
@@ -452,9 +159,12 @@ impl Resolver<'_> {
             // through the tangent points with the circles and arcs on it,
             // exact and an ordinary 2-D tree.
             let mut sites = Vec::new();
-            if kids.iter().all(|k| super::sites::sites(k, &mut sites)) {
-                if let Some((poly, on)) = super::rounded::arc_hull(&sites) {
-                    let mut parts: Vec<Flat> = on
+            if kids
+                .iter()
+                .all(|k| crate::plane::sites::sites(k, &mut sites))
+            {
+                if let Some((poly, on)) = crate::plane::hull::arc_hull(&sites) {
+                    let mut parts: Vec<Figure> = on
                         .into_iter()
                         .filter(|&i| {
                             sites[i].arc.is_none()
@@ -463,16 +173,16 @@ impl Resolver<'_> {
                         .map(|i| sites[i].cap())
                         .collect();
                     if poly.len() >= 3 {
-                        parts.push(Flat::Polygon(Outlines::polygons(vec![poly])));
+                        parts.push(Figure::Polygon(Outlines::polygons(vec![poly])));
                     }
                     return Ok(Some(if parts.len() == 1 {
                         parts.pop().expect("one")
                     } else {
-                        Flat::Op(Op::Union, parts)
+                        Figure::Op(Op::Union, parts)
                     }));
                 }
             }
-            return Ok(Some(Flat::Hull(kids)));
+            return Ok(Some(Figure::Hull(kids)));
         }
         if name == "minkowski" {
             // Summed in its own frame, then placed: m(A ⊕ B) is m's image
@@ -487,11 +197,11 @@ impl Resolver<'_> {
             }
             let circles = ops
                 .iter()
-                .any(|f| matches!(f, Flat::Ellipse(e) if is_circle(e.matrix2)));
+                .any(|f| matches!(f, Figure::Ellipse(e) if is_circle(e.matrix2)));
             if circles {
                 self.openscad_facets_unsupported(s, "minkowski() with a circle")?;
             }
-            return match minkowski2(ops) {
+            return match sum::minkowski(ops) {
                 Ok(f) => Ok(f.map(|f| f.moved(m))),
                 Err(why) => Err(self.src.error(
                     s.name_span,
@@ -523,16 +233,16 @@ impl Resolver<'_> {
         op: Op,
         m: DAffine2,
         depth: usize,
-    ) -> Result<Option<Flat>> {
+    ) -> Result<Option<Figure>> {
         let mut parts = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
             parts.push(self.flat(c, m, depth + 1)?);
         }
-        Ok(combine(op, parts, Flat::Op))
+        Ok(combine(op, parts, Figure::Op))
     }
 
     /// `square`, `circle` or `polygon` under `m`.
-    pub(super) fn flat_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+    pub(super) fn flat_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
         let moved = |o: Outlines| o.map(|p| m.transform_point2(p));
         match s.name.as_str() {
             "square" => {
@@ -554,7 +264,7 @@ impl Resolver<'_> {
                 };
                 let hi = lo + size;
                 let pts = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-                Ok(Some(Flat::Polygon(moved(Outlines::polygons(vec![pts])))))
+                Ok(Some(Figure::Polygon(moved(Outlines::polygons(vec![pts])))))
             }
             "circle" => {
                 let a = Args::bind(self.src, s, &["r", "d"])?;
@@ -568,12 +278,12 @@ impl Resolver<'_> {
                     return Ok(None);
                 }
                 Ok(Some(match self.fragments(&a, r) {
-                    Some(n) => Flat::Polygon(moved(regular_polygon(n, r))),
-                    None => Flat::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
+                    Some(n) => Figure::Polygon(moved(regular_polygon(n, r))),
+                    None => Figure::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
                 }))
             }
             "text" => self.text(s, m),
-            _ => Ok(self.polygon(s)?.map(|o| Flat::Polygon(moved(o)))),
+            _ => Ok(self.polygon(s)?.map(|o| Figure::Polygon(moved(o)))),
         }
     }
 
@@ -641,7 +351,7 @@ impl Resolver<'_> {
     }
 
     /// `text` under `m`: the union of its glyphs.
-    fn text(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+    fn text(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
         self.openscad_facets_unsupported(s, "text")?;
         const PARAMS: &[&str] = &[
             "text",
@@ -691,17 +401,17 @@ impl Resolver<'_> {
             };
             self.warn(place, w, label);
         }
-        let glyphs: Vec<Option<Flat>> = laid
+        let glyphs: Vec<Option<Figure>> = laid
             .glyphs
             .into_iter()
-            .map(|o| Some(Flat::Polygon(o.map(|p| m.transform_point2(p)))))
+            .map(|o| Some(Figure::Polygon(o.map(|p| m.transform_point2(p)))))
             .collect();
-        Ok(combine(Op::Union, glyphs, Flat::Op))
+        Ok(combine(Op::Union, glyphs, Figure::Op))
     }
 
     /// `offset(r | delta, chamfer)` of its children's union, computed in
     /// its own frame, then placed by `m`.
-    fn offset(&mut self, s: &Statement, m: DAffine2, depth: usize) -> Result<Option<Flat>> {
+    fn offset(&mut self, s: &Statement, m: DAffine2, depth: usize) -> Result<Option<Figure>> {
         let a = Args::bind(self.src, s, &["r", "delta", "chamfer"])?;
         // As OpenSCAD: r beats delta; no argument at all is r = 1.
         let (join, d) = match (a.number("r")?, a.number("delta")?) {
@@ -716,7 +426,7 @@ impl Resolver<'_> {
         let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
-        match super::offset::offset(f, join, d) {
+        match crate::plane::offset::offset(f, join, d) {
             Ok(f) => Ok(f.map(|f| f.moved(m))),
             Err(why) => Err(self.src.error(
                 s.name_span,
@@ -755,7 +465,7 @@ impl Resolver<'_> {
     }
 
     /// `import()` of a drawing (DXF or SVG), under `m`.
-    pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Flat>> {
+    pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
         let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
         let (_, span, ext, path) = self.import_file(&a)?;
         if ext == "svg" {
@@ -818,7 +528,7 @@ impl Resolver<'_> {
                 "as OpenSCAD closes them",
             );
         }
-        Ok(drawing_flat(&d).map(|f| f.moved(m)))
+        Ok(dxf_figure::from_drawing(&d).map(|f| f.moved(m)))
     }
 
     /// `import()` of an SVG drawing (`dpi`, `center`; OpenSCAD reads no
@@ -830,7 +540,7 @@ impl Resolver<'_> {
         span: crate::error::TextRange,
         path: &std::path::Path,
         m: DAffine2,
-    ) -> Result<Option<Flat>> {
+    ) -> Result<Option<Figure>> {
         self.openscad_facets_unsupported(s, "a drawing's curves")?;
         let mut dpi = a.number("dpi")?.unwrap_or(72.0);
         if dpi < 0.001 {
@@ -868,7 +578,7 @@ impl Resolver<'_> {
                 "OpenSCAD leaves them out too",
             );
         }
-        Ok(super::svg::svg_flat(&d).map(|f| f.moved(m)))
+        Ok(crate::import::svg_figure::from_svg(&d).map(|f| f.moved(m)))
     }
 
     /// A 2-D shape standing where a solid is expected: OpenSCAD's preview
@@ -896,7 +606,7 @@ impl Resolver<'_> {
     fn linear(
         &mut self,
         s: &Statement,
-        f: &Flat,
+        f: &Figure,
         xf: DAffine3,
         mat: Material,
         h: f64,
@@ -907,12 +617,12 @@ impl Resolver<'_> {
         let top = sweep.top.x;
         let even = sweep.top.x == sweep.top.y;
         match f {
-            Flat::Polygon(o) if even && sweep.twist == 0.0 => {
+            Figure::Polygon(o) if even && sweep.twist == 0.0 => {
                 let shape =
                     Shape::Prism(Prism::new(Arc::new(Region::new(o.clone())), top, centered));
                 self.leaf(s, shape, xf * local, mat)
             }
-            Flat::Polygon(o) => {
+            Figure::Polygon(o) => {
                 if o.curved() {
                     return Err(self.src.error(
                         s.name_span,
@@ -926,7 +636,7 @@ impl Resolver<'_> {
             // A circle about the axis is the same circle turned: only an
             // even taper changes it, and the cone below serves. Any other
             // ellipse is twisted as it is.
-            Flat::Ellipse(e)
+            Figure::Ellipse(e)
                 if !even
                     || sweep.twist != 0.0
                         && !(e.translation == DVec2::ZERO && is_circle(e.matrix2)) =>
@@ -936,7 +646,7 @@ impl Resolver<'_> {
                 }
                 self.twisted(s, Section::Ellipse(*e), xf * local, mat, sweep)
             }
-            Flat::Ellipse(e) => {
+            Figure::Ellipse(e) => {
                 // The cone over the ellipse with its apex where s(z) = 0:
                 // (x, y, z) ↦ (E·(x, y) + s(z)·c, h·z) maps the upright
                 // frustum of radii 1 and `top` onto it.
@@ -958,7 +668,7 @@ impl Resolver<'_> {
                 let shape = Shape::Cone(Cone { r0, r1, centered });
                 self.leaf(s, shape, xf * local, mat)
             }
-            Flat::Section(p, at) => {
+            Figure::Section(p, at) => {
                 let p = &self.projections[*p as usize].clone();
                 if !even || top != 1.0 || sweep.twist != 0.0 {
                     return Err(self.src.error(
@@ -982,14 +692,14 @@ impl Resolver<'_> {
                     self.shadow(p, frame, mat)
                 }
             }
-            Flat::Op(op, kids) => {
+            Figure::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {
                     parts.push(self.linear(s, k, xf, mat, h, sweep)?);
                 }
                 Ok(self.op(*op, parts))
             }
-            Flat::Offset(o, at) => {
+            Figure::Offset(o, at) => {
                 if !even || top != 1.0 || sweep.twist != 0.0 {
                     return Err(self.src.error(
                         s.name_span,
@@ -1014,7 +724,7 @@ impl Resolver<'_> {
             // The hull of the shapes' extrusions: straight or tapered, a
             // section of the extrusion of a convex region is that region
             // scaled, so it is the extrusion of their hull.
-            Flat::Hull(kids) => {
+            Figure::Hull(kids) => {
                 if sweep.twist != 0.0 || !even {
                     return Err(self.src.error(
                         s.name_span,
@@ -1272,7 +982,7 @@ impl Resolver<'_> {
         s: &Statement,
         legacy: Option<Statement>,
         depth: usize,
-    ) -> Result<Option<Flat>> {
+    ) -> Result<Option<Figure>> {
         match legacy {
             Some(child) => self.flat(&child, DAffine2::IDENTITY, depth + 1),
             None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth),
@@ -1284,12 +994,12 @@ impl Resolver<'_> {
     fn revolve(
         &mut self,
         s: &Statement,
-        f: &Flat,
+        f: &Figure,
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
         match f {
-            Flat::Polygon(o) => {
+            Figure::Polygon(o) => {
                 // A curved outline is wholly on one side of the axis (the
                 // rule above), so there is nothing to cut.
                 let clipped = if o.curved() { o.clone() } else { clip_right(o) };
@@ -1299,7 +1009,7 @@ impl Resolver<'_> {
                 let shape = Shape::Lathe(Lathe::new(Arc::new(Region::new(clipped))));
                 self.leaf(s, shape, xf, mat)
             }
-            Flat::Ellipse(e) => {
+            Figure::Ellipse(e) => {
                 let m = e.matrix2;
                 if m.x_axis.y != 0.0 || m.y_axis.x != 0.0 {
                     return Err(self.src.error(
@@ -1335,18 +1045,18 @@ impl Resolver<'_> {
                 let shape = Shape::Torus(Torus { minor: ra / c.x });
                 self.leaf(s, shape, xf * local, mat)
             }
-            Flat::Section(..) => unreachable!("refused by rotate_extrude"),
-            Flat::Offset(..) => Err(self.src.error(
+            Figure::Section(..) => unreachable!("refused by rotate_extrude"),
+            Figure::Offset(..) => Err(self.src.error(
                 s.name_span,
                 "turning an offset of curved outlines is not supported yet",
                 "csgrt extrudes it straight with linear_extrude",
             )),
-            Flat::Hull(_) => Err(self.src.error(
+            Figure::Hull(_) => Err(self.src.error(
                 s.name_span,
                 "turning a 2-D hull is not supported yet",
                 "csgrt extrudes a hull with linear_extrude",
             )),
-            Flat::Op(op, kids) => {
+            Figure::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {
                     parts.push(self.revolve(s, k, xf, mat)?);
@@ -1401,195 +1111,4 @@ fn file_child(s: &Statement, a: &Args) -> Option<Statement> {
         children: Vec::new(),
         span: s.span,
     })
-}
-
-/// The most convex pieces a 2-D Minkowski sum is the union of, and the
-/// most corners of one.
-const MAX_SUM_PIECES: usize = 10_000;
-
-/// A convex piece of an operand: the hull of its points, grown by a disc
-/// of its radius (a polygon's corners with radius zero, a circle's centre
-/// with its own).
-type Piece2 = (Vec<DVec2>, f64);
-
-/// OpenSCAD's 2-D `minkowski()` of `ops` (in their own frame), exactly.
-/// Circles sum to one circle, which grows the rest by its radius: the
-/// offset of any one other shape (a rounded outline), or, for convex
-/// pieces, the disc about their sum. Convex operands sum by the hull of
-/// their corners' sums, and a union distributes over its pieces,
-/// A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C).
-fn minkowski2(ops: Vec<Flat>) -> Result<Option<Flat>, String> {
-    let (mut c, mut r) = (DVec2::ZERO, 0.0);
-    let mut rest = Vec::new();
-    for f in ops {
-        match &f {
-            Flat::Ellipse(e) if is_circle(e.matrix2) => {
-                c += e.translation;
-                r += e.matrix2.x_axis.length();
-            }
-            _ => rest.push(f),
-        }
-    }
-    let mut pieces: Vec<Vec<Piece2>> = Vec::new();
-    let mut whole = Vec::new();
-    for f in rest {
-        let mut p = Vec::new();
-        if convex_pieces(&f, &mut p) {
-            pieces.push(p);
-        } else {
-            whole.push(f);
-        }
-    }
-    let to_centre = DAffine2::from_translation(c);
-    match (whole.len(), pieces.is_empty()) {
-        (0, _) => {}
-        (1, false) if r == 0.0 => return polygon_plus(&whole[0], &pieces),
-        (1, true) => {
-            let f = whole.pop().expect("one");
-            let grown = if r > 0.0 {
-                super::offset::offset(f, Join::Round, r)?
-            } else {
-                Some(f)
-            };
-            return Ok(grown.map(|g| g.moved(to_centre)));
-        }
-        _ => return Err(NOT_SUMMED.into()),
-    }
-    if pieces.is_empty() {
-        return Ok((r > 0.0).then(|| Flat::disc(c, r)));
-    }
-    let parts: Vec<Option<Flat>> = choices((vec![c], r), &pieces)?
-        .into_iter()
-        .map(|(pts, r)| grown_polygon(&pts, r))
-        .collect();
-    Ok(combine(Op::Union, parts, Flat::Op))
-}
-
-/// A polygon A that is not convex plus a union of convex polygons: for
-/// each choice B of one piece from each operand (B the hull of their
-/// corners' sums), A moved by B's first corner b, and each edge of A plus
-/// B (the hull of its ends' sums with B's corners) — A ⊕ B = (A + b) ∪
-/// (∂A ⊕ B) for a convex B: on the segment from b to any other point of B,
-/// a point of the sum leaves A + b only across A's boundary.
-fn polygon_plus(a: &Flat, pieces: &[Vec<Piece2>]) -> Result<Option<Flat>, String> {
-    let loops = match a {
-        Flat::Polygon(o) if !o.curved() => &o.loops,
-        _ => return Err(NOT_SUMMED.into()),
-    };
-    let combos = choices((vec![DVec2::ZERO], 0.0), pieces)?;
-    if combos.iter().any(|(_, r)| *r != 0.0) {
-        return Err(NOT_SUMMED.into());
-    }
-    let edges: usize = loops.iter().map(|l| l.len()).sum();
-    if combos.len() * (edges + 1) > MAX_SUM_PIECES {
-        return Err(format!(
-            "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
-        ));
-    }
-    let mut parts = Vec::new();
-    for (b, _) in &combos {
-        parts.push(Some(a.clone().moved(DAffine2::from_translation(b[0]))));
-        for l in loops {
-            for i in 0..l.len() {
-                let (p, q) = (l[i], l[(i + 1) % l.len()]);
-                let hull = hull2(b.iter().flat_map(|&x| [p + x, q + x]).collect());
-                if hull.len() >= 3 {
-                    parts.push(Some(Flat::Polygon(Outlines::polygons(vec![hull]))));
-                }
-            }
-        }
-    }
-    Ok(combine(Op::Union, parts, Flat::Op))
-}
-
-/// Every choice of one convex piece from each of `pieces`, summed onto
-/// `start`: the hull of the corners' sums, with the radii's sum.
-fn choices(start: Piece2, pieces: &[Vec<Piece2>]) -> Result<Vec<Piece2>, String> {
-    let mut combos = vec![start];
-    for op in pieces {
-        let mut next = Vec::with_capacity(combos.len() * op.len());
-        for (acc, ra) in &combos {
-            for (pts, rb) in op {
-                let sum: Vec<DVec2> = acc
-                    .iter()
-                    .flat_map(|&a| pts.iter().map(move |&b| a + b))
-                    .collect();
-                next.push((hull2(sum), ra + rb));
-            }
-        }
-        if next.len() > MAX_SUM_PIECES {
-            return Err(format!(
-                "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
-            ));
-        }
-        combos = next;
-    }
-    Ok(combos)
-}
-
-const NOT_SUMMED: &str =
-    "`minkowski` of 2-D shapes that are not convex, other than one shape with circles or one polygon with convex polygons, is not supported yet";
-
-/// The convex pieces of a union of convex polygons and circles; false for
-/// anything else.
-fn convex_pieces(f: &Flat, out: &mut Vec<Piece2>) -> bool {
-    match f {
-        Flat::Ellipse(e) if is_circle(e.matrix2) => {
-            out.push((vec![e.translation], e.matrix2.x_axis.length()));
-            true
-        }
-        Flat::Polygon(o)
-            if !o.curved() && o.loops.len() == 1 && super::convex::convex_polygon(&o.loops[0]) =>
-        {
-            out.push((hull2(o.loops[0].clone()), 0.0));
-            true
-        }
-        Flat::Op(Op::Union, kids) => kids.iter().all(|k| convex_pieces(k, out)),
-        _ => false,
-    }
-}
-
-/// The corners of the convex hull of points, counter-clockwise (points on
-/// an edge left out).
-fn hull2(pts: Vec<DVec2>) -> Vec<DVec2> {
-    super::rounded::hull_indices_2d(&pts, 0.0)
-        .into_iter()
-        .map(|i| pts[i])
-        .collect()
-}
-
-/// The convex polygon of `corners` (counter-clockwise) grown by a disc of
-/// radius r: each edge moved out by r, with a disc on each corner.
-fn grown_polygon(corners: &[DVec2], r: f64) -> Option<Flat> {
-    let mut parts: Vec<Option<Flat>> = Vec::new();
-    if r > 0.0 {
-        parts.extend(corners.iter().map(|&p| Some(Flat::disc(p, r))));
-    }
-    let n = corners.len();
-    let poly = if n >= 3 && r > 0.0 {
-        let mut out = Vec::with_capacity(2 * n);
-        for i in 0..n {
-            let (a, b) = (corners[i], corners[(i + 1) % n]);
-            let e = (b - a).normalize();
-            let out_n = DVec2::new(e.y, -e.x) * r;
-            out.push(a + out_n);
-            out.push(b + out_n);
-        }
-        Some(out)
-    } else if n == 2 && r > 0.0 {
-        let e = (corners[1] - corners[0]).normalize();
-        let side = DVec2::new(e.y, -e.x) * r;
-        Some(vec![
-            corners[0] + side,
-            corners[1] + side,
-            corners[1] - side,
-            corners[0] - side,
-        ])
-    } else if n >= 3 {
-        Some(corners.to_vec())
-    } else {
-        None
-    };
-    parts.extend(poly.map(|p| Some(Flat::Polygon(Outlines::polygons(vec![p])))));
-    combine(Op::Union, parts, Flat::Op)
 }

@@ -9,14 +9,10 @@ mod appearance;
 mod convex;
 mod facet_mesh;
 mod flat;
-mod offset;
 mod resize;
-mod rounded;
 mod shadow;
-mod sites;
 mod solids;
 mod statements;
-mod svg;
 mod transforms;
 
 pub use solids::unsupported;
@@ -85,26 +81,6 @@ pub fn resolve_with(src: &Source, stmts: &[Statement], facets: super::Facets) ->
     let root = r.b.union(ids);
     let place = stmts.first().map_or(TextRange::default(), |s| s.span);
     Ok(r.b.finish(src, root, place, defaults::BACKGROUND))
-}
-
-/// The combination of `parts` by `op` (`None` for empty operands, with
-/// OpenSCAD's meaning: an empty operand empties an intersection; a
-/// difference with an empty first operand is empty).
-fn combine<T>(op: Op, parts: Vec<Option<T>>, mut wrap: impl FnMut(Op, Vec<T>) -> T) -> Option<T> {
-    let mut live = Vec::new();
-    for (i, p) in parts.into_iter().enumerate() {
-        match p {
-            Some(p) => live.push(p),
-            None if op == Op::Intersection => return None,
-            None if op == Op::Difference && i == 0 => return None,
-            None => {}
-        }
-    }
-    match live.len() {
-        0 => None,
-        1 => live.pop(),
-        _ => Some(wrap(op, live)),
-    }
 }
 
 fn skipped(s: &Statement) -> bool {
@@ -322,7 +298,7 @@ impl Resolver<'_> {
     /// are solids.
     fn op(&mut self, op: Op, parts: Vec<Option<u32>>) -> Option<u32> {
         let csg = &mut self.b.csg;
-        combine(op, parts, |op, ids| csg.add_op(op, ids))
+        crate::math::boolean::combine(op, parts, |op, ids| csg.add_op(op, ids))
     }
 
     /// The error for a statement of [`solids::SOLIDS`] without a binder.

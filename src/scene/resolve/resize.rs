@@ -11,11 +11,11 @@
 //! unbounded or twisted leaf, a slice, an extreme point cut away) is "not
 //! supported yet", never a guess.
 
-use super::flat::Flat;
 use super::{Resolver, TRANSFORMS};
 use crate::csg::{Csg, NodeKind};
 use crate::error::Result;
 use crate::math::boolean::Op;
+use crate::plane::figure::Figure;
 use crate::scene::args::Args;
 use crate::scene::Material;
 use crate::syntax::ast::{Statement, ValueKind};
@@ -62,14 +62,14 @@ pub(crate) fn extreme(csg: &Csg, node: u32, e: DVec3) -> Result<(f64, DVec3), &'
 }
 
 /// The exact extent (lo, hi) of a 2-D tree along `axis`, or why not.
-fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
+fn flat_extent(f: &Figure, axis: DVec2) -> Result<(f64, f64), &'static str> {
     match f {
-        Flat::Polygon(_) | Flat::Ellipse(_) => Ok(f.range(axis)),
-        Flat::Section(..) => Err("the extent of a projection"),
-        Flat::Offset(o, _) if o.r > 0.0 => Ok(f.range(axis)),
-        Flat::Offset(..) => Err("the extent of curved outlines shrunk by offset"),
+        Figure::Polygon(_) | Figure::Ellipse(_) => Ok(f.range(axis)),
+        Figure::Section(..) => Err("the extent of a projection"),
+        Figure::Offset(o, _) if o.r > 0.0 => Ok(f.range(axis)),
+        Figure::Offset(..) => Err("the extent of curved outlines shrunk by offset"),
         // A hull reaches exactly as far as its farthest part.
-        Flat::Op(Op::Union, kids) | Flat::Hull(kids) => {
+        Figure::Op(Op::Union, kids) | Figure::Hull(kids) => {
             let mut r = (f64::INFINITY, f64::NEG_INFINITY);
             for k in kids {
                 let (a, b) = flat_extent(k, axis)?;
@@ -79,7 +79,7 @@ fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
         }
         // The first operand's, where no subtracted shape's box reaches its
         // far sides.
-        Flat::Op(Op::Difference, kids) => {
+        Figure::Op(Op::Difference, kids) => {
             let r = flat_extent(&kids[0], axis)?;
             for k in &kids[1..] {
                 let (a, b) = k.range(axis);
@@ -89,10 +89,10 @@ fn flat_extent(f: &Flat, axis: DVec2) -> Result<(f64, f64), &'static str> {
             }
             Ok(r)
         }
-        Flat::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
+        Figure::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
         // Even-odd: a far point that only one operand reaches lies in an odd
         // number of them.
-        Flat::Op(Op::Xor, kids) => {
+        Figure::Op(Op::Xor, kids) => {
             let r: Vec<(f64, f64)> = kids
                 .iter()
                 .map(|k| flat_extent(k, axis))
@@ -243,7 +243,7 @@ impl Resolver<'_> {
         s: &Statement,
         m: DAffine2,
         depth: usize,
-    ) -> Result<Option<Flat>> {
+    ) -> Result<Option<Figure>> {
         let a = Args::bind(self.src, s, PARAMS)?;
         let (newsize, auto) = sizes(&a)?;
         let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {

@@ -461,8 +461,9 @@ impl Resolver<'_> {
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        use crate::geometry::mesh::{edge_use, triangulate_into, Mesh, MeshData, MAX_TRIANGLES};
+        use crate::geometry::mesh::{edge_use, Mesh, MeshData, MAX_TRIANGLES};
         use crate::geometry::mesh_bvh::{too_far, MAX_COORD};
+        use crate::geometry::triangulate::triangulate_into;
         if let Some(p) = too_far(&pts) {
             return Err(self.src.error(
                 s.name_span,

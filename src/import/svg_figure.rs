@@ -21,16 +21,16 @@
 //! the result to libsvg's 10⁻⁴ grid and cuts round parts into pieces;
 //! csgrt does neither.
 
-use super::flat::Flat;
-use crate::import::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
+use super::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
 use crate::math::boolean::Op;
+use crate::plane::figure::Figure;
 use crate::plane::{Ctrl, Outlines};
 use glam::{DAffine2, DVec2};
 
 /// The drawing's tree in OpenSCAD's plane (before the import's own
 /// transform).
-pub(super) fn svg_flat(d: &Svg) -> Option<Flat> {
-    let shapes: Vec<Flat> = d
+pub fn from_svg(d: &Svg) -> Option<Figure> {
+    let shapes: Vec<Figure> = d
         .shapes
         .iter()
         .filter_map(shape_flat)
@@ -39,13 +39,13 @@ pub(super) fn svg_flat(d: &Svg) -> Option<Flat> {
     match shapes.len() {
         0 => None,
         1 => shapes.into_iter().next(),
-        _ => Some(Flat::Op(Op::Union, shapes)),
+        _ => Some(Figure::Op(Op::Union, shapes)),
     }
 }
 
 /// The part of `ellipse` on `mid`'s side of the chord a–b: the ellipse
 /// met with a rectangle on that side big enough to hold all of it there.
-fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Flat {
+fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Figure {
     let t = (b - a).normalize_or_zero();
     let mut n = t.perp();
     if (mid - a).dot(n) < 0.0 {
@@ -56,17 +56,17 @@ fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Flat {
     let stretch = m.x_axis.length() + m.y_axis.length();
     let d = (ellipse.translation - a).length() + stretch + (b - a).length();
     let rect = vec![a - t * d, b + t * d, b + t * d + n * d, a - t * d + n * d];
-    Flat::Op(
+    Figure::Op(
         Op::Intersection,
         vec![
-            Flat::Ellipse(ellipse),
-            Flat::Polygon(Outlines::polygons(vec![rect])),
+            Figure::Ellipse(ellipse),
+            Figure::Polygon(Outlines::polygons(vec![rect])),
         ],
     )
 }
 
 /// One element's region in the page's user space.
-fn shape_flat(s: &Shape) -> Option<Flat> {
+fn shape_flat(s: &Shape) -> Option<Figure> {
     let (mut loops, mut ctrl, mut odd) = (Vec::new(), Vec::new(), Vec::new());
     for part in &s.parts {
         match part {
@@ -92,37 +92,37 @@ fn shape_flat(s: &Shape) -> Option<Flat> {
                     ctrl.push(cs);
                 }
             }
-            Part::Ellipse(e) => odd.push(Flat::Ellipse(*e)),
-            Part::Stroke(st) => odd.extend(stroke_flat(st)),
+            Part::Ellipse(e) => odd.push(Figure::Ellipse(*e)),
+            Part::Stroke(st) => odd.extend(stroke_figure(st)),
         }
     }
-    let mut parts: Vec<Flat> = Vec::new();
+    let mut parts: Vec<Figure> = Vec::new();
     if !loops.is_empty() {
-        parts.push(Flat::Polygon(Outlines { loops, ctrl }));
+        parts.push(Figure::Polygon(Outlines { loops, ctrl }));
     }
     parts.extend(odd);
     let f = match parts.len() {
         0 => return None,
         1 => parts.pop().unwrap(),
-        _ => Flat::Op(Op::Xor, parts),
+        _ => Figure::Op(Op::Xor, parts),
     };
     Some(f.moved(s.transform))
 }
 
 /// A stroke's exact region: the union of its pieces.
-pub(super) fn stroke_flat(st: &Stroke) -> Option<Flat> {
-    let mut out: Vec<Flat> = st
+pub fn stroke_figure(st: &Stroke) -> Option<Figure> {
+    let mut out: Vec<Figure> = st
         .pieces()
         .into_iter()
         .map(|p| match p {
-            Piece::Polygon(v) => Flat::Polygon(Outlines::polygons(vec![v])),
-            Piece::Disc(c, r) => Flat::disc(c, r),
+            Piece::Polygon(v) => Figure::Polygon(Outlines::polygons(vec![v])),
+            Piece::Disc(c, r) => Figure::disc(c, r),
         })
         .collect();
     match out.len() {
         0 => None,
         1 => out.pop(),
-        _ => Some(Flat::Op(Op::Union, out)),
+        _ => Some(Figure::Op(Op::Union, out)),
     }
 }
 
@@ -132,11 +132,11 @@ mod tests {
     use crate::import::svg::{Cap, Join};
 
     /// Whether `p` is in the tree (the ops' meanings, point by point).
-    fn inside(f: &Flat, p: DVec2) -> bool {
+    fn inside(f: &Figure, p: DVec2) -> bool {
         match f {
-            Flat::Polygon(o) => o.contains(p),
-            Flat::Ellipse(e) => e.inverse().transform_point2(p).length() <= 1.0,
-            Flat::Op(op, kids) => {
+            Figure::Polygon(o) => o.contains(p),
+            Figure::Ellipse(e) => e.inverse().transform_point2(p).length() <= 1.0,
+            Figure::Op(op, kids) => {
                 let mut it = kids.iter().map(|k| inside(k, p));
                 match op {
                     Op::Union => it.any(|x| x),
@@ -145,12 +145,12 @@ mod tests {
                     Op::Xor => it.filter(|&x| x).count() % 2 == 1,
                 }
             }
-            Flat::Section(..) | Flat::Hull(_) | Flat::Offset(..) => unreachable!(),
+            Figure::Section(..) | Figure::Hull(_) | Figure::Offset(..) => unreachable!(),
         }
     }
 
-    fn stroke(pts: &[(f64, f64)], cap: Cap, join: Join) -> Flat {
-        stroke_flat(&Stroke {
+    fn stroke(pts: &[(f64, f64)], cap: Cap, join: Join) -> Figure {
+        stroke_figure(&Stroke {
             pts: pts.iter().map(|&(x, y)| DVec2::new(x, y)).collect(),
             width: 2.0,
             cap,

@@ -31,18 +31,18 @@
 //! of its boundary swept by the disc ([`around`]); ellipses and
 //! self-crossing polygons, not yet.
 
-use super::flat::{is_circle, Flat};
+use super::figure::{is_circle, Figure};
+use super::round_offset::{offsettable, RoundOffset};
 use super::sites::{bounds, clip, Site, Stroke};
+use super::{Outlines, Region};
 use crate::math::boolean::Op;
-use crate::plane::round_offset::{offsettable, RoundOffset};
-use crate::plane::{Outlines, Region};
 use glam::{DAffine2, DVec2};
 use std::f64::consts::{PI, TAU};
 use std::sync::Arc;
 
 /// How corners are joined.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Join {
+pub enum Join {
     Round,
     Miter,
     Square,
@@ -58,12 +58,12 @@ const MITER_LIMIT: f64 = 2e-12;
 pub const MAX_OFFSET_EDGES: usize = 20_000;
 
 /// `f` offset by `d`, or why it cannot be yet.
-pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String> {
+pub fn offset(f: Figure, join: Join, d: f64) -> Result<Option<Figure>, String> {
     if d == 0.0 {
         return Ok(Some(f));
     }
     match f {
-        Flat::Op(Op::Union, kids) if d > 0.0 => {
+        Figure::Op(Op::Union, kids) if d > 0.0 => {
             let mut out = Vec::new();
             for k in kids {
                 out.extend(offset(k, join, d)?);
@@ -74,14 +74,14 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
         // a union of disjoint closed sets lies in one of them (it is
         // connected), so the union's erosion is the union of theirs — and
         // Clipper too offsets each outline by itself.
-        Flat::Op(Op::Union, kids) if d < 0.0 && boxes_apart(&kids) => {
+        Figure::Op(Op::Union, kids) if d < 0.0 && boxes_apart(&kids) => {
             let mut out = Vec::new();
             for k in kids {
                 out.extend(offset(k, join, d)?);
             }
             Ok(union(out))
         }
-        Flat::Op(Op::Intersection, kids) if d < 0.0 => {
+        Figure::Op(Op::Intersection, kids) if d < 0.0 => {
             let mut out = Vec::new();
             for k in kids {
                 match offset(k, join, d)? {
@@ -89,11 +89,11 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
                     None => return Ok(None),
                 }
             }
-            Ok(Some(Flat::Op(Op::Intersection, out)))
+            Ok(Some(Figure::Op(Op::Intersection, out)))
         }
         // Any other combination of straight polygons: the loops of its
         // boundary, offset as one polygon.
-        ref combination @ Flat::Op(op, _) => match super::sites::outline(combination) {
+        ref combination @ Figure::Op(op, _) => match super::sites::outline(combination) {
             Some(o) => polygon(o, join, d),
             None => match super::sites::strokes(combination) {
                 Some((strokes, tol)) if op != Op::Xor => {
@@ -115,26 +115,26 @@ pub(super) fn offset(f: Flat, join: Join, d: f64) -> Result<Option<Flat>, String
                 )),
             },
         },
-        Flat::Ellipse(e) => {
+        Figure::Ellipse(e) => {
             if !is_circle(e.matrix2) {
                 return Err("offsetting an ellipse is not supported yet".into());
             }
             let r2 = e.matrix2.x_axis.length() + d;
-            Ok((r2 > 0.0).then(|| Flat::disc(e.translation, r2)))
+            Ok((r2 > 0.0).then(|| Figure::disc(e.translation, r2)))
         }
-        Flat::Polygon(o) => polygon(o, join, d),
-        Flat::Section(..) => Err("offsetting a projection is not supported yet".into()),
-        Flat::Hull(_) => Err("offsetting a 2-D hull is not supported yet".into()),
-        Flat::Offset(..) => {
+        Figure::Polygon(o) => polygon(o, join, d),
+        Figure::Section(..) => Err("offsetting a projection is not supported yet".into()),
+        Figure::Hull(_) => Err("offsetting a 2-D hull is not supported yet".into()),
+        Figure::Offset(..) => {
             Err("offsetting an offset of curved outlines is not supported yet".into())
         }
     }
 }
 
 /// Whether no two of `kids` have boxes that meet (each box holds its
-/// shape: [`Flat::range`] is exact for leaves and never smaller for
+/// shape: [`Figure::range`] is exact for leaves and never smaller for
 /// combinations). Sorted by their left sides and swept.
-fn boxes_apart(kids: &[Flat]) -> bool {
+fn boxes_apart(kids: &[Figure]) -> bool {
     let mut boxes: Vec<(DVec2, DVec2)> = kids
         .iter()
         .map(|k| {
@@ -162,16 +162,16 @@ fn boxes_apart(kids: &[Flat]) -> bool {
     true
 }
 
-fn union(mut parts: Vec<Flat>) -> Option<Flat> {
+fn union(mut parts: Vec<Figure>) -> Option<Figure> {
     match parts.len() {
         0 => None,
         1 => parts.pop(),
-        _ => Some(Flat::Op(Op::Union, parts)),
+        _ => Some(Figure::Op(Op::Union, parts)),
     }
 }
 
 /// A simple polygon region grown or shrunk.
-fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
+fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
     if o.curved() {
         return curved(o, join, d);
     }
@@ -219,7 +219,7 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
             let b = region.edges[e2].1;
             let (n1, n2) = (region.normals[e1] * side, region.normals[e2] * side);
             // The band swept by the edge from v to b.
-            parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
+            parts.push(Figure::Polygon(Outlines::polygons(vec![vec![
                 v,
                 b,
                 b + n2 * k,
@@ -235,13 +235,13 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
         }
         start += m;
     }
-    let body = Flat::Polygon(region.outlines.clone());
+    let body = Figure::Polygon(region.outlines.clone());
     Ok(Some(if d > 0.0 {
         parts.insert(0, body);
-        Flat::Op(Op::Union, parts)
+        Figure::Op(Op::Union, parts)
     } else {
         parts.insert(0, body);
-        Flat::Op(Op::Difference, parts)
+        Figure::Op(Op::Difference, parts)
     }))
 }
 
@@ -256,12 +256,12 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
 /// (grown) or taken away too (shrunk), as for a curved outline: the round
 /// offset lies in the sharp one, and the kites hold the rest.
 fn around(
-    body: Flat,
+    body: Figure,
     strokes: &[Stroke],
     tol: f64,
     join: Join,
     d: f64,
-) -> Result<Option<Flat>, String> {
+) -> Result<Option<Figure>, String> {
     let (k, side) = (d.abs(), d.signum());
     let mut parts = vec![body];
     let mut ends: Vec<DVec2> = Vec::new();
@@ -269,7 +269,7 @@ fn around(
         match *s {
             Stroke::Line(p, q) => {
                 let n = (q - p).perp().normalize() * k;
-                parts.push(Flat::Polygon(Outlines::polygons(vec![vec![
+                parts.push(Figure::Polygon(Outlines::polygons(vec![vec![
                     p - n,
                     q - n,
                     q + n,
@@ -293,7 +293,7 @@ fn around(
             }
         }
     }
-    parts.extend(ends.iter().map(|&e| Flat::disc(e, k)));
+    parts.extend(ends.iter().map(|&e| Figure::disc(e, k)));
     if join != Join::Round {
         // The corners: where one stroke ends and the next starts. Whole
         // circles have none; strokes no longer than `slack` = 1000 tol
@@ -346,7 +346,7 @@ fn around(
         }
     }
     let op = if d > 0.0 { Op::Union } else { Op::Difference };
-    Ok(Some(Flat::Op(op, parts)))
+    Ok(Some(Figure::Op(op, parts)))
 }
 
 /// The annular sector about c between radii `inner` (none below 0) and
@@ -354,16 +354,16 @@ fn around(
 /// whole turn, else a sector of at most a half turn at a time, each the
 /// disc met with the polygon of its wedge cut to the sector's own box (so
 /// that it frames exactly), less the inner disc.
-fn annular(c: DVec2, inner: f64, outer: f64, from: f64, span: f64) -> Vec<Flat> {
-    let less_inner = |f: Flat| {
+fn annular(c: DVec2, inner: f64, outer: f64, from: f64, span: f64) -> Vec<Figure> {
+    let less_inner = |f: Figure| {
         if inner > 0.0 {
-            Flat::Op(Op::Difference, vec![f, Flat::disc(c, inner)])
+            Figure::Op(Op::Difference, vec![f, Figure::disc(c, inner)])
         } else {
             f
         }
     };
     if span >= TAU {
-        return vec![less_inner(Flat::disc(c, outer))];
+        return vec![less_inner(Figure::disc(c, outer))];
     }
     let m = (span / PI).ceil().max(1.0) as usize;
     let step = span / m as f64;
@@ -399,11 +399,11 @@ fn annular(c: DVec2, inner: f64, outer: f64, from: f64, span: f64) -> Vec<Flat> 
             ] {
                 wedge = clip(&wedge, |p| (p.dot(axis) - bound) * sign);
             }
-            let sector = Flat::Op(
+            let sector = Figure::Op(
                 Op::Intersection,
                 vec![
-                    Flat::disc(c, outer),
-                    Flat::Polygon(Outlines::polygons(vec![wedge])),
+                    Figure::disc(c, outer),
+                    Figure::Polygon(Outlines::polygons(vec![wedge])),
                 ],
             );
             less_inner(sector)
@@ -416,13 +416,13 @@ fn annular(c: DVec2, inner: f64, outer: f64, from: f64, span: f64) -> Vec<Flat> 
 /// distance k: a disc (round), the kite to the offset edges' meeting point
 /// (miter), or that kite cut across the bisector at distance k (square,
 /// and a miter beyond Clipper's limit).
-fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, k: f64) -> Flat {
+fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, k: f64) -> Figure {
     let cos = n1.dot(n2);
     match join {
-        Join::Round => Flat::disc(v, k),
+        Join::Round => Figure::disc(v, k),
         Join::Miter if 1.0 + cos >= MITER_LIMIT => {
             let miter = v + (n1 + n2) * (k / (1.0 + cos));
-            Flat::Polygon(Outlines::polygons(vec![vec![
+            Figure::Polygon(Outlines::polygons(vec![vec![
                 v,
                 v + n1 * k,
                 miter,
@@ -434,7 +434,7 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
             // edge runs on by k·tan(θ/4) past its end.
             let theta = n1.perp_dot(n2).abs().atan2(cos);
             let run = k * (theta / 4.0).tan();
-            Flat::Polygon(Outlines::polygons(vec![vec![
+            Figure::Polygon(Outlines::polygons(vec![vec![
                 v,
                 v + n1 * k,
                 v + n1 * k + t1 * run,
@@ -453,7 +453,7 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
 /// kites hold the rest), or less the kites at the corners the outside sees
 /// as convex (shrunk). A corner whose edges meet tangent needs none: its
 /// kite would lie in the disc about it.
-fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
+fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
     if !o.ctrl.iter().flatten().all(|c| offsettable(*c)) {
         return Err(
             "offsetting cubic curves (SVG drawings, CFF fonts) is not supported yet".into(),
@@ -493,13 +493,13 @@ fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Flat>, String> {
             start += m;
         }
     }
-    let leaf = Flat::Offset(Arc::new(RoundOffset::new(region, d)), DAffine2::IDENTITY);
+    let leaf = Figure::Offset(Arc::new(RoundOffset::new(region, d)), DAffine2::IDENTITY);
     if kites.is_empty() {
         return Ok(Some(leaf));
     }
     kites.insert(0, leaf);
     let op = if d > 0.0 { Op::Union } else { Op::Difference };
-    Ok(Some(Flat::Op(op, kites)))
+    Ok(Some(Figure::Op(op, kites)))
 }
 
 /// Edge e's direction where it leaves its start (its first control point
@@ -621,17 +621,23 @@ mod tests {
     fn round_offsets_of_combinations_with_circles() {
         use super::super::sites::inside;
         let z = DVec2::ZERO;
-        let square = |c: DVec2, h: f64| Flat::Polygon(Outlines::polygons(vec![sq(c, h)]));
+        let square = |c: DVec2, h: f64| Figure::Polygon(Outlines::polygons(vec![sq(c, h)]));
         let cases = [
-            Flat::Op(Op::Difference, vec![Flat::disc(z, 2.0), Flat::disc(z, 1.0)]),
-            Flat::Op(
+            Figure::Op(
                 Op::Difference,
-                vec![Flat::disc(z, 2.0), square(DVec2::ONE, 1.0)],
+                vec![Figure::disc(z, 2.0), Figure::disc(z, 1.0)],
             ),
-            Flat::Op(Op::Union, vec![Flat::disc(z, 1.5), square(DVec2::ONE, 1.0)]),
-            Flat::Op(
+            Figure::Op(
+                Op::Difference,
+                vec![Figure::disc(z, 2.0), square(DVec2::ONE, 1.0)],
+            ),
+            Figure::Op(
+                Op::Union,
+                vec![Figure::disc(z, 1.5), square(DVec2::ONE, 1.0)],
+            ),
+            Figure::Op(
                 Op::Intersection,
-                vec![Flat::disc(z, 2.0), square(DVec2::new(1.0, 0.0), 1.5)],
+                vec![Figure::disc(z, 2.0), square(DVec2::new(1.0, 0.0), 1.5)],
             ),
         ];
         let mut seed = 1u64;
@@ -646,12 +652,12 @@ mod tests {
             let mut leaves = vec![x];
             while let Some(f) = leaves.pop() {
                 match f {
-                    Flat::Op(_, kids) => leaves.extend(kids),
-                    Flat::Ellipse(e) => edge.extend(
+                    Figure::Op(_, kids) => leaves.extend(kids),
+                    Figure::Ellipse(e) => edge.extend(
                         (0..10_000)
                             .map(|i| e.transform_point2(DVec2::from_angle(i as f64 * TAU / 1e4))),
                     ),
-                    Flat::Polygon(o) => {
+                    Figure::Polygon(o) => {
                         for l in &o.loops {
                             for (i, &a) in l.iter().enumerate() {
                                 let b = l[(i + 1) % l.len()];
@@ -698,11 +704,11 @@ mod tests {
         let ring: Vec<DVec2> = (0..n)
             .map(|i| DVec2::from_angle(i as f64 * TAU / n as f64) * 10.0)
             .collect();
-        let f = Flat::Op(
+        let f = Figure::Op(
             Op::Union,
             vec![
-                Flat::Polygon(Outlines::polygons(vec![ring])),
-                Flat::disc(DVec2::new(10.0, 0.0), 1.0),
+                Figure::Polygon(Outlines::polygons(vec![ring])),
+                Figure::disc(DVec2::new(10.0, 0.0), 1.0),
             ],
         );
         let e = offset(f, Join::Round, -0.5).unwrap_err();

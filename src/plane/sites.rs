@@ -13,13 +13,13 @@
 //! [`Site`] of the hull, as a piece of a circle that the hull's boundary
 //! can follow.
 //!
-//! The hull is then [`super::rounded::arc_hull`]'s polygon through the
+//! The hull is then [`super::hull::arc_hull`]'s polygon through the
 //! points where its boundary leaves and meets the arcs, with each arc's
 //! own cap (the disc beyond the arc's chord) joined to it: the part of the
 //! hull outside the polygon is the caps of the arcs it follows, and each
 //! cap lies in the hull, as the hull of its arc.
 
-use super::flat::{is_circle, Flat};
+use super::figure::{is_circle, Figure};
 use crate::math::boolean::Op;
 use glam::DVec2;
 use std::f64::consts::TAU;
@@ -86,8 +86,8 @@ impl Site {
     /// that box, and the box's every side touches the arc: the cap's box
     /// is the arc's own, and a hull framed by its parts' boxes is framed
     /// exactly.
-    pub fn cap(&self) -> Flat {
-        let disc = Flat::disc(self.c, self.r);
+    pub fn cap(&self) -> Figure {
+        let disc = Figure::disc(self.c, self.r);
         let Some((from, span)) = self.arc else {
             return disc;
         };
@@ -100,18 +100,18 @@ impl Site {
         if poly.len() < 3 {
             return disc;
         }
-        Flat::Op(
+        Figure::Op(
             Op::Intersection,
             vec![
                 disc,
-                Flat::Polygon(crate::plane::Outlines::polygons(vec![poly])),
+                Figure::Polygon(crate::plane::Outlines::polygons(vec![poly])),
             ],
         )
     }
 }
 
 /// The box (lower and upper corner) of some points.
-pub(super) fn bounds(pts: &[DVec2]) -> (DVec2, DVec2) {
+pub fn bounds(pts: &[DVec2]) -> (DVec2, DVec2) {
     let lo = pts.iter().fold(DVec2::INFINITY, |a, &p| a.min(p));
     let hi = pts.iter().fold(DVec2::NEG_INFINITY, |a, &p| a.max(p));
     (lo, hi)
@@ -119,7 +119,7 @@ pub(super) fn bounds(pts: &[DVec2]) -> (DVec2, DVec2) {
 
 /// The part of a convex polygon where `side` is not negative
 /// (Sutherland–Hodgman; `side` affine).
-pub(super) fn clip(poly: &[DVec2], side: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
+pub fn clip(poly: &[DVec2], side: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
     let mut out = Vec::new();
     for (i, &a) in poly.iter().enumerate() {
         let b = poly[(i + 1) % poly.len()];
@@ -141,7 +141,7 @@ pub const MAX_PIECES: usize = 2048;
 
 /// Whether `f` is made of pieces [`strokes`] reads but has more than
 /// [`MAX_PIECES`] of them.
-pub(super) fn too_many_pieces(f: &Flat) -> bool {
+pub fn too_many_pieces(f: &Figure) -> bool {
     let mut all = Vec::new();
     pieces(f, &mut all) && all.len() > MAX_PIECES
 }
@@ -150,18 +150,18 @@ pub(super) fn too_many_pieces(f: &Flat) -> bool {
 /// polygons' corners, or for a combination other than a union, the pieces
 /// of its boundary (above). False for a shape that has others (an ellipse,
 /// a curve, a projection, an offset) or too many pieces.
-pub(super) fn sites(f: &Flat, out: &mut Vec<Site>) -> bool {
+pub fn sites(f: &Figure, out: &mut Vec<Site>) -> bool {
     match f {
-        Flat::Ellipse(e) if is_circle(e.matrix2) => {
+        Figure::Ellipse(e) if is_circle(e.matrix2) => {
             out.push(Site::disc(e.translation, e.matrix2.x_axis.length()));
             true
         }
-        Flat::Polygon(o) if !o.curved() => {
+        Figure::Polygon(o) if !o.curved() => {
             out.extend(o.loops.iter().flatten().map(|&p| Site::point(p)));
             true
         }
-        Flat::Op(Op::Union, kids) | Flat::Hull(kids) => kids.iter().all(|k| sites(k, out)),
-        Flat::Op(..) => boundary(f, out),
+        Figure::Op(Op::Union, kids) | Figure::Hull(kids) => kids.iter().all(|k| sites(k, out)),
+        Figure::Op(..) => boundary(f, out),
         _ => false,
     }
 }
@@ -174,13 +174,13 @@ enum Piece {
 }
 
 /// The edges and circles of the leaves of `f`; false for any other leaf.
-fn pieces(f: &Flat, out: &mut Vec<Piece>) -> bool {
+fn pieces(f: &Figure, out: &mut Vec<Piece>) -> bool {
     match f {
-        Flat::Ellipse(e) if is_circle(e.matrix2) => {
+        Figure::Ellipse(e) if is_circle(e.matrix2) => {
             out.push(Piece::Circle(e.translation, e.matrix2.x_axis.length()));
             true
         }
-        Flat::Polygon(o) if !o.curved() => {
+        Figure::Polygon(o) if !o.curved() => {
             for l in &o.loops {
                 for (i, &a) in l.iter().enumerate() {
                     out.push(Piece::Edge(a, l[(i + 1) % l.len()]));
@@ -188,20 +188,20 @@ fn pieces(f: &Flat, out: &mut Vec<Piece>) -> bool {
             }
             true
         }
-        Flat::Op(Op::Xor, _) => false,
-        Flat::Op(_, kids) => kids.iter().all(|k| pieces(k, out)),
+        Figure::Op(Op::Xor, _) => false,
+        Figure::Op(_, kids) => kids.iter().all(|k| pieces(k, out)),
         _ => false,
     }
 }
 
 /// Whether p is in `f` (made of [`pieces`]' leaves only).
-pub(super) fn inside(f: &Flat, p: DVec2) -> bool {
+pub fn inside(f: &Figure, p: DVec2) -> bool {
     match f {
-        Flat::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
-        Flat::Polygon(o) => o.contains(p),
-        Flat::Op(Op::Union, kids) => kids.iter().any(|k| inside(k, p)),
-        Flat::Op(Op::Intersection, kids) => kids.iter().all(|k| inside(k, p)),
-        Flat::Op(Op::Difference, kids) => {
+        Figure::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
+        Figure::Polygon(o) => o.contains(p),
+        Figure::Op(Op::Union, kids) => kids.iter().any(|k| inside(k, p)),
+        Figure::Op(Op::Intersection, kids) => kids.iter().all(|k| inside(k, p)),
+        Figure::Op(Op::Difference, kids) => {
             kids.first().is_some_and(|k| inside(k, p)) && !kids[1..].iter().any(|k| inside(k, p))
         }
         _ => false,
@@ -232,7 +232,7 @@ fn line_circle(a: DVec2, b: DVec2, c: DVec2, r: f64) -> Vec<f64> {
 }
 
 /// Adds the pieces of `f`'s boundary (above) to `out` as sites.
-fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
+fn boundary(f: &Figure, out: &mut Vec<Site>) -> bool {
     let Some((strokes, _)) = strokes(f) else {
         return false;
     };
@@ -273,7 +273,7 @@ fn boundary(f: &Flat, out: &mut Vec<Site>) -> bool {
 /// A piece of a combination's boundary, running with the shape on its
 /// left.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) enum Stroke {
+pub enum Stroke {
     /// A stretch of a polygon edge, from the first point to the second.
     Line(DVec2, DVec2),
     /// The arc of the circle (c, r) over the angles from `from` to `from +
@@ -340,7 +340,7 @@ impl Stroke {
 /// left, and how far apart two points may be and still be one (10⁻⁹ of
 /// the shape's size); `None` for a combination with another leaf than
 /// straight polygons and circles, or past [`MAX_PIECES`] pieces.
-pub(super) fn strokes(f: &Flat) -> Option<(Vec<Stroke>, f64)> {
+pub fn strokes(f: &Figure) -> Option<(Vec<Stroke>, f64)> {
     let (all, eps) = read(f)?;
     // Kept where the shape is on one side and not the other.
     let kept = |p: DVec2, n: DVec2| {
@@ -484,7 +484,7 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> 
 /// boundary of `f` — the shape on one side and not the other, tested `eps`
 /// off each stretch's middle — as (start, end, whether the shape is on
 /// the left).
-fn kept_edges(f: &Flat, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2, bool)> {
+fn kept_edges(f: &Figure, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2, bool)> {
     let Piece::Edge(a, b) = all[i] else {
         return Vec::new();
     };
@@ -510,7 +510,7 @@ fn kept_edges(f: &Flat, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2,
 /// The pieces of `f`'s leaves, and how far off a piece its sides are
 /// tested (10⁻⁹ of the largest coordinate, a circle's reach); `None` for
 /// another leaf or past [`MAX_PIECES`].
-fn read(f: &Flat) -> Option<(Vec<Piece>, f64)> {
+fn read(f: &Figure) -> Option<(Vec<Piece>, f64)> {
     let mut all = Vec::new();
     if !pieces(f, &mut all) || all.len() > MAX_PIECES {
         return None;
@@ -528,7 +528,7 @@ fn read(f: &Flat) -> Option<(Vec<Piece>, f64)> {
 /// point), and runs along one line merged. `None` for a combination with a
 /// circle or another leaf, past [`MAX_PIECES`] edges, or whose pieces do
 /// not close into loops.
-pub(super) fn outline(f: &Flat) -> Option<crate::plane::Outlines> {
+pub fn outline(f: &Figure) -> Option<crate::plane::Outlines> {
     let (all, tol) = read(f)?;
     if all.iter().any(|p| matches!(p, Piece::Circle(..))) {
         return None;
@@ -601,8 +601,8 @@ mod tests {
     use super::*;
     use crate::plane::Outlines;
 
-    fn square(lo: DVec2, hi: DVec2) -> Flat {
-        Flat::Polygon(Outlines::polygons(vec![vec![
+    fn square(lo: DVec2, hi: DVec2) -> Figure {
+        Figure::Polygon(Outlines::polygons(vec![vec![
             lo,
             DVec2::new(hi.x, lo.y),
             hi,
@@ -614,10 +614,10 @@ mod tests {
     /// normals from 0 to 90°.
     #[test]
     fn quarter_disc() {
-        let f = Flat::Op(
+        let f = Figure::Op(
             Op::Intersection,
             vec![
-                Flat::disc(DVec2::ZERO, 2.0),
+                Figure::disc(DVec2::ZERO, 2.0),
                 square(DVec2::ZERO, DVec2::splat(3.0)),
             ],
         );
@@ -646,7 +646,7 @@ mod tests {
     /// half's corners only.
     #[test]
     fn difference_on_shared_edges() {
-        let f = Flat::Op(
+        let f = Figure::Op(
             Op::Difference,
             vec![
                 square(DVec2::ZERO, DVec2::splat(2.0)),
@@ -668,7 +668,7 @@ mod tests {
     /// each), four corners each.
     #[test]
     fn frame_outline() {
-        let f = Flat::Op(
+        let f = Figure::Op(
             Op::Difference,
             vec![
                 square(DVec2::ZERO, DVec2::splat(4.0)),
@@ -697,21 +697,24 @@ mod tests {
             square(DVec2::ZERO, DVec2::splat(2.0)),
             square(DVec2::ONE, DVec2::splat(3.0)),
         ];
-        let o = outline(&Flat::Op(Op::Union, two.clone())).expect("one loop");
+        let o = outline(&Figure::Op(Op::Union, two.clone())).expect("one loop");
         assert_eq!(o.loops.len(), 1);
         assert_eq!(o.loops[0].len(), 8);
         assert!(o.loops[0].contains(&DVec2::new(2.0, 1.0)));
         let mut with_disc = two;
-        with_disc.push(Flat::disc(DVec2::ZERO, 1.0));
-        assert!(outline(&Flat::Op(Op::Union, with_disc)).is_none());
+        with_disc.push(Figure::disc(DVec2::ZERO, 1.0));
+        assert!(outline(&Figure::Op(Op::Union, with_disc)).is_none());
     }
 
     /// A disc with a hole: the hole's circle is concave, not a site.
     #[test]
     fn ring() {
-        let f = Flat::Op(
+        let f = Figure::Op(
             Op::Difference,
-            vec![Flat::disc(DVec2::ZERO, 2.0), Flat::disc(DVec2::ZERO, 1.0)],
+            vec![
+                Figure::disc(DVec2::ZERO, 2.0),
+                Figure::disc(DVec2::ZERO, 1.0),
+            ],
         );
         let mut out = Vec::new();
         assert!(sites(&f, &mut out));

@@ -1,0 +1,162 @@
+//! A region of the plane as a tree ([`Figure`]): polygons and ellipses
+//! combined by the set operations, hulls, exact round offsets, and
+//! projections of solids (by the number of their statement; the scene
+//! reads those). OpenSCAD's 2-D operations ([`super::offset`],
+//! [`super::sum`], [`super::hull`]) map figures to figures; the
+//! extrusions lift them into space.
+
+use super::round_offset::RoundOffset;
+use super::Outlines;
+use crate::math::boolean::Op;
+use glam::{DAffine2, DVec2};
+use std::sync::Arc;
+
+/// A region of the plane, as a tree.
+#[derive(Clone, Debug)]
+pub enum Figure {
+    /// Outlines filled by the even-odd rule, in the plane's coordinates.
+    Polygon(Outlines),
+    /// The image of the unit disc.
+    Ellipse(DAffine2),
+    /// `projection(cut)`: the slice z = 0 of its children (cut = true) or
+    /// their shadow on it, moved in the plane by the transform. The
+    /// statement is the resolver's, by this number: its children are read
+    /// only when the tree is extruded, in the extrusion's frame.
+    Section(u32, DAffine2),
+    Op(Op, Vec<Figure>),
+    /// `hull()` of 2-D shapes: extruded, the hull of their extrusions.
+    Hull(Vec<Figure>),
+    /// Curved outlines offset with round joins, in their own frame, placed
+    /// in the plane by the map (an offset is not one after any map).
+    Offset(Arc<RoundOffset>, DAffine2),
+}
+
+impl Figure {
+    /// The extent in x (exact for leaves; a union or symmetric difference
+    /// joins, an intersection meets, a difference keeps its first
+    /// operand's).
+    pub fn x_range(&self) -> (f64, f64) {
+        self.range(DVec2::X)
+    }
+
+    /// The extent along `axis`, by the rules of [`Figure::x_range`].
+    pub fn range(&self, axis: DVec2) -> (f64, f64) {
+        match self {
+            Figure::Polygon(o) => o.extent(axis),
+            Figure::Ellipse(e) => {
+                let h = (e.matrix2.transpose() * axis).length();
+                let c = e.translation.dot(axis);
+                (c - h, c + h)
+            }
+            // Not asked: a section is refused before (see `has_section`).
+            Figure::Section(..) => (f64::NEG_INFINITY, f64::INFINITY),
+            // Along the axis seen in the offset's own frame: R's extent
+            // moved out by r when grown (exact), R's own when shrunk (a
+            // bound: refused where exactness matters, by resize).
+            Figure::Offset(o, m) => {
+                let v = m.matrix2.transpose() * axis;
+                let c = m.translation.dot(axis);
+                let reach = |v: DVec2| {
+                    let q = o.region.farthest(v);
+                    q.dot(v) + o.r.max(0.0) * v.length()
+                };
+                (c - reach(-v), c + reach(v))
+            }
+            // A hull reaches as far as its farthest shape.
+            Figure::Hull(kids) => kids
+                .iter()
+                .map(|k| k.range(axis))
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                    (a.min(c), b.max(d))
+                }),
+            Figure::Op(op, kids) => {
+                let rs = kids.iter().map(|k| k.range(axis));
+                match op {
+                    Op::Union | Op::Xor => rs
+                        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| {
+                            (a.min(c), b.max(d))
+                        }),
+                    Op::Intersection => rs
+                        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), (c, d)| {
+                            (a.max(c), b.min(d))
+                        }),
+                    Op::Difference => kids[0].range(axis),
+                }
+            }
+        }
+    }
+
+    /// The disc of radius r about c.
+    pub fn disc(c: DVec2, r: f64) -> Figure {
+        Figure::Ellipse(DAffine2::from_scale_angle_translation(
+            DVec2::splat(r),
+            0.0,
+            c,
+        ))
+    }
+
+    /// The tree moved by `m`.
+    pub fn moved(&self, m: DAffine2) -> Figure {
+        match self {
+            Figure::Polygon(o) => Figure::Polygon(o.map(|p| m.transform_point2(p))),
+            Figure::Ellipse(e) => Figure::Ellipse(m * *e),
+            Figure::Section(s, at) => Figure::Section(*s, m * *at),
+            Figure::Op(op, kids) => Figure::Op(*op, kids.iter().map(|k| k.moved(m)).collect()),
+            Figure::Hull(kids) => Figure::Hull(kids.iter().map(|k| k.moved(m)).collect()),
+            Figure::Offset(o, at) => Figure::Offset(o.clone(), m * *at),
+        }
+    }
+
+    /// The mirror image in x = 0.
+    pub fn mirrored_x(&self) -> Figure {
+        let m = DAffine2::from_scale(DVec2::new(-1.0, 1.0));
+        match self {
+            Figure::Polygon(o) => Figure::Polygon(o.map(|p| DVec2::new(-p.x, p.y))),
+            Figure::Ellipse(e) => Figure::Ellipse(m * *e),
+            Figure::Section(s, at) => Figure::Section(*s, m * *at),
+            Figure::Op(op, kids) => Figure::Op(*op, kids.iter().map(|k| k.mirrored_x()).collect()),
+            Figure::Hull(kids) => Figure::Hull(kids.iter().map(|k| k.mirrored_x()).collect()),
+            Figure::Offset(o, at) => Figure::Offset(o.clone(), m * *at),
+        }
+    }
+
+    /// The number of the first `projection` in the tree, if any.
+    pub fn section(&self) -> Option<u32> {
+        match self {
+            Figure::Section(s, _) => Some(*s),
+            Figure::Op(_, kids) | Figure::Hull(kids) => kids.iter().find_map(|k| k.section()),
+            _ => None,
+        }
+    }
+}
+
+/// Whether a 2×2 matrix maps the unit circle to a circle.
+pub fn is_circle(m: glam::DMat2) -> bool {
+    let (x, y) = (m.x_axis, m.y_axis);
+    let r2 = x.length_squared();
+    x.dot(y).abs() <= 1e-12 * r2 && (y.length_squared() - r2).abs() <= 1e-12 * r2
+}
+
+/// Each loop of `o` cut to the half-plane x ≥ 0 (Sutherland–Hodgman: a
+/// loop stays one loop, with edges along x = 0 where it was cut).
+pub fn clip_right(o: &Outlines) -> Outlines {
+    let mut loops = Vec::new();
+    for l in &o.loops {
+        let mut out: Vec<DVec2> = Vec::new();
+        for i in 0..l.len() {
+            let (a, b) = (l[i], l[(i + 1) % l.len()]);
+            if a.x >= 0.0 {
+                out.push(a);
+            }
+            if (a.x >= 0.0) != (b.x >= 0.0) {
+                let f = a.x / (a.x - b.x);
+                out.push(DVec2::new(0.0, a.y + f * (b.y - a.y)));
+            }
+        }
+        out.dedup();
+        if out.len() >= 3 {
+            loops.push(out);
+        }
+    }
+    Outlines::polygons(loops)
+}

@@ -1,0 +1,199 @@
+//! OpenSCAD's 2-D `minkowski()` of figures, exactly: circles sum to one
+//! circle that grows the rest, convex pieces sum by the hull of their
+//! corners' sums, and a union distributes over its pieces.
+
+use super::figure::{is_circle, Figure};
+use super::hull::{convex_polygon, hull_indices_2d};
+use super::offset::Join;
+use super::Outlines;
+use crate::math::boolean::{combine, Op};
+use glam::{DAffine2, DVec2};
+
+/// The most convex pieces a 2-D Minkowski sum is the union of, and the
+/// most corners of one.
+const MAX_SUM_PIECES: usize = 10_000;
+
+/// A convex piece of an operand: the hull of its points, grown by a disc
+/// of its radius (a polygon's corners with radius zero, a circle's centre
+/// with its own).
+type Piece2 = (Vec<DVec2>, f64);
+
+/// OpenSCAD's 2-D `minkowski()` of `ops` (in their own frame), exactly.
+/// Circles sum to one circle, which grows the rest by its radius: the
+/// offset of any one other shape (a rounded outline), or, for convex
+/// pieces, the disc about their sum. Convex operands sum by the hull of
+/// their corners' sums, and a union distributes over its pieces,
+/// A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C).
+pub fn minkowski(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
+    let (mut c, mut r) = (DVec2::ZERO, 0.0);
+    let mut rest = Vec::new();
+    for f in ops {
+        match &f {
+            Figure::Ellipse(e) if is_circle(e.matrix2) => {
+                c += e.translation;
+                r += e.matrix2.x_axis.length();
+            }
+            _ => rest.push(f),
+        }
+    }
+    let mut pieces: Vec<Vec<Piece2>> = Vec::new();
+    let mut whole = Vec::new();
+    for f in rest {
+        let mut p = Vec::new();
+        if convex_pieces(&f, &mut p) {
+            pieces.push(p);
+        } else {
+            whole.push(f);
+        }
+    }
+    let to_centre = DAffine2::from_translation(c);
+    match (whole.len(), pieces.is_empty()) {
+        (0, _) => {}
+        (1, false) if r == 0.0 => return polygon_plus(&whole[0], &pieces),
+        (1, true) => {
+            let f = whole.pop().expect("one");
+            let grown = if r > 0.0 {
+                super::offset::offset(f, Join::Round, r)?
+            } else {
+                Some(f)
+            };
+            return Ok(grown.map(|g| g.moved(to_centre)));
+        }
+        _ => return Err(NOT_SUMMED.into()),
+    }
+    if pieces.is_empty() {
+        return Ok((r > 0.0).then(|| Figure::disc(c, r)));
+    }
+    let parts: Vec<Option<Figure>> = choices((vec![c], r), &pieces)?
+        .into_iter()
+        .map(|(pts, r)| grown_polygon(&pts, r))
+        .collect();
+    Ok(combine(Op::Union, parts, Figure::Op))
+}
+
+/// A polygon A that is not convex plus a union of convex polygons: for
+/// each choice B of one piece from each operand (B the hull of their
+/// corners' sums), A moved by B's first corner b, and each edge of A plus
+/// B (the hull of its ends' sums with B's corners) — A ⊕ B = (A + b) ∪
+/// (∂A ⊕ B) for a convex B: on the segment from b to any other point of B,
+/// a point of the sum leaves A + b only across A's boundary.
+fn polygon_plus(a: &Figure, pieces: &[Vec<Piece2>]) -> Result<Option<Figure>, String> {
+    let loops = match a {
+        Figure::Polygon(o) if !o.curved() => &o.loops,
+        _ => return Err(NOT_SUMMED.into()),
+    };
+    let combos = choices((vec![DVec2::ZERO], 0.0), pieces)?;
+    if combos.iter().any(|(_, r)| *r != 0.0) {
+        return Err(NOT_SUMMED.into());
+    }
+    let edges: usize = loops.iter().map(|l| l.len()).sum();
+    if combos.len() * (edges + 1) > MAX_SUM_PIECES {
+        return Err(format!(
+            "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
+        ));
+    }
+    let mut parts = Vec::new();
+    for (b, _) in &combos {
+        parts.push(Some(a.clone().moved(DAffine2::from_translation(b[0]))));
+        for l in loops {
+            for i in 0..l.len() {
+                let (p, q) = (l[i], l[(i + 1) % l.len()]);
+                let hull = hull2(b.iter().flat_map(|&x| [p + x, q + x]).collect());
+                if hull.len() >= 3 {
+                    parts.push(Some(Figure::Polygon(Outlines::polygons(vec![hull]))));
+                }
+            }
+        }
+    }
+    Ok(combine(Op::Union, parts, Figure::Op))
+}
+
+/// Every choice of one convex piece from each of `pieces`, summed onto
+/// `start`: the hull of the corners' sums, with the radii's sum.
+fn choices(start: Piece2, pieces: &[Vec<Piece2>]) -> Result<Vec<Piece2>, String> {
+    let mut combos = vec![start];
+    for op in pieces {
+        let mut next = Vec::with_capacity(combos.len() * op.len());
+        for (acc, ra) in &combos {
+            for (pts, rb) in op {
+                let sum: Vec<DVec2> = acc
+                    .iter()
+                    .flat_map(|&a| pts.iter().map(move |&b| a + b))
+                    .collect();
+                next.push((hull2(sum), ra + rb));
+            }
+        }
+        if next.len() > MAX_SUM_PIECES {
+            return Err(format!(
+                "a 2-D `minkowski` of more than {MAX_SUM_PIECES} convex pieces"
+            ));
+        }
+        combos = next;
+    }
+    Ok(combos)
+}
+
+const NOT_SUMMED: &str =
+    "`minkowski` of 2-D shapes that are not convex, other than one shape with circles or one polygon with convex polygons, is not supported yet";
+
+/// The convex pieces of a union of convex polygons and circles; false for
+/// anything else.
+fn convex_pieces(f: &Figure, out: &mut Vec<Piece2>) -> bool {
+    match f {
+        Figure::Ellipse(e) if is_circle(e.matrix2) => {
+            out.push((vec![e.translation], e.matrix2.x_axis.length()));
+            true
+        }
+        Figure::Polygon(o) if !o.curved() && o.loops.len() == 1 && convex_polygon(&o.loops[0]) => {
+            out.push((hull2(o.loops[0].clone()), 0.0));
+            true
+        }
+        Figure::Op(Op::Union, kids) => kids.iter().all(|k| convex_pieces(k, out)),
+        _ => false,
+    }
+}
+
+/// The corners of the convex hull of points, counter-clockwise (points on
+/// an edge left out).
+fn hull2(pts: Vec<DVec2>) -> Vec<DVec2> {
+    hull_indices_2d(&pts, 0.0)
+        .into_iter()
+        .map(|i| pts[i])
+        .collect()
+}
+
+/// The convex polygon of `corners` (counter-clockwise) grown by a disc of
+/// radius r: each edge moved out by r, with a disc on each corner.
+fn grown_polygon(corners: &[DVec2], r: f64) -> Option<Figure> {
+    let mut parts: Vec<Option<Figure>> = Vec::new();
+    if r > 0.0 {
+        parts.extend(corners.iter().map(|&p| Some(Figure::disc(p, r))));
+    }
+    let n = corners.len();
+    let poly = if n >= 3 && r > 0.0 {
+        let mut out = Vec::with_capacity(2 * n);
+        for i in 0..n {
+            let (a, b) = (corners[i], corners[(i + 1) % n]);
+            let e = (b - a).normalize();
+            let out_n = DVec2::new(e.y, -e.x) * r;
+            out.push(a + out_n);
+            out.push(b + out_n);
+        }
+        Some(out)
+    } else if n == 2 && r > 0.0 {
+        let e = (corners[1] - corners[0]).normalize();
+        let side = DVec2::new(e.y, -e.x) * r;
+        Some(vec![
+            corners[0] + side,
+            corners[1] + side,
+            corners[1] - side,
+            corners[0] - side,
+        ])
+    } else if n >= 3 {
+        Some(corners.to_vec())
+    } else {
+        None
+    };
+    parts.extend(poly.map(|p| Some(Figure::Polygon(Outlines::polygons(vec![p])))));
+    combine(Op::Union, parts, Figure::Op)
+}
