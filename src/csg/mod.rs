@@ -7,6 +7,7 @@
 //! its subtracted children. The normal and material are looked up only for
 //! the boundary that wins ([`Csg::surface`]).
 
+mod extent;
 pub mod spans;
 
 use crate::geometry::aabb::AabbLanes;
@@ -169,7 +170,32 @@ pub struct SurfaceHit {
     pub prim: u32,
 }
 
+/// How far a tree was built, to go back to once nodes read only to be
+/// measured (a hull's, a resize's, a projection's children) are done with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Mark {
+    prims: usize,
+    nodes: usize,
+    sections: usize,
+}
+
 impl Csg {
+    /// Where the tree stands now.
+    pub fn mark(&self) -> Mark {
+        Mark {
+            prims: self.prims.len(),
+            nodes: self.nodes.len(),
+            sections: self.sections.len(),
+        }
+    }
+
+    /// Everything added since `mark` dropped.
+    pub fn rewind(&mut self, mark: Mark) {
+        self.prims.truncate(mark.prims);
+        self.nodes.truncate(mark.nodes);
+        self.sections.truncate(mark.sections);
+    }
+
     /// A copy whose straight prisms know the line families a render's rays
     /// meet their regions along — through the camera's `eye` (a
     /// perspective camera's rays), along each of `dirs` (a directional

@@ -32,6 +32,55 @@ pub enum Figure {
 }
 
 impl Figure {
+    /// The exact extent (lo, hi) of a 2-D tree along `axis`, or why not.
+    pub fn exact_range(&self, axis: DVec2) -> Result<(f64, f64), &'static str> {
+        let f = self;
+        match f {
+            Figure::Polygon(_) | Figure::Ellipse(_) => Ok(f.range(axis)),
+            Figure::Section(..) => Err("the extent of a projection"),
+            Figure::Offset(o, _) if o.r > 0.0 => Ok(f.range(axis)),
+            Figure::Offset(..) => Err("the extent of curved outlines shrunk by offset"),
+            // A hull reaches exactly as far as its farthest part.
+            Figure::Op(Op::Union, kids) | Figure::Hull(kids) => {
+                let mut r = (f64::INFINITY, f64::NEG_INFINITY);
+                for k in kids {
+                    let (a, b) = k.exact_range(axis)?;
+                    r = (r.0.min(a), r.1.max(b));
+                }
+                Ok(r)
+            }
+            // The first operand's, where no subtracted shape's box reaches its
+            // far sides.
+            Figure::Op(Op::Difference, kids) => {
+                let r = kids[0].exact_range(axis)?;
+                for k in &kids[1..] {
+                    let (a, b) = k.range(axis);
+                    if a <= r.0 || b >= r.1 {
+                        return Err("the extent of a 2-D difference that cuts its far sides");
+                    }
+                }
+                Ok(r)
+            }
+            Figure::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
+            // Even-odd: a far point that only one operand reaches lies in an odd
+            // number of them.
+            Figure::Op(Op::Xor, kids) => {
+                let r: Vec<(f64, f64)> = kids
+                    .iter()
+                    .map(|k| k.exact_range(axis))
+                    .collect::<Result<_, _>>()?;
+                let lo = r.iter().map(|x| x.0).fold(f64::INFINITY, f64::min);
+                let hi = r.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
+                if r.iter().filter(|x| x.0 == lo).count() > 1
+                    || r.iter().filter(|x| x.1 == hi).count() > 1
+                {
+                    return Err("the extent of a drawing whose paths share a far side");
+                }
+                Ok((lo, hi))
+            }
+        }
+    }
+
     /// The extent in x (exact for leaves; a union or symmetric difference
     /// joins, an intersection meets, a difference keeps its first
     /// operand's).

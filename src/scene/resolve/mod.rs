@@ -6,11 +6,12 @@
 //! `transforms`, `appearance` and `statements` (camera, lights).
 
 mod appearance;
-mod convex;
+mod extrude;
 mod facet_mesh;
-mod flat;
+mod hull_minkowski;
+mod planar;
+mod projection;
 mod resize;
-mod shadow;
 mod solids;
 mod statements;
 mod transforms;

@@ -12,7 +12,6 @@
 //! supported yet", never a guess.
 
 use super::{Resolver, TRANSFORMS};
-use crate::csg::{Csg, NodeKind};
 use crate::error::Result;
 use crate::math::boolean::Op;
 use crate::plane::figure::Figure;
@@ -20,94 +19,6 @@ use crate::scene::args::Args;
 use crate::scene::Material;
 use crate::syntax::ast::{Statement, ValueKind};
 use glam::{DAffine2, DAffine3, DVec2, DVec3};
-
-/// The far point of node `node` along `e` and its value `e·p`, or why it
-/// cannot be shown exact.
-pub(crate) fn extreme(csg: &Csg, node: u32, e: DVec3) -> Result<(f64, DVec3), &'static str> {
-    match &csg.nodes[node as usize].kind {
-        NodeKind::Leaf(p) => {
-            let p = &csg.prims[*p as usize];
-            let m = &p.xf.to_world;
-            let q = p
-                .shape
-                .support(m.matrix3.transpose() * e)
-                .ok_or("the extent of a halfspace or a twisted extrusion")?;
-            let w = m.transform_point3(q);
-            Ok((e.dot(w), w))
-        }
-        NodeKind::Section(..) => Err("the extent of a projection"),
-        NodeKind::Op(op, ch) => {
-            let mut far = Vec::with_capacity(ch.len());
-            if *op == Op::Difference {
-                let first = extreme(csg, ch[0], e)?;
-                if ch[1..].iter().any(|&c| csg.contains(c, first.1)) {
-                    return Err("the extent of a difference that cuts its far side");
-                }
-                return Ok(first);
-            }
-            for &c in ch {
-                far.push(extreme(csg, c, e)?);
-            }
-            let pick = far.iter().copied().reduce(|a, b| match (op, b.0 > a.0) {
-                (Op::Union, true) | (Op::Intersection, false) => b,
-                _ => a,
-            });
-            let best = pick.ok_or("the extent of nothing")?;
-            if *op == Op::Intersection && !ch.iter().all(|&c| csg.contains(c, best.1)) {
-                return Err("the extent of an intersection whose far point is cut away");
-            }
-            Ok(best)
-        }
-    }
-}
-
-/// The exact extent (lo, hi) of a 2-D tree along `axis`, or why not.
-fn flat_extent(f: &Figure, axis: DVec2) -> Result<(f64, f64), &'static str> {
-    match f {
-        Figure::Polygon(_) | Figure::Ellipse(_) => Ok(f.range(axis)),
-        Figure::Section(..) => Err("the extent of a projection"),
-        Figure::Offset(o, _) if o.r > 0.0 => Ok(f.range(axis)),
-        Figure::Offset(..) => Err("the extent of curved outlines shrunk by offset"),
-        // A hull reaches exactly as far as its farthest part.
-        Figure::Op(Op::Union, kids) | Figure::Hull(kids) => {
-            let mut r = (f64::INFINITY, f64::NEG_INFINITY);
-            for k in kids {
-                let (a, b) = flat_extent(k, axis)?;
-                r = (r.0.min(a), r.1.max(b));
-            }
-            Ok(r)
-        }
-        // The first operand's, where no subtracted shape's box reaches its
-        // far sides.
-        Figure::Op(Op::Difference, kids) => {
-            let r = flat_extent(&kids[0], axis)?;
-            for k in &kids[1..] {
-                let (a, b) = k.range(axis);
-                if a <= r.0 || b >= r.1 {
-                    return Err("the extent of a 2-D difference that cuts its far sides");
-                }
-            }
-            Ok(r)
-        }
-        Figure::Op(Op::Intersection, _) => Err("the extent of a 2-D intersection"),
-        // Even-odd: a far point that only one operand reaches lies in an odd
-        // number of them.
-        Figure::Op(Op::Xor, kids) => {
-            let r: Vec<(f64, f64)> = kids
-                .iter()
-                .map(|k| flat_extent(k, axis))
-                .collect::<Result<_, _>>()?;
-            let lo = r.iter().map(|x| x.0).fold(f64::INFINITY, f64::min);
-            let hi = r.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
-            if r.iter().filter(|x| x.0 == lo).count() > 1
-                || r.iter().filter(|x| x.1 == hi).count() > 1
-            {
-                return Err("the extent of a drawing whose paths share a far side");
-            }
-            Ok((lo, hi))
-        }
-    }
-}
 
 /// `newsize` (0 for axes not given) and `auto` of a resize.
 fn sizes(a: &Args) -> Result<([f64; 3], [bool; 3])> {
@@ -142,7 +53,7 @@ const PARAMS: &[&str] = &["newsize", "auto", "convexity"];
 /// for transforms and operations, as OpenSCAD's dimension rule).
 pub(super) fn is_flat(s: &Statement) -> bool {
     let name = s.name.as_str();
-    if super::flat::SHAPES_2D.contains(&name) || ["offset", "projection"].contains(&name) {
+    if super::planar::SHAPES_2D.contains(&name) || ["offset", "projection"].contains(&name) {
         return true;
     }
     if name == "import" {
@@ -180,8 +91,7 @@ impl Resolver<'_> {
         }
         let a = Args::bind(self.src, s, PARAMS)?;
         let (newsize, auto) = sizes(&a)?;
-        let csg = &self.b.csg;
-        let marks = (csg.prims.len(), csg.nodes.len(), csg.sections.len());
+        let marks = self.b.csg.mark();
         let warned = self.b.warnings.len();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
         let Some(child) = self.union(ids) else {
@@ -193,14 +103,11 @@ impl Resolver<'_> {
                 continue;
             }
             let csg = &self.b.csg;
-            let hi = extreme(csg, child, e).map_err(|why| self.not_yet(s, why))?;
-            let lo = extreme(csg, child, -e).map_err(|why| self.not_yet(s, why))?;
+            let hi = csg.extreme(child, e).map_err(|why| self.not_yet(s, why))?;
+            let lo = csg.extreme(child, -e).map_err(|why| self.not_yet(s, why))?;
             size[i] = hi.0 + lo.0;
         }
-        let csg = &mut self.b.csg;
-        csg.prims.truncate(marks.0);
-        csg.nodes.truncate(marks.1);
-        csg.sections.truncate(marks.2);
+        self.b.csg.rewind(marks);
         self.b.warnings.truncate(warned);
         // CGAL_Nef_polyhedron::resize, line for line.
         let mut scale = [1.0; 3];
@@ -252,7 +159,7 @@ impl Resolver<'_> {
         let mut size = [0.0; 2];
         for (i, e) in [DVec2::X, DVec2::Y].into_iter().enumerate() {
             if newsize[i] > 0.0 || auto[i] {
-                let (lo, hi) = flat_extent(&f, e).map_err(|why| self.not_yet(s, why))?;
+                let (lo, hi) = f.exact_range(e).map_err(|why| self.not_yet(s, why))?;
                 size[i] = hi - lo;
             }
         }

@@ -1,6 +1,6 @@
 //! The solids: each statement's binder, from its arguments to a leaf.
 
-use super::flat::regular_polygon;
+use super::planar::regular_polygon;
 use super::transforms::basis_from_z;
 use super::Resolver;
 use crate::error::Result;
@@ -382,7 +382,7 @@ fn import(
     mat: Material,
     _depth: usize,
 ) -> Result<Option<u32>> {
-    let a = Args::bind(res.src, s, super::flat::IMPORT_PARAMS)?;
+    let a = Args::bind(res.src, s, super::planar::IMPORT_PARAMS)?;
     let (_, span, ext, path) = res.import_file(&a)?;
     if !crate::import::meshfile::FORMATS.contains(&ext.as_str()) {
         return res.slab(s, xf, mat);

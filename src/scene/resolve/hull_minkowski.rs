@@ -15,7 +15,7 @@
 //! convex region is the region scaled, so both are the same convex solid.
 
 use super::Resolver;
-use crate::csg::NodeKind;
+use crate::csg::{Mark, NodeKind};
 use crate::error::Result;
 use crate::geometry::convex::{Convex, Part};
 use crate::geometry::solid::Solid;
@@ -32,20 +32,6 @@ pub const MAX_PARTS: usize = 10_000;
 type Sum = Vec<Vec<Part>>;
 
 impl Resolver<'_> {
-    /// The marks to cut the scene's tree back to once read children have
-    /// been measured.
-    fn marks(&self) -> (usize, usize, usize) {
-        let c = &self.b.csg;
-        (c.prims.len(), c.nodes.len(), c.sections.len())
-    }
-
-    fn cut_back(&mut self, marks: (usize, usize, usize)) {
-        let c = &mut self.b.csg;
-        c.prims.truncate(marks.0);
-        c.nodes.truncate(marks.1);
-        c.sections.truncate(marks.2);
-    }
-
     /// The error for what a hull or sum cannot be made of.
     fn not_convex(&self, s: &Statement, what: &str) -> crate::error::Error {
         self.src.error(
@@ -160,13 +146,13 @@ impl Resolver<'_> {
         &mut self,
         s: &Statement,
         node: u32,
-        marks: (usize, usize, usize),
+        marks: Mark,
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
         let mut parts = Vec::new();
         let found = self.parts_of(node, &mut parts);
-        self.cut_back(marks);
+        self.b.csg.rewind(marks);
         found.map_err(|why| self.not_convex(s, &why))?;
         self.convex_leaf(s, vec![parts], frame, mat)
     }
@@ -184,7 +170,7 @@ impl Resolver<'_> {
         }
         crate::scene::args::Args::bind(self.src, s, &[])?;
         // The children in the statement's own frame: the leaf carries xf.
-        let marks = self.marks();
+        let marks = self.b.csg.mark();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
         let Some(node) = self.union(ids) else {
             return Ok(None);
@@ -206,7 +192,7 @@ impl Resolver<'_> {
         crate::scene::args::Args::bind(self.src, s, &["convexity"])?;
         // The operands in the statement's own frame (the sum moves once,
         // with the leaf's transform), each a union of primitives.
-        let marks = self.marks();
+        let marks = self.b.csg.mark();
         let mut nodes = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
             // The fault: each later operand moved by the statement's
@@ -219,7 +205,7 @@ impl Resolver<'_> {
             nodes.extend(self.statement(c, at, mat, depth + 1)?);
         }
         let read = self.sum_of(&nodes);
-        self.cut_back(marks);
+        self.b.csg.rewind(marks);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
                 let pieces = crate::geometry::ball_sum::mesh_rounded(&mesh, to, r);

@@ -47,8 +47,7 @@ impl Resolver<'_> {
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let csg = &self.b.csg;
-        let marks = (csg.prims.len(), csg.nodes.len(), csg.sections.len());
+        let marks = self.b.csg.mark();
         let ids = self.children(p, DAffine3::IDENTITY, mat, 0)?;
         let Some(child) = self.union(ids) else {
             return Ok(None);
@@ -104,10 +103,7 @@ impl Resolver<'_> {
                 break;
             }
         }
-        let csg = &mut self.b.csg;
-        csg.prims.truncate(marks.0);
-        csg.nodes.truncate(marks.1);
-        csg.sections.truncate(marks.2);
+        self.b.csg.rewind(marks);
         if let Some(what) = refused {
             return Err(self.src.error(
                 p.name_span,
