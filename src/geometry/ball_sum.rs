@@ -16,7 +16,7 @@
 
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 
-use crate::geometry::convex::Part;
+use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::{Mesh, MeshData};
 use crate::geometry::{Cone, Convex, Cuboid, Shape, Sphere};
 
@@ -30,7 +30,7 @@ pub struct Pieces {
 /// The points and radius when `hulls` (a Minkowski sum of hulls) is a
 /// polytope plus a ball: a hull of polytopes (cubes, meshes, polygons'
 /// prisms) summed with one ball, or one hull of balls of a single radius.
-pub fn as_rounded(hulls: &[Vec<Part>]) -> Option<(Vec<DVec3>, f64)> {
+pub fn as_rounded(hulls: &[Vec<ConvexPart>]) -> Option<(Vec<DVec3>, f64)> {
     match hulls {
         [a, b] => {
             let (poly, ball) = match (ball_of(a), ball_of(b)) {
@@ -64,13 +64,13 @@ pub fn as_rounded(hulls: &[Vec<Part>]) -> Option<(Vec<DVec3>, f64)> {
 
 /// A hull that is one ball (a sphere under a uniform scale): its centre
 /// and radius.
-fn ball_of(hull: &[Part]) -> Option<(DVec3, f64)> {
+fn ball_of(hull: &[ConvexPart]) -> Option<(DVec3, f64)> {
     let [p] = hull else { return None };
     ball(p)
 }
 
 /// A part that is a ball: its centre and radius.
-pub fn ball(p: &Part) -> Option<(DVec3, f64)> {
+pub fn ball(p: &ConvexPart) -> Option<(DVec3, f64)> {
     if !matches!(p.shape, Shape::Sphere(_)) {
         return None;
     }
@@ -84,7 +84,7 @@ pub fn ball(p: &Part) -> Option<(DVec3, f64)> {
 }
 
 /// The placed vertices of a polytope part; `None` for a curved one.
-fn vertices(p: &Part, out: &mut Vec<DVec3>) -> Option<()> {
+fn vertices(p: &ConvexPart, out: &mut Vec<DVec3>) -> Option<()> {
     let m = &p.to_world;
     match &p.shape {
         Shape::Cuboid(c) => {
@@ -334,7 +334,7 @@ fn plane_hull_indices(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<usize>
 /// them, circular across (a slot, a plate rounded at its corners): the
 /// prism of the hull of their circles, as the prism of its polygon and
 /// the cylinders on its boundary.
-pub fn as_cylinders(hulls: &[Vec<Part>]) -> Option<Pieces> {
+pub fn as_cylinders(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
     let [parts] = hulls else { return None };
     let mut axis: Option<DVec3> = None;
     let mut range: Option<(f64, f64)> = None;
@@ -487,7 +487,7 @@ pub const MAX_SUMMED_TRIANGLES: usize = 5_000;
 /// the segment from b to any other point of B, a point of the sum leaves
 /// A + b only across A's boundary). `None` past [`MAX_SUMMED_TRIANGLES`]
 /// triangles in all.
-pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<Part>>]) -> Option<Pieces> {
+pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<ConvexPart>>]) -> Option<Pieces> {
     if mesh.data.tris.len() * sets.len() > MAX_SUMMED_TRIANGLES {
         return None;
     }
@@ -498,7 +498,7 @@ pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<Part>>]) -> Option<Pi
         .map(|&p| m.transform_point3(p))
         .collect();
     // A vertex as a part: a box shrunk to the point.
-    let point = |p: DVec3| Part {
+    let point = |p: DVec3| ConvexPart {
         shape: Shape::Cuboid(Cuboid { centered: false }),
         to_world: DAffine3 {
             matrix3: DMat3::ZERO,

@@ -2,7 +2,7 @@
 //! and `minkowski()` of convex operands, in world space.
 //!
 //! A [`Convex`] is the Minkowski sum of hulls, each the convex hull of
-//! placed solids ([`Part`]): its support function h(d) = Σ max over a
+//! placed solids ([`ConvexPart`]): its support function h(d) = Σ max over a
 //! hull's parts of their support, a part's being its solid's own support
 //! carried by its transform, M·s(Mᵀd) + t. A line meets it in one span,
 //! found by van den Bergen's GJK ray cast ("Ray casting against general
@@ -34,12 +34,12 @@ pub const MAX_ITERATIONS: u32 = 200;
 
 /// A solid placed in the world, by its support function.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Part {
+pub struct ConvexPart {
     pub shape: Shape,
     pub to_world: DAffine3,
 }
 
-impl Part {
+impl ConvexPart {
     /// The point of the placed solid farthest along world direction `d`.
     fn support(&self, d: DVec3) -> DVec3 {
         let m = &self.to_world;
@@ -54,7 +54,7 @@ impl Part {
 /// The Minkowski sum of the convex hulls of `hulls`' parts.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Convex {
-    pub hulls: Vec<Vec<Part>>,
+    pub hulls: Vec<Vec<ConvexPart>>,
     /// The box, from the support function along ±x, ±y, ±z.
     bounds: Aabb,
     /// The tolerance of a cast: 10⁻¹² of the box's size and distance.
@@ -66,7 +66,7 @@ impl Convex {
     /// box is centred on the origin — its own coordinates then carry the
     /// precision of its size, not of its distance from the world's origin
     /// — and the translation that puts it back.
-    pub fn centred(mut hulls: Vec<Vec<Part>>) -> (Convex, DVec3) {
+    pub fn centred(mut hulls: Vec<Vec<ConvexPart>>) -> (Convex, DVec3) {
         let c = Convex::new(hulls.clone()).bounds.center();
         // A sum moves with any one of its terms: move the first.
         if let Some(h) = hulls.first_mut() {
@@ -77,7 +77,7 @@ impl Convex {
         (Convex::new(hulls), c)
     }
 
-    pub fn new(hulls: Vec<Vec<Part>>) -> Convex {
+    pub fn new(hulls: Vec<Vec<ConvexPart>>) -> Convex {
         let mut c = Convex {
             hulls,
             bounds: Aabb::EMPTY,
@@ -900,8 +900,8 @@ mod tests {
     use super::*;
     use crate::geometry::{Cuboid, Sphere};
 
-    fn ball(c: DVec3, r: f64) -> Part {
-        Part {
+    fn ball(c: DVec3, r: f64) -> ConvexPart {
+        ConvexPart {
             shape: Shape::Sphere(Sphere),
             to_world: DAffine3::from_scale_rotation_translation(
                 DVec3::splat(r),
@@ -945,7 +945,7 @@ mod tests {
 
     #[test]
     fn a_cube_plus_a_ball_is_a_rounded_box() {
-        let cube = Part {
+        let cube = ConvexPart {
             shape: Shape::Cuboid(Cuboid { centered: false }),
             to_world: DAffine3::from_scale(DVec3::splat(2.0)),
         };

@@ -29,7 +29,7 @@
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::math::poly::{Poly, MAX_DEGREE};
-use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region, FLAT_EDGES};
+use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region, SCAN_EDGES};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -173,7 +173,7 @@ impl Lathe {
         // the heights it can meet the profile at.
         let rmax = self.profile.hi.x.max(0.0);
         let (z_lo, z_hi) = match roots(a2, b2, c2 - rmax * rmax * (1.0 + 1e-9)) {
-            Roots::Two(t0, t1) => {
+            LatheRoots::Two(t0, t1) => {
                 let (za, zb) = (o.z + t0 * d.z, o.z + t1 * d.z);
                 (za.min(zb), za.max(zb))
             }
@@ -263,14 +263,14 @@ impl Lathe {
                 t
             };
             let r = if n.x == 0.0 {
-                Roots::One(w / nzd)
+                LatheRoots::One(w / nzd)
             } else {
                 roots(alpha, beta, gamma)
             };
             let (t0, t1, count) = match r {
-                Roots::None => (0.0, 0.0, 0),
-                Roots::One(t) => (t, t, 1),
-                Roots::Two(t0, t1) => (t0, t1, 2),
+                LatheRoots::None => (0.0, 0.0, 0),
+                LatheRoots::One(t) => (t, t, 1),
+                LatheRoots::Two(t0, t1) => (t0, t1, 2),
             };
             let fix = |t: f64| if n.x == 0.0 { t } else { polish(t) };
             if ga != gb {
@@ -430,7 +430,7 @@ impl Lathe {
                 // horizontal, from the radius (the root at that height).
                 let mut t = (q.y - o.z) / d.z;
                 if d.z.abs() * d.z.abs() < 0.25 * a2 {
-                    if let Roots::Two(t0, t1) = roots(a2, b2, c2 - q.x * q.x) {
+                    if let LatheRoots::Two(t0, t1) = roots(a2, b2, c2 - q.x * q.x) {
                         let off = |t: f64| (o.z + t * d.z - q.y).abs();
                         t = if off(t0) <= off(t1) { t0 } else { t1 };
                     }
@@ -442,7 +442,7 @@ impl Lathe {
         // boxes hold their edges' boxes (a box the line's trace misses
         // holds no edge it meets).
         match &self.profile.tree {
-            Some(tree) if self.curves.len() > FLAT_EDGES => tree.visit_boxes(meets, &mut |k| {
+            Some(tree) if self.curves.len() > SCAN_EDGES => tree.visit_boxes(meets, &mut |k| {
                 if self.profile.ctrl[k as usize] != Ctrl::Line {
                     curve(k as usize)
                 }
@@ -452,31 +452,31 @@ impl Lathe {
     }
 }
 
-enum Roots {
+enum LatheRoots {
     None,
     One(f64),
     Two(f64, f64),
 }
 
 /// The real roots of α x² + β x + γ, sorted, by the stable formula.
-fn roots(alpha: f64, beta: f64, gamma: f64) -> Roots {
+fn roots(alpha: f64, beta: f64, gamma: f64) -> LatheRoots {
     if alpha == 0.0 {
         return if beta == 0.0 {
-            Roots::None
+            LatheRoots::None
         } else {
-            Roots::One(-gamma / beta)
+            LatheRoots::One(-gamma / beta)
         };
     }
     let disc = beta * beta - 4.0 * alpha * gamma;
     if disc < 0.0 {
-        return Roots::None;
+        return LatheRoots::None;
     }
     let q = -0.5 * (beta + beta.signum() * disc.sqrt());
     if q == 0.0 {
-        return Roots::Two(0.0, 0.0);
+        return LatheRoots::Two(0.0, 0.0);
     }
     let (x, y) = (q / alpha, gamma / q);
-    Roots::Two(x.min(y), x.max(y))
+    LatheRoots::Two(x.min(y), x.max(y))
 }
 
 impl Solid for Lathe {
@@ -682,7 +682,7 @@ mod tests {
             let region = Arc::new(profile(&mut rnd, 10 + case % 60, curves));
             let lathe = Lathe::new(region.clone());
             assert!(lathe.chains.len() > 1, "one run: {:?}", lathe.chains);
-            many_curves |= lathe.curves.len() > FLAT_EDGES;
+            many_curves |= lathe.curves.len() > SCAN_EDGES;
             let (lo, hi) = (region.lo, region.hi);
             for _ in 0..40 {
                 let d = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();

@@ -133,13 +133,13 @@ const U32: f64 = 5.960_464_477_539_063e-8; // 2⁻²⁴
 /// (whose box is empty: +∞ below, −∞ above, never met).
 #[derive(Clone, Debug, PartialEq)]
 #[repr(C, align(16))]
-struct Node {
+struct MeshNode {
     /// The boxes' lower planes along x, y, z, then their upper planes.
     b: [[f32; WIDTH]; 6],
     child: [u32; WIDTH],
 }
 
-impl Node {
+impl MeshNode {
     /// The near and the far planes of the boxes along axis `a` for a line
     /// whose direction has the signs `OCTANT` (bit a set: the near plane is
     /// the upper one).
@@ -167,7 +167,7 @@ fn has_avx() -> bool {
 /// x86-64 baseline this crate is built for).
 const BITS4: [u32; 16] = [0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4];
 
-const EMPTY_NODE: Node = Node {
+const EMPTY_NODE: MeshNode = MeshNode {
     b: [
         [f32::INFINITY; WIDTH],
         [f32::INFINITY; WIDTH],
@@ -181,7 +181,7 @@ const EMPTY_NODE: Node = Node {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct MeshBvh {
-    nodes: Vec<Node>,
+    nodes: Vec<MeshNode>,
 }
 
 /// A triangle's box while building.
@@ -446,7 +446,7 @@ impl MeshBvh {
     ) -> u32 {
         let me = self.nodes.len();
         self.nodes.push(EMPTY_NODE);
-        let mut parts: SmallVec<[Part; WIDTH]> = SmallVec::new();
+        let mut parts: SmallVec<[SplitPart; WIDTH]> = SmallVec::new();
         parts.push((0, items.len(), bounds, centres, depth));
         while parts.len() < WIDTH {
             // The largest part that is too big for a leaf is split.
@@ -779,7 +779,7 @@ fn split(items: &mut [Item], depth: usize, centres: &Box32) -> Split {
 
 /// A node's part while it is built: (start, end, box, centres' box, binary
 /// depth), in place order.
-type Part = (usize, usize, Box32, Box32, usize);
+type SplitPart = (usize, usize, Box32, Box32, usize);
 
 /// Where [`split`] cut, and the boxes and the centres' boxes of each side.
 struct Split {
@@ -911,7 +911,7 @@ impl Line32 {
     /// Which of a node's four boxes the line may meet before `tmax` (a bit
     /// a lane), and where it enters each.
     #[inline(always)]
-    fn test<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    fn test<const OCTANT: u8>(&self, n: &MeshNode, tmax: f32) -> (u32, [f32; WIDTH]) {
         #[cfg(target_arch = "x86_64")]
         return self.test_sse::<OCTANT>(n, tmax);
         #[cfg(not(target_arch = "x86_64"))]
@@ -922,7 +922,7 @@ impl Line32 {
     #[inline(always)]
     fn test_with<const OCTANT: u8, const AVX: bool>(
         &self,
-        n: &Node,
+        n: &MeshNode,
         tmax: f32,
     ) -> (u32, [f32; WIDTH]) {
         #[cfg(target_arch = "x86_64")]
@@ -943,7 +943,7 @@ impl Line32 {
     /// every intrinsic is a call).
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
-    unsafe fn test_avx<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    unsafe fn test_avx<const OCTANT: u8>(&self, n: &MeshNode, tmax: f32) -> (u32, [f32; WIDTH]) {
         use std::arch::x86_64::*;
         let mut tn = _mm256_set1_ps(self.tmin);
         let mut tf = _mm256_set1_ps(tmax);
@@ -973,7 +973,7 @@ impl Line32 {
     /// [`test`](Self::test) lane by lane, in any processor's own `f32`.
     #[cfg_attr(target_arch = "x86_64", allow(dead_code))]
     #[inline(always)]
-    fn test_portable<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    fn test_portable<const OCTANT: u8>(&self, n: &MeshNode, tmax: f32) -> (u32, [f32; WIDTH]) {
         let mut tn = [self.tmin; WIDTH];
         let mut tf = [tmax; WIDTH];
         for a in 0..3 {
@@ -999,7 +999,7 @@ impl Line32 {
     #[cfg(target_arch = "x86_64")]
     #[inline(always)]
     #[allow(unused_unsafe)]
-    fn test_sse<const OCTANT: u8>(&self, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    fn test_sse<const OCTANT: u8>(&self, n: &MeshNode, tmax: f32) -> (u32, [f32; WIDTH]) {
         use std::arch::x86_64::*;
         // SAFETY: SSE and SSE2 are part of every x86_64 processor; each
         // load and store reads or writes four `f32` at 0 or 4 of eight.
@@ -1045,13 +1045,13 @@ mod tests {
     use super::*;
 
     /// Both of a line's tests of `n`, for the octant of its direction.
-    fn both(l: &Line32, n: &Node, tmax: f32) -> [(u32, [f32; WIDTH]); 2] {
+    fn both(l: &Line32, n: &MeshNode, tmax: f32) -> [(u32, [f32; WIDTH]); 2] {
         by_octant!(l.octant, O => [l.test_sse::<O>(n, tmax), l.test_portable::<O>(n, tmax)])
     }
 
     /// The AVX test, compiled for AVX.
     #[target_feature(enable = "avx")]
-    unsafe fn avx_test<const O: u8>(l: &Line32, n: &Node, tmax: f32) -> (u32, [f32; WIDTH]) {
+    unsafe fn avx_test<const O: u8>(l: &Line32, n: &MeshNode, tmax: f32) -> (u32, [f32; WIDTH]) {
         l.test_avx::<O>(n, tmax)
     }
 

@@ -43,7 +43,7 @@ pub use solid::{Need, Param, Probe, Solid};
 pub use sphere::Sphere;
 pub use torus::Torus;
 pub use transform::Transform;
-pub use twist::{Section, Twisted};
+pub use twist::{TwistSection, Twisted};
 
 use glam::DVec3;
 

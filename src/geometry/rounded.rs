@@ -10,12 +10,12 @@
 use super::bvh::Bvh;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, Ray, Shape, Transform};
-use crate::geometry::convex::Part as HullPart;
+use crate::geometry::convex::ConvexPart as HullPart;
 use glam::{DAffine3, DVec3};
 
 /// One primitive of the union, placed in the set's object space.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Piece {
+pub struct RoundedPiece {
     pub shape: Shape,
     pub xf: Transform,
     /// Its box in the set's object space.
@@ -27,7 +27,7 @@ pub struct Piece {
 /// convex, a mesh rounded by a ball).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Rounded {
-    pub pieces: Vec<Piece>,
+    pub pieces: Vec<RoundedPiece>,
     pub hulls: Vec<Vec<HullPart>>,
     bounds: Aabb,
     /// Over the pieces, when there are many.
@@ -35,7 +35,7 @@ pub struct Rounded {
 }
 
 /// The most pieces tested one by one, without a hierarchy.
-const FLAT_PIECES: usize = 12;
+const SCAN_PIECES: usize = 12;
 
 /// How far apart (relative to the line's and the set's scale, in t) a
 /// span's end and the next one's start still overlap: the rounding of
@@ -54,13 +54,13 @@ impl Rounded {
             let xf = Transform::new(m)?;
             let b = shape.world_bounds(&m);
             bounds = bounds.union(&b);
-            pieces.push(Piece {
+            pieces.push(RoundedPiece {
                 shape,
                 xf,
                 bounds: b,
             });
         }
-        let bvh = (pieces.len() > FLAT_PIECES).then(|| {
+        let bvh = (pieces.len() > SCAN_PIECES).then(|| {
             let items: Vec<(u32, Aabb)> = pieces
                 .iter()
                 .enumerate()
@@ -76,7 +76,7 @@ impl Rounded {
         })
     }
 
-    fn piece(&self, part: Part) -> (&Piece, Part) {
+    fn piece(&self, part: Part) -> (&RoundedPiece, Part) {
         let n = self.pieces.len() as Part;
         (&self.pieces[(part % n) as usize], part / n)
     }

@@ -43,7 +43,7 @@ const SIDE: Part = 2;
 
 /// What is swept.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Section {
+pub enum TwistSection {
     /// Straight-edged outlines only; edge e is part SIDE + e.
     Region(Arc<Region>),
     /// The image of the unit disc (part SIDE), not flattened.
@@ -52,7 +52,7 @@ pub enum Section {
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Twisted {
-    pub section: Section,
+    pub section: TwistSection,
     /// OpenSCAD's twist over the height, in radians.
     pub twist: f64,
     /// The top section's scale in x and y (≥ 0).
@@ -86,27 +86,27 @@ impl Form {
     }
 }
 
-impl Section {
+impl TwistSection {
     fn contains(&self, p: DVec2) -> bool {
         match self {
-            Section::Region(r) => r.contains(p),
-            Section::Ellipse(e) => Form::of(e).contains(p),
+            TwistSection::Region(r) => r.contains(p),
+            TwistSection::Ellipse(e) => Form::of(e).contains(p),
         }
     }
 
     /// The farthest distance of the section from the axis (at least).
     fn reach(&self) -> f64 {
         match self {
-            Section::Region(r) => r.edges.iter().map(|(a, _)| a.length()).fold(0.0, f64::max),
-            Section::Ellipse(e) => e.translation.length() + largest_stretch(e.matrix2),
+            TwistSection::Region(r) => r.edges.iter().map(|(a, _)| a.length()).fold(0.0, f64::max),
+            TwistSection::Ellipse(e) => e.translation.length() + largest_stretch(e.matrix2),
         }
     }
 
     /// The box of the section.
     fn box2(&self) -> (DVec2, DVec2) {
         match self {
-            Section::Region(r) => (r.lo, r.hi),
-            Section::Ellipse(e) => {
+            TwistSection::Region(r) => (r.lo, r.hi),
+            TwistSection::Ellipse(e) => {
                 let m = e.matrix2;
                 let h = DVec2::new(
                     DVec2::new(m.x_axis.x, m.y_axis.x).length(),
@@ -233,9 +233,9 @@ impl Twisted {
         } else {
             0.5 * (t0 + t1)
         };
-        let path = Path::new(self, o, d, t0, t1, near.clamp(t0, t1));
+        let path = TwistPath::new(self, o, d, t0, t1, near.clamp(t0, t1));
         match &self.section {
-            Section::Region(region) => {
+            TwistSection::Region(region) => {
                 for (e, &(a, b)) in region.edges.iter().enumerate() {
                     let n = region.normals[e];
                     let c = n.dot(a);
@@ -261,7 +261,7 @@ impl Twisted {
                     }
                 }
             }
-            Section::Ellipse(e) => {
+            TwistSection::Ellipse(e) => {
                 let side = path.ellipse(&Form::of(e), self.scale.x == self.scale.y);
                 let rho1 = self.section.reach();
                 let rho0 = (e.translation.length() - largest_stretch(e.matrix2)).max(0.0);
@@ -282,15 +282,15 @@ impl Twisted {
     /// section's own coordinates).
     fn section_normal(&self, p: DVec2, part: Part) -> DVec2 {
         match &self.section {
-            Section::Region(r) => r.normals[(part - SIDE) as usize],
-            Section::Ellipse(e) => Form::of(e).grad(p),
+            TwistSection::Region(r) => r.normals[(part - SIDE) as usize],
+            TwistSection::Ellipse(e) => Form::of(e).grad(p),
         }
     }
 }
 
 /// The line o + t·d in a twisted extrusion's terms (see the module
 /// comment): σ, w, σ̄ and φ as polynomials in t.
-struct Path {
+struct TwistPath {
     wx: Pol,
     wy: Pol,
     /// σ̄ = σx·σy.
@@ -311,15 +311,15 @@ struct Path {
     tc: f64,
 }
 
-impl Path {
+impl TwistPath {
     /// The line o + t·d over [t0, t1], its polynomials in τ = t − tc.
-    fn new(tw: &Twisted, o: DVec3, d: DVec3, t0: f64, t1: f64, tc: f64) -> Path {
+    fn new(tw: &Twisted, o: DVec3, d: DVec3, t0: f64, t1: f64, tc: f64) -> TwistPath {
         let o = o + d * tc;
         let k = tw.scale - DVec2::ONE;
         // σ(τ) = σ0 + σ1·τ, x(τ) = o + d·τ.
         let sx = [1.0 + k.x * o.z, k.x * d.z];
         let sy = [1.0 + k.y * o.z, k.y * d.z];
-        Path {
+        TwistPath {
             wx: Pol::mul_lin(sy, [o.x, d.x]),
             wy: Pol::mul_lin(sx, [o.y, d.y]),
             ss: Pol::mul_lin(sx, sy),
@@ -453,7 +453,7 @@ impl Solid for Twisted {
                 return;
             }
             match &self.section {
-                Section::Region(region) => {
+                TwistSection::Region(region) => {
                     for pair in region.crossings(o2, d2).chunks_exact(2) {
                         let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
                         if s0 < s1 {
@@ -461,7 +461,7 @@ impl Solid for Twisted {
                         }
                     }
                 }
-                Section::Ellipse(e) => {
+                TwistSection::Ellipse(e) => {
                     if let Some((s0, s1)) = line_ellipse(&Form::of(e), o2, d2) {
                         emit((s0, SIDE, s1, SIDE));
                     }
@@ -552,8 +552,8 @@ impl Solid for Twisted {
 
     fn params(&self) -> Vec<(&'static str, Param)> {
         let mut out = match &self.section {
-            Section::Region(r) => vec![("edges", Param::Num(r.edges.len() as f64))],
-            Section::Ellipse(e) => {
+            TwistSection::Region(r) => vec![("edges", Param::Num(r.edges.len() as f64))],
+            TwistSection::Ellipse(e) => {
                 let (m, c) = (e.matrix2, e.translation);
                 vec![
                     ("ellipse_xx", Param::Num(m.x_axis.x)),

@@ -19,7 +19,7 @@ use std::collections::HashMap;
 pub const GRID: f64 = 1.0 / 1048576.0;
 
 /// The most pieces a drawing may have.
-pub const MAX_PIECES: usize = 1_000_000;
+pub const MAX_DXF_PIECES: usize = 1_000_000;
 
 /// The most closed paths and circles a drawing may have (their nesting is
 /// found by testing every pair).
@@ -37,7 +37,7 @@ pub struct Arc {
 /// A closed path: edge i runs from `pts[i]` to `pts[i + 1]` (the last back
 /// to the first), straight or along `arcs[i]`.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Path {
+pub struct DxfPath {
     pub pts: Vec<DVec2>,
     pub arcs: Vec<Option<Arc>>,
 }
@@ -45,7 +45,7 @@ pub struct Path {
 /// A drawing's closed paths and whole circles, ready to fill.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Drawing {
-    pub paths: Vec<Path>,
+    pub paths: Vec<DxfPath>,
     pub circles: Vec<(DVec2, f64)>,
     /// The entities left out (of a kind OpenSCAD does not read), by kind.
     pub skipped: Vec<(String, usize)>,
@@ -54,7 +54,7 @@ pub struct Drawing {
 }
 
 #[derive(Clone, Copy)]
-struct Piece {
+struct DxfPiece {
     a: DVec2,
     b: DVec2,
     arc: Option<Arc>,
@@ -67,13 +67,13 @@ fn deg(a: f64) -> (f64, f64) {
 
 /// An arc of the circle (c, r) from angle a0 to a1 (degrees, counter-
 /// clockwise, a1 ≤ a0 meaning one more turn), as OpenSCAD reads an ARC.
-fn arc_piece(c: DVec2, r: f64, a0: f64, a1: f64) -> Piece {
+fn arc_piece(c: DVec2, r: f64, a0: f64, a1: f64) -> DxfPiece {
     let a1 = if a1 <= a0 { a1 + 360.0 } else { a1 };
     let at = |a: f64| {
         let (s, co) = deg(a);
         c + DVec2::new(co, s) * r
     };
-    Piece {
+    DxfPiece {
         a: at(a0),
         b: at(a1),
         arc: Some(Arc {
@@ -90,7 +90,7 @@ pub fn read(bytes: &[u8], layer: &str, origin: DVec2, scale: f64) -> Result<Draw
     let d = dxf::Drawing::load(&mut reader).map_err(|e| e.to_string())?;
     let place = |x: f64, y: f64| (DVec2::new(x, y) - origin) * scale;
     let mut out = Drawing::default();
-    let mut pieces: Vec<Piece> = Vec::new();
+    let mut pieces: Vec<DxfPiece> = Vec::new();
     let mut skipped: HashMap<String, usize> = HashMap::new();
     // The pieces of one entity, in the drawing's units before `place`,
     // under the map m (a block's insertion).
@@ -98,13 +98,13 @@ pub fn read(bytes: &[u8], layer: &str, origin: DVec2, scale: f64) -> Result<Draw
         e: &dxf::entities::EntityType,
         m: &dyn Fn(DVec2) -> DVec2,
         k: f64,
-        pieces: &mut Vec<Piece>,
+        pieces: &mut Vec<DxfPiece>,
         circles: &mut Vec<(DVec2, f64)>,
     ) -> bool {
         use dxf::entities::EntityType as E;
         let p = |x: f64, y: f64| m(DVec2::new(x, y));
         match e {
-            E::Line(l) => pieces.push(Piece {
+            E::Line(l) => pieces.push(DxfPiece {
                 a: p(l.p1.x, l.p1.y),
                 b: p(l.p2.x, l.p2.y),
                 arc: None,
@@ -112,14 +112,14 @@ pub fn read(bytes: &[u8], layer: &str, origin: DVec2, scale: f64) -> Result<Draw
             E::LwPolyline(l) => {
                 let v: Vec<DVec2> = l.vertices.iter().map(|v| p(v.x, v.y)).collect();
                 for w in v.windows(2) {
-                    pieces.push(Piece {
+                    pieces.push(DxfPiece {
                         a: w[0],
                         b: w[1],
                         arc: None,
                     });
                 }
                 if l.is_closed() && v.len() > 1 {
-                    pieces.push(Piece {
+                    pieces.push(DxfPiece {
                         a: v[v.len() - 1],
                         b: v[0],
                         arc: None,
@@ -181,8 +181,8 @@ pub fn read(bytes: &[u8], layer: &str, origin: DVec2, scale: f64) -> Result<Draw
         if !entity_pieces(&e.specific, &placed, scale, &mut pieces, &mut out.circles) {
             *skipped.entry(kind_name(&e.specific)).or_default() += 1;
         }
-        if pieces.len() > MAX_PIECES {
-            return Err(format!("more than {MAX_PIECES} pieces"));
+        if pieces.len() > MAX_DXF_PIECES {
+            return Err(format!("more than {MAX_DXF_PIECES} pieces"));
         }
     }
     out.skipped = skipped.into_iter().collect();
@@ -205,7 +205,7 @@ fn kind_name(e: &dxf::entities::EntityType) -> String {
 /// Joins pieces into paths where their ends meet on the grid, as OpenSCAD
 /// does: first the chains with a free end (open: closed by a straight
 /// edge), then the closed loops.
-fn join(pieces: Vec<Piece>, out: &mut Drawing) {
+fn join(pieces: Vec<DxfPiece>, out: &mut Drawing) {
     let cell = |p: DVec2| ((p.x / GRID).round() as i64, (p.y / GRID).round() as i64);
     // Points within a grid step are one point: each end's key is the first
     // point seen within one cell.
@@ -283,7 +283,7 @@ fn join(pieces: Vec<Piece>, out: &mut Drawing) {
                 pts.push(points[last]);
                 arcs.push(None);
                 if pts.len() >= 3 {
-                    out.paths.push(Path { pts, arcs });
+                    out.paths.push(DxfPath { pts, arcs });
                 }
             }
         }
@@ -300,7 +300,7 @@ fn join(pieces: Vec<Piece>, out: &mut Drawing) {
         }
         let (pts, arcs) = path_of(&chain, &forward);
         if pts.len() >= 3 || pts.len() == 2 && arcs.iter().any(|a| a.is_some()) {
-            out.paths.push(Path { pts, arcs });
+            out.paths.push(DxfPath { pts, arcs });
         } else if pts.len() == 1 {
             // A single closed arc is a whole circle.
             if let Some(a) = arcs[0] {

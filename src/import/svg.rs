@@ -34,7 +34,7 @@ use glam::{DAffine2, DMat2, DVec2};
 
 /// The farthest a point of a drawing may lie from the origin, placed
 /// (csgrt's limit on sizes and positions).
-pub const MAX_COORD: f64 = crate::geometry::transform::MAX_MAGNITUDE;
+pub const MAX_SVG_COORD: f64 = crate::geometry::transform::MAX_MAGNITUDE;
 
 /// The most elements, and the most path segments, a drawing may have.
 pub const MAX_ELEMENTS: usize = 100_000;
@@ -51,7 +51,7 @@ pub enum Cap {
 /// How a stroke turns a corner (Clipper's join types; SVG's `bevel` is
 /// Clipper's square join in libsvg).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Join {
+pub enum SvgJoin {
     Miter,
     Round,
     Square,
@@ -59,21 +59,21 @@ pub enum Join {
 
 /// An open polyline stroked to `width`.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Stroke {
+pub struct SvgStroke {
     pub pts: Vec<DVec2>,
     pub width: f64,
     pub cap: Cap,
-    pub join: Join,
+    pub join: SvgJoin,
 }
 
 /// A piece of a stroke's region: a convex polygon or a disc.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Piece {
+pub enum SvgPiece {
     Polygon(Vec<DVec2>),
     Disc(DVec2, f64),
 }
 
-impl Stroke {
+impl SvgStroke {
     /// The exact region of Clipper's open offset of the polyline by half
     /// its width, as pieces to unite: the band of each segment, the ends
     /// (square: the band carried on by half the width; round: a disc; butt:
@@ -84,7 +84,7 @@ impl Stroke {
     /// (Clipper's `DoSquare`, also the `bevel` join libsvg maps to it). A
     /// reversal is squared like an end. None for fewer than two distinct
     /// points.
-    pub fn pieces(&self) -> Vec<Piece> {
+    pub fn pieces(&self) -> Vec<SvgPiece> {
         let st = self;
         let mut pts: Vec<DVec2> = Vec::with_capacity(st.pts.len());
         for &p in &st.pts {
@@ -96,7 +96,7 @@ impl Stroke {
             return Vec::new();
         }
         let r = 0.5 * st.width;
-        let poly = Piece::Polygon;
+        let poly = SvgPiece::Polygon;
         let mut out = Vec::new();
         let dirs: Vec<DVec2> = pts.windows(2).map(|w| (w[1] - w[0]).normalize()).collect();
         for (w, &t) in pts.windows(2).zip(&dirs) {
@@ -104,9 +104,9 @@ impl Stroke {
             out.push(poly(vec![w[0] - n, w[1] - n, w[1] + n, w[0] + n]));
         }
         // An end at p, the stroke running away from it along -t.
-        let end = |p: DVec2, t: DVec2, out: &mut Vec<Piece>| match st.cap {
+        let end = |p: DVec2, t: DVec2, out: &mut Vec<SvgPiece>| match st.cap {
             Cap::Butt => {}
-            Cap::Round => out.push(Piece::Disc(p, r)),
+            Cap::Round => out.push(SvgPiece::Disc(p, r)),
             Cap::Square => {
                 let n = t.perp() * r;
                 out.push(poly(vec![p - n, p + t * r - n, p + t * r + n, p + n]));
@@ -120,8 +120,8 @@ impl Stroke {
             if cross == 0.0 && cos > 0.0 {
                 continue;
             }
-            if st.join == Join::Round {
-                out.push(Piece::Disc(p, r));
+            if st.join == SvgJoin::Round {
+                out.push(SvgPiece::Disc(p, r));
                 continue;
             }
             if cross == 0.0 {
@@ -134,7 +134,7 @@ impl Stroke {
             let side = if cross > 0.0 { -1.0 } else { 1.0 };
             let (m1, m2) = (t1.perp() * side, t2.perp() * side);
             // The turn θ between the normals: cos θ = cos of the directions.
-            if st.join == Join::Miter && 1.0 + cos >= 0.5 {
+            if st.join == SvgJoin::Miter && 1.0 + cos >= 0.5 {
                 let miter = p + (m1 + m2) * (r / (1.0 + cos));
                 out.push(poly(vec![p, p + m1 * r, miter, p + m2 * r]));
             } else {
@@ -177,27 +177,27 @@ pub struct Loop {
 }
 
 #[derive(Clone, Debug, PartialEq)]
-pub enum Part {
+pub enum SvgPart {
     Loop(Loop),
     /// A `circle` or `ellipse`: the image of the unit disc.
     Ellipse(DAffine2),
-    Stroke(Stroke),
+    Stroke(SvgStroke),
 }
 
 /// One element's outlines (even-odd), in its own coordinates, and the
 /// transform that places them in the page's user space.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Shape {
+pub struct SvgShape {
     pub element: String,
     pub line: usize,
-    pub parts: Vec<Part>,
+    pub parts: Vec<SvgPart>,
     pub transform: DAffine2,
 }
 
 /// A drawing's shapes and the map from user space to OpenSCAD's plane.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Svg {
-    pub shapes: Vec<Shape>,
+    pub shapes: Vec<SvgShape>,
     pub place: DAffine2,
     /// The elements left out (drawing nothing in OpenSCAD), by name.
     pub skipped: Vec<(String, usize)>,
@@ -245,7 +245,7 @@ fn attr_or_style<'a>(n: &roxmltree::Node<'a, 'a>, name: &str) -> &'a str {
     }
 }
 
-fn stroke_of(n: &roxmltree::Node, pts: Vec<DVec2>) -> Stroke {
+fn stroke_of(n: &roxmltree::Node, pts: Vec<DVec2>) -> SvgStroke {
     let w = number(attr_or_style(n, "stroke-width"));
     let cap = match attr_or_style(n, "stroke-linecap") {
         "butt" => Cap::Butt,
@@ -253,11 +253,11 @@ fn stroke_of(n: &roxmltree::Node, pts: Vec<DVec2>) -> Stroke {
         _ => Cap::Square,
     };
     let join = match attr_or_style(n, "stroke-linejoin") {
-        "bevel" => Join::Square,
-        "round" => Join::Round,
-        _ => Join::Miter,
+        "bevel" => SvgJoin::Square,
+        "round" => SvgJoin::Round,
+        _ => SvgJoin::Miter,
     };
-    Stroke {
+    SvgStroke {
         pts,
         width: if w < 0.01 { 1.0 } else { w },
         cap,
@@ -331,7 +331,7 @@ fn path_parts(
     d: &str,
     line: usize,
     segments: &mut usize,
-) -> Result<Vec<Part>, SvgError> {
+) -> Result<Vec<SvgPart>, SvgError> {
     use svgtypes::PathSegment as P;
     let mut parts = Vec::new();
     let mut subs: Vec<(Sub, bool)> = Vec::new();
@@ -472,7 +472,7 @@ fn path_parts(
                     "stroking an open path with curves or arcs is not supported yet",
                 ));
             }
-            parts.push(Part::Stroke(stroke_of(n, s.pts)));
+            parts.push(SvgPart::Stroke(stroke_of(n, s.pts)));
             continue;
         }
         // Closed: the last point back to the first by a straight edge
@@ -484,7 +484,7 @@ fn path_parts(
             segs.push(Seg::Line);
         }
         if !pts.is_empty() {
-            parts.push(Part::Loop(Loop { pts, segs }));
+            parts.push(SvgPart::Loop(Loop { pts, segs }));
         }
     }
     Ok(parts)
@@ -510,7 +510,7 @@ fn rect_parts(
     n: &roxmltree::Node,
     line: usize,
     segments: &mut usize,
-) -> Result<Vec<Part>, SvgError> {
+) -> Result<Vec<SvgPart>, SvgError> {
     let g = |k: &str| number(n.attribute(k).unwrap_or(""));
     let (x, y, w, h) = (g("x"), g("y"), g("width"), g("height"));
     let (mut rx, mut ry) = (g("rx"), g("ry"));
@@ -535,7 +535,7 @@ fn rect_parts(
         DVec2::new(x + w, y + h),
         DVec2::new(x, y + h),
     ];
-    Ok(vec![Part::Loop(Loop {
+    Ok(vec![SvgPart::Loop(Loop {
         segs: vec![Seg::Line; 4],
         pts,
     })])
@@ -576,13 +576,13 @@ fn to_mm(l: Option<svgtypes::Length>, viewbox: Option<f64>, dpi: f64) -> f64 {
 /// that `center` takes): 20 steps a curve, |Δθ|·10/180 + 4 an arc, 40 an
 /// ellipse; a stroke by its pieces' corners and its discs' points every
 /// half degree (Clipper cuts them into hundreds of pieces).
-fn openscad_points(p: &Part, out: &mut Vec<DVec2>) {
+fn openscad_points(p: &SvgPart, out: &mut Vec<DVec2>) {
     match p {
-        Part::Ellipse(e) => (1..=40).for_each(|i| {
+        SvgPart::Ellipse(e) => (1..=40).for_each(|i| {
             let a = (i as f64 * 9.0).to_radians();
             out.push(e.transform_point2(DVec2::new(a.cos(), a.sin())));
         }),
-        Part::Loop(l) => {
+        SvgPart::Loop(l) => {
             for (i, seg) in l.segs.iter().enumerate() {
                 let (a, b) = (l.pts[i], l.pts[(i + 1) % l.pts.len()]);
                 out.push(a);
@@ -626,13 +626,13 @@ fn openscad_points(p: &Part, out: &mut Vec<DVec2>) {
                 }
             }
         }
-        Part::Stroke(s) => {
+        SvgPart::Stroke(s) => {
             for piece in s.pieces() {
                 match piece {
-                    Piece::Polygon(v) => out.extend(v),
+                    SvgPiece::Polygon(v) => out.extend(v),
                     // Clipper's round parts are within 10⁻⁴ of the circle:
                     // points every half degree are too.
-                    Piece::Disc(c, r) => out.extend((0..720).map(|i| {
+                    SvgPiece::Disc(c, r) => out.extend((0..720).map(|i| {
                         let (sn, cs) = (i as f64 * 0.5).to_radians().sin_cos();
                         c + DVec2::new(cs, sn) * r
                     })),
@@ -748,20 +748,20 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
                 if e.matrix2.determinant() == 0.0 {
                     Vec::new()
                 } else {
-                    vec![Part::Ellipse(e)]
+                    vec![SvgPart::Ellipse(e)]
                 }
             }
-            "line" => vec![Part::Stroke(stroke_of(
+            "line" => vec![SvgPart::Stroke(stroke_of(
                 &n,
                 vec![DVec2::new(g("x1"), g("y1")), DVec2::new(g("x2"), g("y2"))],
             ))],
-            "polyline" => vec![Part::Stroke(stroke_of(
+            "polyline" => vec![SvgPart::Stroke(stroke_of(
                 &n,
                 points(n.attribute("points").unwrap_or("")),
             ))],
             "polygon" => {
                 let pts = points(n.attribute("points").unwrap_or(""));
-                vec![Part::Loop(Loop {
+                vec![SvgPart::Loop(Loop {
                     segs: vec![Seg::Line; pts.len()],
                     pts,
                 })]
@@ -793,7 +793,7 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
                 transform = transform_of(&a, line_of(a))? * transform;
             }
         }
-        shapes.push(Shape {
+        shapes.push(SvgShape {
             element: name.to_string(),
             line,
             parts,
@@ -831,7 +831,7 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
         let mut pts = Vec::new();
         s.parts.iter().for_each(|p| openscad_points(p, &mut pts));
         let m = place * s.transform;
-        let far = |q: DVec2| q.is_nan() || q.abs().max_element() > MAX_COORD;
+        let far = |q: DVec2| q.is_nan() || q.abs().max_element() > MAX_SVG_COORD;
         if far(m.matrix2.x_axis)
             || far(m.matrix2.y_axis)
             || pts.into_iter().any(|q| far(m.transform_point2(q)))
@@ -839,7 +839,7 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
             return Err(fail(
                 s.line,
                 format!(
-                    "a point of this `{}` lies out of range (beyond ±{MAX_COORD:e})",
+                    "a point of this `{}` lies out of range (beyond ±{MAX_SVG_COORD:e})",
                     s.element
                 ),
             ));
@@ -906,17 +906,20 @@ mod tests {
             .parts
             .iter()
             .map(|p| match p {
-                Part::Stroke(_) => "stroke",
-                Part::Loop(_) => "loop",
-                Part::Ellipse(_) => "ellipse",
+                SvgPart::Stroke(_) => "stroke",
+                SvgPart::Loop(_) => "loop",
+                SvgPart::Ellipse(_) => "ellipse",
             })
             .collect();
         // The last subpath is filled: the path has closed once (libsvg).
         assert_eq!(kinds, ["stroke", "loop", "loop"]);
-        let Part::Stroke(st) = &s.shapes[0].parts[0] else {
+        let SvgPart::Stroke(st) = &s.shapes[0].parts[0] else {
             unreachable!()
         };
-        assert_eq!((st.width, st.cap, st.join), (2.0, Cap::Round, Join::Miter));
+        assert_eq!(
+            (st.width, st.cap, st.join),
+            (2.0, Cap::Round, SvgJoin::Miter)
+        );
     }
 
     #[test]

@@ -21,7 +21,7 @@
 //! the result to libsvg's 10⁻⁴ grid and cuts round parts into pieces;
 //! csgrt does neither.
 
-use super::svg::{Part, Piece, Seg, Shape, Stroke, Svg};
+use super::svg::{Seg, Svg, SvgPart, SvgPiece, SvgShape, SvgStroke};
 use crate::math::boolean::Op;
 use crate::plane::figure::Figure;
 use crate::plane::{Ctrl, Outlines};
@@ -66,11 +66,11 @@ fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Figure {
 }
 
 /// One element's region in the page's user space.
-fn shape_flat(s: &Shape) -> Option<Figure> {
+fn shape_flat(s: &SvgShape) -> Option<Figure> {
     let (mut loops, mut ctrl, mut odd) = (Vec::new(), Vec::new(), Vec::new());
     for part in &s.parts {
         match part {
-            crate::import::svg::Part::Loop(l) => {
+            crate::import::svg::SvgPart::Loop(l) => {
                 let n = l.pts.len();
                 let mut cs = Vec::with_capacity(n);
                 for (i, seg) in l.segs.iter().enumerate() {
@@ -92,8 +92,8 @@ fn shape_flat(s: &Shape) -> Option<Figure> {
                     ctrl.push(cs);
                 }
             }
-            Part::Ellipse(e) => odd.push(Figure::Ellipse(*e)),
-            Part::Stroke(st) => odd.extend(stroke_figure(st)),
+            SvgPart::Ellipse(e) => odd.push(Figure::Ellipse(*e)),
+            SvgPart::Stroke(st) => odd.extend(stroke_figure(st)),
         }
     }
     let mut parts: Vec<Figure> = Vec::new();
@@ -110,13 +110,13 @@ fn shape_flat(s: &Shape) -> Option<Figure> {
 }
 
 /// A stroke's exact region: the union of its pieces.
-pub fn stroke_figure(st: &Stroke) -> Option<Figure> {
+pub fn stroke_figure(st: &SvgStroke) -> Option<Figure> {
     let mut out: Vec<Figure> = st
         .pieces()
         .into_iter()
         .map(|p| match p {
-            Piece::Polygon(v) => Figure::Polygon(Outlines::polygons(vec![v])),
-            Piece::Disc(c, r) => Figure::disc(c, r),
+            SvgPiece::Polygon(v) => Figure::Polygon(Outlines::polygons(vec![v])),
+            SvgPiece::Disc(c, r) => Figure::disc(c, r),
         })
         .collect();
     match out.len() {
@@ -129,7 +129,7 @@ pub fn stroke_figure(st: &Stroke) -> Option<Figure> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::import::svg::{Cap, Join};
+    use crate::import::svg::{Cap, SvgJoin};
 
     /// Whether `p` is in the tree (the ops' meanings, point by point).
     fn inside(f: &Figure, p: DVec2) -> bool {
@@ -149,8 +149,8 @@ mod tests {
         }
     }
 
-    fn stroke(pts: &[(f64, f64)], cap: Cap, join: Join) -> Figure {
-        stroke_figure(&Stroke {
+    fn stroke(pts: &[(f64, f64)], cap: Cap, join: SvgJoin) -> Figure {
+        stroke_figure(&SvgStroke {
             pts: pts.iter().map(|&(x, y)| DVec2::new(x, y)).collect(),
             width: 2.0,
             cap,
@@ -166,7 +166,7 @@ mod tests {
         let f = stroke(
             &[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)],
             Cap::Square,
-            Join::Miter,
+            SvgJoin::Miter,
         );
         for (p, want) in [
             ((10.9, -0.9), true),
@@ -183,7 +183,7 @@ mod tests {
         let f = stroke(
             &[(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)],
             Cap::Butt,
-            Join::Round,
+            SvgJoin::Round,
         );
         assert!(!inside(&f, DVec2::new(-0.1, 0.0)));
         assert!(!inside(&f, DVec2::new(10.8, -0.8)));
@@ -198,7 +198,7 @@ mod tests {
         let f = stroke(
             &[(-10.0, 0.0), (0.0, 0.0), (10.0 * a.cos(), 10.0 * a.sin())],
             Cap::Butt,
-            Join::Miter,
+            SvgJoin::Miter,
         );
         // The bisector of the outer normals points along −(t1 − t2).
         let t1 = DVec2::X;

@@ -18,14 +18,14 @@
 use crate::math::poly;
 
 /// Coefficients up to degree 4, lowest first.
-type Poly = [f64; 5];
+type Quartic = [f64; 5];
 use smallvec::SmallVec;
 
 /// A polynomial of degree ≤ 4, `c[0] + c[1]·t + …`, kept at a fixed degree
 /// (a quadratic evaluates as `(c₂t + c₁)t + c₀` whatever its coefficients).
 #[derive(Clone, Copy, Debug)]
 pub struct Pol {
-    pub c: Poly,
+    pub c: Quartic,
     pub deg: usize,
 }
 
@@ -137,7 +137,7 @@ impl Pol {
     }
 
     /// The coefficients of p(m + x) in x (a Taylor shift).
-    fn shifted(&self, m: f64) -> Poly {
+    fn shifted(&self, m: f64) -> Quartic {
         let mut b = self.c;
         for i in 0..self.deg {
             for j in (i..self.deg).rev() {

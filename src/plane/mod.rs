@@ -278,7 +278,7 @@ pub struct Region {
     pub normals: Vec<DVec2>,
     pub lo: DVec2,
     pub hi: DVec2,
-    /// Above [`FLAT_EDGES`] edges, the tree over them.
+    /// Above [`SCAN_EDGES`] edges, the tree over them.
     pub tree: Option<EdgeTree>,
 }
 
@@ -290,7 +290,7 @@ impl Region {
         let ((x0, x1), (y0, y1)) = (outlines.extent(DVec2::X), outlines.extent(DVec2::Y));
         let (lo, hi) = (DVec2::new(x0, y0), DVec2::new(x1, y1));
         let size = lo.abs().max(hi.abs()).max_element().max(1e-300);
-        let tree = (edges.len() > FLAT_EDGES).then(|| {
+        let tree = (edges.len() > SCAN_EDGES).then(|| {
             let boxes: Vec<(DVec2, DVec2)> = edges
                 .iter()
                 .zip(&ctrl)
@@ -447,7 +447,7 @@ impl Region {
 pub type Cuts = smallvec::SmallVec<[(f64, u32); 16]>;
 
 /// The most edges a region checks one by one; above, an [`EdgeTree`].
-pub const FLAT_EDGES: usize = 32;
+pub const SCAN_EDGES: usize = 32;
 
 /// A bounding-box tree over a region's edges (the box of a curve is that
 /// of its control points, which hold it) or any boxes (a shadow's

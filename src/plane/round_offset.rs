@@ -34,7 +34,7 @@ use glam::{DVec2, DVec3};
 use smallvec::SmallVec;
 
 /// Edges checked one by one below this many; above, a box tree.
-const FLAT_EDGES: usize = 16;
+const OFFSET_SCAN_EDGES: usize = 16;
 
 /// A region offset with round joins (see the module's text).
 #[derive(Clone, Debug, PartialEq)]
@@ -73,7 +73,7 @@ impl RoundOffset {
                 (lo - DVec2::splat(pad), hi + DVec2::splat(pad))
             })
             .collect();
-        let tree = (boxes.len() > FLAT_EDGES).then(|| EdgeTree::new(&boxes));
+        let tree = (boxes.len() > OFFSET_SCAN_EDGES).then(|| EdgeTree::new(&boxes));
         // Grown, the extent moves out by exactly r; shrunk, it is within R's.
         let (lo, hi) = if r > 0.0 {
             (region.lo - DVec2::splat(k), region.hi + DVec2::splat(k))

@@ -168,22 +168,22 @@ pub fn sites(f: &Figure, out: &mut Vec<Site>) -> bool {
 
 /// A piece of a boundary: a straight edge, or a whole circle.
 #[derive(Clone, Copy)]
-enum Piece {
+enum SitePiece {
     Edge(DVec2, DVec2),
     Circle(DVec2, f64),
 }
 
 /// The edges and circles of the leaves of `f`; false for any other leaf.
-fn pieces(f: &Figure, out: &mut Vec<Piece>) -> bool {
+fn pieces(f: &Figure, out: &mut Vec<SitePiece>) -> bool {
     match f {
         Figure::Ellipse(e) if is_circle(e.matrix2) => {
-            out.push(Piece::Circle(e.translation, e.matrix2.x_axis.length()));
+            out.push(SitePiece::Circle(e.translation, e.matrix2.x_axis.length()));
             true
         }
         Figure::Polygon(o) if !o.curved() => {
             for l in &o.loops {
                 for (i, &a) in l.iter().enumerate() {
-                    out.push(Piece::Edge(a, l[(i + 1) % l.len()]));
+                    out.push(SitePiece::Edge(a, l[(i + 1) % l.len()]));
                 }
             }
             true
@@ -350,7 +350,7 @@ pub fn strokes(f: &Figure) -> Option<(Vec<Stroke>, f64)> {
     let mut out = Vec::new();
     for (i, &piece) in all.iter().enumerate() {
         match piece {
-            Piece::Edge(..) => {
+            SitePiece::Edge(..) => {
                 for (p, q, left) in kept_edges(f, &all, i, eps) {
                     out.push(if left {
                         Stroke::Line(p, q)
@@ -359,19 +359,19 @@ pub fn strokes(f: &Figure) -> Option<(Vec<Stroke>, f64)> {
                     });
                 }
             }
-            Piece::Circle(c, r) => {
+            SitePiece::Circle(c, r) => {
                 let mut cuts = Vec::new();
                 for (j, &other) in all.iter().enumerate() {
                     if j == i {
                         continue;
                     }
                     let hits: Vec<DVec2> = match other {
-                        Piece::Edge(p, q) => line_circle(p, q, c, r)
+                        SitePiece::Edge(p, q) => line_circle(p, q, c, r)
                             .into_iter()
                             .filter(|u| (0.0..=1.0).contains(u))
                             .map(|u| p + (q - p) * u)
                             .collect(),
-                        Piece::Circle(c2, r2) => circle_circle(c, r, c2, r2),
+                        SitePiece::Circle(c2, r2) => circle_circle(c, r, c2, r2),
                     };
                     cuts.extend(hits.iter().map(|h| (h.y - c.y).atan2(h.x - c.x)));
                 }
@@ -443,7 +443,7 @@ pub fn strokes(f: &Figure) -> Option<(Vec<Stroke>, f64)> {
 /// Where the edge a → b (piece i of `all`) crosses the other pieces, and
 /// where the ends of an edge along its line (within `eps`) lie, as sorted
 /// parameters in [0, 1] with both ends.
-fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> {
+fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[SitePiece], eps: f64) -> Vec<f64> {
     let d = b - a;
     let mut cuts = vec![0.0, 1.0];
     for (j, &other) in all.iter().enumerate() {
@@ -451,7 +451,7 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> 
             continue;
         }
         match other {
-            Piece::Edge(p, q) => {
+            SitePiece::Edge(p, q) => {
                 let e = q - p;
                 let den = d.perp_dot(e);
                 if den.abs() <= 1e-12 * d.length() * e.length() {
@@ -472,7 +472,7 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> 
                     }
                 }
             }
-            Piece::Circle(c, r) => cuts.extend(line_circle(a, b, c, r)),
+            SitePiece::Circle(c, r) => cuts.extend(line_circle(a, b, c, r)),
         }
     }
     cuts.retain(|u| (0.0..=1.0).contains(u));
@@ -484,8 +484,8 @@ fn edge_cuts(i: usize, a: DVec2, b: DVec2, all: &[Piece], eps: f64) -> Vec<f64> 
 /// boundary of `f` — the shape on one side and not the other, tested `eps`
 /// off each stretch's middle — as (start, end, whether the shape is on
 /// the left).
-fn kept_edges(f: &Figure, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec2, bool)> {
-    let Piece::Edge(a, b) = all[i] else {
+fn kept_edges(f: &Figure, all: &[SitePiece], i: usize, eps: f64) -> Vec<(DVec2, DVec2, bool)> {
+    let SitePiece::Edge(a, b) = all[i] else {
         return Vec::new();
     };
     let d = b - a;
@@ -510,14 +510,14 @@ fn kept_edges(f: &Figure, all: &[Piece], i: usize, eps: f64) -> Vec<(DVec2, DVec
 /// The pieces of `f`'s leaves, and how far off a piece its sides are
 /// tested (10⁻⁹ of the largest coordinate, a circle's reach); `None` for
 /// another leaf or past [`MAX_PIECES`].
-fn read(f: &Figure) -> Option<(Vec<Piece>, f64)> {
+fn read(f: &Figure) -> Option<(Vec<SitePiece>, f64)> {
     let mut all = Vec::new();
     if !pieces(f, &mut all) || all.len() > MAX_PIECES {
         return None;
     }
     let size = all.iter().fold(0.0f64, |s, p| match *p {
-        Piece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
-        Piece::Circle(c, r) => s.max(c.abs().max_element() + r),
+        SitePiece::Edge(a, b) => s.max(a.abs().max_element()).max(b.abs().max_element()),
+        SitePiece::Circle(c, r) => s.max(c.abs().max_element() + r),
     });
     Some((all, 1e-9 * size))
 }
@@ -530,7 +530,7 @@ fn read(f: &Figure) -> Option<(Vec<Piece>, f64)> {
 /// not close into loops.
 pub fn outline(f: &Figure) -> Option<crate::plane::Outlines> {
     let (all, tol) = read(f)?;
-    if all.iter().any(|p| matches!(p, Piece::Circle(..))) {
+    if all.iter().any(|p| matches!(p, SitePiece::Circle(..))) {
         return None;
     }
     let mut segs: Vec<(DVec2, DVec2)> = Vec::new();

@@ -40,12 +40,12 @@ fn octahedron() -> Shape {
 /// hull() of two balls (a tapered capsule) and minkowski() of a cube
 /// and a ball (a rounded box), within the unit box.
 fn hull_and_sum() -> [Shape; 2] {
-    use csgrt::geometry::convex::{Convex, Part};
-    let ball = |c: DVec3, r: f64| Part {
+    use csgrt::geometry::convex::{Convex, ConvexPart};
+    let ball = |c: DVec3, r: f64| ConvexPart {
         shape: Shape::Sphere(Sphere),
         to_world: DAffine3::from_scale_rotation_translation(DVec3::splat(r), DQuat::IDENTITY, c),
     };
-    let cube = Part {
+    let cube = ConvexPart {
         shape: Shape::Cuboid(Cuboid { centered: true }),
         to_world: DAffine3::from_scale(DVec3::new(1.2, 0.8, 0.6)),
     };
@@ -142,7 +142,7 @@ proptest! {
 /// A twisted or unevenly scaled extrusion: an ellipse anywhere in the
 /// plane, or the L region of `tests/it/common`.
 fn twisted_shape() -> impl Strategy<Value = Shape> {
-    use csgrt::geometry::{Section, Twisted};
+    use csgrt::geometry::{TwistSection, Twisted};
     let ellipse = (
         prop::array::uniform4(-1.0..1.0f64),
         prop::array::uniform2(-1.0..1.0f64),
@@ -154,7 +154,7 @@ fn twisted_shape() -> impl Strategy<Value = Shape> {
             let m = glam::DMat2::from_cols_array(&m);
             (m.determinant().abs() > 0.05).then(|| {
                 Shape::Twisted(Twisted {
-                    section: Section::Ellipse(glam::DAffine2::from_mat2_translation(
+                    section: TwistSection::Ellipse(glam::DAffine2::from_mat2_translation(
                         m,
                         glam::DVec2::from(c),
                     )),

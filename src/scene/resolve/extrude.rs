@@ -19,7 +19,7 @@ use super::transforms::{basis_from_z, sin_cos_deg};
 use super::Resolver;
 use crate::error::Result;
 use crate::geometry::{
-    Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Section, Shape, Sphere, Torus, Twisted,
+    Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Shape, Sphere, Torus, TwistSection, Twisted,
 };
 use crate::math::boolean::Op;
 use crate::plane::figure::{clip_right, is_circle, Figure};
@@ -89,7 +89,7 @@ impl Resolver<'_> {
                         "csgrt twists polygons, circles and ellipses",
                     ));
                 }
-                let section = Section::Region(Arc::new(Region::new(o.clone())));
+                let section = TwistSection::Region(Arc::new(Region::new(o.clone())));
                 self.twisted(s, section, xf * local, mat, sweep)
             }
             // A circle about the axis is the same circle turned: only an
@@ -103,7 +103,7 @@ impl Resolver<'_> {
                 if e.matrix2.determinant().is_nan() || e.matrix2.determinant() == 0.0 {
                     return Ok(self.flattened(s));
                 }
-                self.twisted(s, Section::Ellipse(*e), xf * local, mat, sweep)
+                self.twisted(s, TwistSection::Ellipse(*e), xf * local, mat, sweep)
             }
             Figure::Ellipse(e) => {
                 // The cone over the ellipse with its apex where s(z) = 0:
@@ -209,7 +209,7 @@ impl Resolver<'_> {
     fn twisted(
         &mut self,
         s: &Statement,
-        section: Section,
+        section: TwistSection,
         world: DAffine3,
         mat: Material,
         sweep: Sweep,

@@ -17,7 +17,7 @@
 use super::Resolver;
 use crate::csg::{Mark, NodeKind};
 use crate::error::Result;
-use crate::geometry::convex::{Convex, Part};
+use crate::geometry::convex::{Convex, ConvexPart};
 use crate::geometry::solid::Solid;
 use crate::geometry::{Mesh, Rounded, Shape};
 use crate::math::boolean::Op;
@@ -29,7 +29,7 @@ use glam::{DAffine3, DVec3};
 pub const MAX_PARTS: usize = 10_000;
 
 /// A sum of hulls.
-type Sum = Vec<Vec<Part>>;
+type Sum = Vec<Vec<ConvexPart>>;
 
 impl Resolver<'_> {
     /// The error for what a hull or sum cannot be made of.
@@ -56,7 +56,7 @@ impl Resolver<'_> {
 
     /// The leaves of `node`'s unions as parts placed in the world (a
     /// nested hull's own parts), or what stands in the way.
-    fn parts_of(&self, node: u32, out: &mut Vec<Part>) -> std::result::Result<(), String> {
+    fn parts_of(&self, node: u32, out: &mut Vec<ConvexPart>) -> std::result::Result<(), String> {
         let mut leaves = Vec::new();
         self.union_leaves(node, &mut leaves)?;
         for i in leaves {
@@ -69,7 +69,7 @@ impl Resolver<'_> {
             }
             match hulls_of(&prim.shape) {
                 Some([one]) => out.extend(placed(one, prim.xf.to_world)),
-                _ => out.push(Part {
+                _ => out.push(ConvexPart {
                     shape: prim.shape.clone(),
                     to_world: prim.xf.to_world,
                 }),
@@ -91,7 +91,7 @@ impl Resolver<'_> {
             let m = prim.xf.to_world;
             match hulls_of(&prim.shape) {
                 Some(hulls) => out.push(hulls.iter().map(|h| placed(h, m).collect()).collect()),
-                None if is_convex(&prim.shape) => out.push(vec![vec![Part {
+                None if is_convex(&prim.shape) => out.push(vec![vec![ConvexPart {
                     shape: prim.shape.clone(),
                     to_world: m,
                 }]]),
@@ -269,7 +269,7 @@ impl Resolver<'_> {
             let mut leaves = Vec::new();
             self.union_leaves(node, &mut leaves)?;
             let prim = &self.b.csg.prims[leaves[0] as usize];
-            let part = Part {
+            let part = ConvexPart {
                 shape: prim.shape.clone(),
                 to_world: prim.xf.to_world,
             };
@@ -341,7 +341,7 @@ enum Summed {
 }
 
 /// The hulls a hull or sum already made is the sum of.
-fn hulls_of(shape: &Shape) -> Option<&[Vec<Part>]> {
+fn hulls_of(shape: &Shape) -> Option<&[Vec<ConvexPart>]> {
     match shape {
         Shape::Convex(Convex { hulls, .. }) => Some(hulls),
         Shape::Rounded(Rounded { hulls, .. }) if !hulls.is_empty() => Some(hulls),
@@ -350,8 +350,8 @@ fn hulls_of(shape: &Shape) -> Option<&[Vec<Part>]> {
 }
 
 /// Parts placed once more, by `m`.
-fn placed(parts: &[Part], m: DAffine3) -> impl Iterator<Item = Part> + '_ {
-    parts.iter().map(move |p| Part {
+fn placed(parts: &[ConvexPart], m: DAffine3) -> impl Iterator<Item = ConvexPart> + '_ {
+    parts.iter().map(move |p| ConvexPart {
         shape: p.shape.clone(),
         to_world: m * p.to_world,
     })

@@ -158,7 +158,7 @@ pub fn l_prism(top: f64) -> csgrt::geometry::Shape {
 /// top (OpenSCAD's twisted or unevenly scaled linear_extrude).
 pub fn l_twisted(twist: f64, scale: glam::DVec2) -> csgrt::geometry::Shape {
     csgrt::geometry::Shape::Twisted(csgrt::geometry::Twisted {
-        section: csgrt::geometry::Section::Region(std::sync::Arc::new(l_region())),
+        section: csgrt::geometry::TwistSection::Region(std::sync::Arc::new(l_region())),
         twist,
         scale,
         centered: twist < 0.0,
