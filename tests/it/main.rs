@@ -11,6 +11,7 @@ mod docs;
 mod facets;
 mod formats;
 mod fuzz_corpus;
+mod layers;
 mod limits;
 mod meshes;
 mod openscad;
