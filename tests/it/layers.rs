@@ -76,8 +76,8 @@ fn code_only(text: &str) -> String {
             '\'' => {
                 // A char literal ('x', '\n', '"') or a lifetime ('a).
                 let rest: String = chars.clone().take(4).collect();
-                let lit = if rest.starts_with('\\') {
-                    rest[1..].find('\'').map(|i| i + 2)
+                let lit = if let Some(esc) = rest.strip_prefix('\\') {
+                    esc.find('\'').map(|i| i + 2)
                 } else {
                     rest.char_indices()
                         .nth(1)
