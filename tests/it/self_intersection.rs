@@ -9,54 +9,7 @@ use csgrt::stats::Stats;
 use glam::{DAffine3, DQuat, DVec3};
 use proptest::prelude::*;
 
-use crate::common;
-
-/// A convex mesh: the octahedron of the unit axis points.
-fn octahedron() -> Shape {
-    use csgrt::geometry::mesh::{Mesh, MeshData};
-    let v = [
-        DVec3::X,
-        DVec3::NEG_X,
-        DVec3::Y,
-        DVec3::NEG_Y,
-        DVec3::Z,
-        DVec3::NEG_Z,
-    ];
-    let t = [
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
-    Shape::Mesh(Mesh {
-        data: std::sync::Arc::new(MeshData::new(v.to_vec(), t.to_vec())),
-    })
-}
-
-/// hull() of two balls (a tapered capsule) and minkowski() of a cube
-/// and a ball (a rounded box), within the unit box.
-fn hull_and_sum() -> [Shape; 2] {
-    use csgrt::geometry::convex::{Convex, ConvexPart};
-    let ball = |c: DVec3, r: f64| ConvexPart {
-        shape: Shape::Sphere(Sphere),
-        to_world: DAffine3::from_scale_rotation_translation(DVec3::splat(r), DQuat::IDENTITY, c),
-    };
-    let cube = ConvexPart {
-        shape: Shape::Cuboid(Cuboid { centered: true }),
-        to_world: DAffine3::from_scale(DVec3::new(1.2, 0.8, 0.6)),
-    };
-    [
-        Shape::Convex(Convex::new(vec![vec![
-            ball(DVec3::new(-0.5, 0.0, 0.0), 0.5),
-            ball(DVec3::new(0.8, 0.1, 0.0), 0.2),
-        ]])),
-        Shape::Convex(Convex::new(vec![vec![cube], vec![ball(DVec3::ZERO, 0.3)]])),
-    ]
-}
+use crate::common::{self, hull_and_sum, octahedron};
 
 fn convex_shape() -> impl Strategy<Value = Shape> {
     let [hull, sum] = hull_and_sum();

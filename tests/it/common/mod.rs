@@ -249,3 +249,104 @@ pub fn l_offset(r: f64) -> csgrt::geometry::Shape {
         centered: false,
     })
 }
+
+use csgrt::geometry::{Cuboid, Shape, Sphere};
+use glam::{DAffine3, DQuat, DVec3};
+
+/// A convex mesh: the octahedron of the unit axis points.
+pub fn octahedron() -> Shape {
+    use csgrt::geometry::mesh::{Mesh, MeshData};
+    let v = [
+        DVec3::X,
+        DVec3::NEG_X,
+        DVec3::Y,
+        DVec3::NEG_Y,
+        DVec3::Z,
+        DVec3::NEG_Z,
+    ];
+    let t = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    Shape::Mesh(Mesh {
+        data: std::sync::Arc::new(MeshData::new(v.to_vec(), t.to_vec())),
+    })
+}
+
+/// hull() of two balls (a tapered capsule) and minkowski() of a cube
+/// and a ball (a rounded box), within the unit box.
+pub fn hull_and_sum() -> [Shape; 2] {
+    use csgrt::geometry::convex::{Convex, ConvexPart};
+    let ball = |c: DVec3, r: f64| ConvexPart {
+        shape: Shape::Sphere(Sphere),
+        to_world: DAffine3::from_scale_rotation_translation(DVec3::splat(r), DQuat::IDENTITY, c),
+    };
+    let cube = ConvexPart {
+        shape: Shape::Cuboid(Cuboid { centered: true }),
+        to_world: DAffine3::from_scale(DVec3::new(1.2, 0.8, 0.6)),
+    };
+    [
+        Shape::Convex(Convex::new(vec![vec![
+            ball(DVec3::new(-0.5, 0.0, 0.0), 0.5),
+            ball(DVec3::new(0.8, 0.1, 0.0), 0.2),
+        ]])),
+        Shape::Convex(Convex::new(vec![vec![cube], vec![ball(DVec3::ZERO, 0.3)]])),
+    ]
+}
+
+/// minkowski() of a box and a ball written out as exact pieces (a mesh,
+/// cylinders and balls: `geometry::ball_sum`), its support from the sum's
+/// hulls.
+pub fn rounded_box() -> Shape {
+    use csgrt::geometry::convex::ConvexPart;
+    let half = DVec3::new(0.6, 0.4, 0.3);
+    let r = 0.25;
+    let mut corners = Vec::new();
+    for i in 0..8 {
+        let s = |k: usize| if i & (1 << k) == 0 { -1.0 } else { 1.0 };
+        corners.push(half * DVec3::new(s(0), s(1), s(2)));
+    }
+    let pieces = csgrt::geometry::ball_sum::pieces(&corners, r).expect("a box rounds");
+    let hulls = vec![
+        vec![ConvexPart {
+            shape: Shape::Cuboid(Cuboid { centered: true }),
+            to_world: DAffine3::from_scale(half),
+        }],
+        vec![ConvexPart {
+            shape: Shape::Sphere(Sphere),
+            to_world: DAffine3::from_scale_rotation_translation(
+                DVec3::splat(r),
+                DQuat::IDENTITY,
+                DVec3::ZERO,
+            ),
+        }],
+    ];
+    Shape::Rounded(csgrt::geometry::Rounded::new(pieces.parts, hulls).expect("placed"))
+}
+
+/// The shadow (`projection(cut = false)`) of the L of [`l_prism`] without
+/// its hole, as a soup of triangles, swept from z = 0 to 1.
+pub fn l_shadow() -> Shape {
+    use csgrt::geometry::shadow::{Shadow, Soup};
+    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
+    let pts = vec![
+        p(0.0, 0.0),
+        p(2.0, 0.0),
+        p(2.0, 1.0),
+        p(1.0, 1.0),
+        p(1.0, 2.0),
+        p(0.0, 2.0),
+    ];
+    // Overlapping triangles, as a solid's faces project: the lower bar
+    // twice, the upright once.
+    let tris = vec![[0, 1, 2], [0, 2, 3], [0, 1, 3], [0, 3, 4], [0, 4, 5]];
+    Shape::Shadow(Shadow {
+        soup: std::sync::Arc::new(Soup::new(pts, tris).expect("a soup")),
+    })
+}
