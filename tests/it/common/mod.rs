@@ -350,3 +350,112 @@ pub fn l_shadow() -> Shape {
         soup: std::sync::Arc::new(Soup::new(pts, tris).expect("a soup")),
     })
 }
+
+/// Whether p is in the figure, read here (even-odd crossings of straight
+/// loops, the unit disc's image, the set operations) and not by the
+/// kernel's own inside tests.
+pub fn figure_contains(f: &csgrt::plane::figure::Figure, p: glam::DVec2) -> bool {
+    use csgrt::math::boolean::Op;
+    use csgrt::plane::figure::Figure;
+    match f {
+        Figure::Polygon(o) => {
+            assert!(!o.curved(), "a curved outline");
+            even_odd(&o.loops, p)
+        }
+        Figure::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
+        Figure::Op(op, kids) => {
+            let mut inside = kids.iter().map(|k| figure_contains(k, p));
+            match op {
+                Op::Union => inside.any(|x| x),
+                Op::Intersection => inside.all(|x| x),
+                Op::Difference => inside.next().unwrap_or(false) && !inside.any(|x| x),
+                Op::Xor => inside.filter(|&x| x).count() % 2 == 1,
+            }
+        }
+        other => panic!("a figure leaf this reader does not know: {other:?}"),
+    }
+}
+
+/// Even-odd: p is inside when a ray to +x crosses the loops' edges an odd
+/// number of times.
+pub fn even_odd(loops: &[Vec<glam::DVec2>], p: glam::DVec2) -> bool {
+    let mut odd = false;
+    for l in loops {
+        for i in 0..l.len() {
+            let (a, b) = (l[i], l[(i + 1) % l.len()]);
+            if (a.y > p.y) != (b.y > p.y) {
+                let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
+                if x > p.x {
+                    odd = !odd;
+                }
+            }
+        }
+    }
+    odd
+}
+
+/// Compares `got` (inside or not) with `want`, a signed distance to the
+/// true boundary (negative inside), at 40,000 points spread evenly across
+/// `lo..hi` (a Halton sequence: no row or column for a thin error to slip
+/// between); points within `margin` of the boundary are skipped. Returns
+/// how many points were compared.
+pub fn agree_on_grid(
+    what: &str,
+    lo: glam::DVec2,
+    hi: glam::DVec2,
+    margin: f64,
+    got: impl Fn(glam::DVec2) -> bool,
+    want: impl Fn(glam::DVec2) -> f64,
+) -> usize {
+    fn halton(mut i: u32, base: u32) -> f64 {
+        let (mut f, mut r) = (1.0, 0.0);
+        while i > 0 {
+            f /= base as f64;
+            r += f * (i % base) as f64;
+            i /= base;
+        }
+        r
+    }
+    let mut compared = 0;
+    for i in 1..=40_000 {
+        let p = lo + (hi - lo) * glam::DVec2::new(halton(i, 2), halton(i, 3));
+        let d = want(p);
+        if d.abs() <= margin {
+            continue;
+        }
+        compared += 1;
+        assert_eq!(
+            got(p),
+            d < 0.0,
+            "{what}: at {p:?}, {} the boundary by {}",
+            if d < 0.0 { "inside" } else { "outside" },
+            d.abs()
+        );
+    }
+    compared
+}
+
+/// The signed distance from p to the box lo..hi (negative inside).
+pub fn box_distance(p: glam::DVec2, lo: glam::DVec2, hi: glam::DVec2) -> f64 {
+    let c = (lo + hi) * 0.5;
+    let h = (hi - lo) * 0.5;
+    let q = (p - c).abs() - h;
+    q.max(glam::DVec2::ZERO).length() + q.x.max(q.y).min(0.0)
+}
+
+/// A figure of one straight loop.
+pub fn polygon(pts: &[(f64, f64)]) -> csgrt::plane::figure::Figure {
+    csgrt::plane::figure::Figure::Polygon(csgrt::plane::Outlines::polygons(vec![pts
+        .iter()
+        .map(|&(x, y)| glam::DVec2::new(x, y))
+        .collect()]))
+}
+
+/// How far off the boundary `p·u − h(u)`, maximised over 3600 directions
+/// u, may be for the grids of the hull tests (points and sets within 5 of
+/// the origin): the best sampled direction is within π/3600 of the
+/// normal, and tilting u by δ changes (p − v)·u by at most |p − v|·δ for
+/// the set's farthest point v, so 10·π/3600 ≈ 0.0087.
+pub fn support_margin() -> f64 {
+    10.0 * std::f64::consts::PI / 3600.0
+}
