@@ -115,7 +115,8 @@ fn the_hull_of_a_box_and_a_disc() {
     assert!(sites(&f, &mut found));
     let (poly, on) = arc_hull(&found).expect("a hull with area");
     let inside = |p: DVec2| {
-        even_odd(&[poly.clone()], p) || on.iter().any(|&i| (p - found[i].c).length() <= found[i].r)
+        even_odd(std::slice::from_ref(&poly), p)
+            || on.iter().any(|&i| (p - found[i].c).length() <= found[i].r)
     };
     let corners = [v(0.0, 0.0), v(2.0, 0.0), v(2.0, 1.0), v(0.0, 1.0)];
     let dirs: Vec<DVec2> = (0..3600)
