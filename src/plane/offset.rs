@@ -28,7 +28,7 @@
 //! intersection, either of a difference — is done on the loops of its
 //! boundary when it is made of straight polygons
 //! ([`super::sites::outline`]), and with circles too through the strokes
-//! of its boundary swept by the disc ([`around`]); ellipses and
+//! of its boundary swept by the disc (`around`); ellipses and
 //! self-crossing polygons, not yet.
 
 use super::figure::{is_circle, Figure};

@@ -194,7 +194,7 @@ fn pieces(f: &Figure, out: &mut Vec<SitePiece>) -> bool {
     }
 }
 
-/// Whether p is in `f` (made of [`pieces`]' leaves only).
+/// Whether p is in `f` (made of `pieces`' leaves only).
 pub fn inside(f: &Figure, p: DVec2) -> bool {
     match f {
         Figure::Ellipse(e) => e.inverse().transform_point2(p).length_squared() <= 1.0,
@@ -523,7 +523,7 @@ fn read(f: &Figure) -> Option<(Vec<SitePiece>, f64)> {
 }
 
 /// A combination of straight polygons as the loops of its boundary, each
-/// with the shape on its left: the kept pieces of [`boundary`]'s rule,
+/// with the shape on its left: the kept pieces of `boundary`'s rule,
 /// chained end to start (ends within 10⁻⁹ of the shape's size are one
 /// point), and runs along one line merged. `None` for a combination with a
 /// circle or another leaf, past [`MAX_PIECES`] edges, or whose pieces do
