@@ -86,7 +86,7 @@ KIND = {"plane/mod.rs": "region crossings", "poly.rs": "polynomial roots",
         "cone.rs": "cylinders and cones", "lathe.rs": "lathes", "prism.rs": "prisms",
         "torus.rs": "tori", "sphere.rs": "spheres", "cuboid.rs": "boxes",
         "mesh.rs": "meshes", "convex.rs": "hulls", "twist.rs": "twisted prisms",
-        "offset.rs": "offsets", "offset_prism.rs": "offset prisms", "robust.rs": "robust tests",
+        "round_offset.rs": "offsets", "offset_prism.rs": "offset prisms", "robust.rs": "robust tests",
         "halfspace.rs": "half-spaces", "rounded.rs": "rounded solids", "shape.rs": "dispatch",
         "solid.rs": "dispatch", "transform.rs": "transforms", "pencil.rs": "line families"}
 
