@@ -12,6 +12,7 @@ use super::{Resolver, GRID_FINE, MAX_FRAGMENTS};
 use crate::error::Result;
 use crate::geometry::triangulate::{cap, depths, signed_area};
 use crate::plane::figure::Figure;
+use crate::plane::Outlines;
 use crate::scene::args::Args;
 use crate::scene::Material;
 use crate::syntax::ast::Statement;
@@ -253,6 +254,18 @@ fn end_faces(loops: &[Vec<DVec2>], bases: &[usize], levels: &[usize], faces: &mu
             );
         }
     }
+}
+
+/// A regular polygon of `n` vertices on the circle of radius r, vertex i
+/// at 360°·i/n (OpenSCAD's circle and cylinder at an explicit small `$fn`).
+pub(super) fn regular_polygon(n: usize, r: f64) -> Outlines {
+    let pts = (0..n)
+        .map(|i| {
+            let (s, c) = facet_sin_cos(360.0 * i as f64 / n as f64);
+            DVec2::new(r * c, r * s)
+        })
+        .collect();
+    Outlines::polygons(vec![pts])
 }
 
 /// A twisted or unevenly scaled `linear_extrude` as OpenSCAD slices it.

@@ -7,7 +7,6 @@
 //! `difference`, offsets, hulls, sums, imported drawings and text. The
 //! extrusions ([`super::extrude`]) lift the tree into space.
 
-use super::transforms::facet_sin_cos;
 use super::Resolver;
 use crate::error::Result;
 use crate::import::dxf_figure;
@@ -22,36 +21,6 @@ use glam::{DAffine2, DVec2};
 
 /// The 2-D primitives.
 pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon", "text"];
-
-/// The arguments `import` takes (OpenSCAD's, and the `timestamp` its CSG
-/// export adds).
-pub(super) const IMPORT_PARAMS: &[&str] = &[
-    "file",
-    "layer",
-    "convexity",
-    "origin",
-    "scale",
-    "width",
-    "height",
-    "filename",
-    "layername",
-    "center",
-    "dpi",
-    "id",
-    "timestamp",
-];
-
-/// A regular polygon of `n` vertices on the circle of radius r, vertex i
-/// at 360°·i/n (OpenSCAD's circle and cylinder at an explicit small `$fn`).
-pub(super) fn regular_polygon(n: usize, r: f64) -> Outlines {
-    let pts = (0..n)
-        .map(|i| {
-            let (s, c) = facet_sin_cos(360.0 * i as f64 / n as f64);
-            DVec2::new(r * c, r * s)
-        })
-        .collect();
-    Outlines::polygons(vec![pts])
-}
 
 impl Resolver<'_> {
     /// A 2-D statement under the plane transform `m`; `None` when empty.
@@ -253,7 +222,7 @@ impl Resolver<'_> {
                     return Ok(None);
                 }
                 Ok(Some(match self.fragments(&a, r) {
-                    Some(n) => Figure::Polygon(moved(regular_polygon(n, r))),
+                    Some(n) => Figure::Polygon(moved(super::facet_mesh::regular_polygon(n, r))),
                     None => Figure::Ellipse(m * DAffine2::from_scale(DVec2::splat(r))),
                 }))
             }
@@ -441,7 +410,7 @@ impl Resolver<'_> {
 
     /// `import()` of a drawing (DXF or SVG), under `m`.
     pub(super) fn import(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
-        let a = Args::bind(self.src, s, IMPORT_PARAMS)?;
+        let a = Args::bind(self.src, s, super::solids::IMPORT_PARAMS)?;
         let (_, span, ext, path) = self.import_file(&a)?;
         if ext == "svg" {
             return self.import_svg(s, &a, span, &path, m);

@@ -1,6 +1,6 @@
 //! The solids: each statement's binder, from its arguments to a leaf.
 
-use super::planar::regular_polygon;
+use super::facet_mesh::regular_polygon;
 use super::transforms::basis_from_z;
 use super::Resolver;
 use crate::error::Result;
@@ -16,6 +16,24 @@ use glam::{DAffine3, DVec3};
 /// material: its leaf's id, or `None` when it is empty.
 pub(crate) type Binder =
     fn(&mut Resolver, &Statement, DAffine3, Material, usize) -> Result<Option<u32>>;
+
+/// The arguments `import` takes (OpenSCAD's, and the `timestamp` its CSG
+/// export adds).
+pub(super) const IMPORT_PARAMS: &[&str] = &[
+    "file",
+    "layer",
+    "convexity",
+    "origin",
+    "scale",
+    "width",
+    "height",
+    "filename",
+    "layername",
+    "center",
+    "dpi",
+    "id",
+    "timestamp",
+];
 
 /// Every OpenSCAD solid statement csgrt knows: its binder (arguments →
 /// a leaf, or empty), or `None` while it is not supported yet — an error at
@@ -382,7 +400,7 @@ fn import(
     mat: Material,
     _depth: usize,
 ) -> Result<Option<u32>> {
-    let a = Args::bind(res.src, s, super::planar::IMPORT_PARAMS)?;
+    let a = Args::bind(res.src, s, IMPORT_PARAMS)?;
     let (_, span, ext, path) = res.import_file(&a)?;
     if !crate::import::meshfile::FORMATS.contains(&ext.as_str()) {
         return res.slab(s, xf, mat);
