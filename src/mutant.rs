@@ -1,5 +1,5 @@
 //! Deliberately wrong builds, so that the oracle and the accuracy tool can
-//! show that they catch real faults (`tools/mutants.py`, run by `.ci/run`).
+//! show that they catch real faults (`tools/oracle/mutants.py`, run by `.ci/run`).
 //!
 //! Only a build with `--features mutants` has them; there
 //! `CSGRT_MUTANT=NAME` switches on the one fault NAME (see [`NAMES`]). In a

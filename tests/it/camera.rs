@@ -10,7 +10,7 @@
 //! Small balls are put at known points; each ball's blob in csgrt's hit
 //! mask must be centred where that pipeline projects the ball's centre.
 //! The same options were compared with OpenSCAD's own PNG export by
-//! `tools/openscad_view.py`.
+//! `tools/dev/openscad_view.py`.
 
 use crate::common;
 use crate::common::csgrt;

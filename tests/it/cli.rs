@@ -466,7 +466,7 @@ fn disabled_and_background_statements_are_left_out() {
 #[test]
 fn export_pov_writes_one_complete_file() {
     // What the SDL says is checked against the model by an independent
-    // reader of both (tools/pov_check.py, in .ci/run); here only the
+    // reader of both (tools/oracle/pov_check.py, in .ci/run); here only the
     // command's contract: status 0, the image and the export beside it,
     // a whole one.
     let (dir, _) = scene(

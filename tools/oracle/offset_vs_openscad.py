@@ -12,10 +12,10 @@ Usage: offset_vs_openscad.py FIRST_SEED COUNT [--dir DIR] [--csgrt BIN]
 Prints one line a scene and `bad N`; exit status 1 if any scene disagrees.
 """
 import sys, os, subprocess, random, math, tempfile, numpy as np
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import manifold3d as mf
-import scene
-BIN = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "target/release/csgrt")
+from tools.oracle import scene
+from tools import ROOT
+BIN = os.path.join(ROOT, "target/release/csgrt")
 def shape(rng, depth=0):
     k = rng.random()
     if depth < 2 and k < 0.35:

@@ -26,6 +26,7 @@ import tempfile
 
 import numpy as np
 from PIL import Image
+from tools import ROOT
 
 MODELS = {
     "boxes": """
@@ -84,8 +85,7 @@ def mixed(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    here = os.path.dirname(os.path.abspath(__file__))
-    ap.add_argument("--csgrt", default=os.path.join(here, "..", "target", "release", "csgrt"))
+    ap.add_argument("--csgrt", default=os.path.join(ROOT, "target", "release", "csgrt"))
     a = ap.parse_args()
     scad = openscad_cmd()
     bad = 0

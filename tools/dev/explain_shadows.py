@@ -16,7 +16,7 @@ import sys
 
 import mpmath as mp
 
-from accuracy import torus_crossings
+from tools.oracle.accuracy import torus_crossings
 
 
 def parse(path):

@@ -7,7 +7,7 @@ with a reader of its own (POV-Ray's meaning: objects are placed by
 last three numbers the translation; `rotate x*90` turns +y to +z; `plane
 { z, 0 }` is z <= 0; a box, sphere, cylinder, cone and torus their usual
 solids; union, intersection, difference with POV-Ray's first-minus-rest),
-reads the same scene with the oracle's own reader (tools/scene.py), and
+reads the same scene with the oracle's own reader (tools/oracle/scene.py), and
 compares:
 
 * the solid: inside or outside, at 4000 points of the scene's box (and a
@@ -35,8 +35,7 @@ import tempfile
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scene as reader  # noqa: E402
+from tools.oracle import scene as reader  # noqa: E402
 
 WIDTH, HEIGHT = 40, 30
 
@@ -332,7 +331,7 @@ def mesh_inside(leaf, q):
     p = leaf.params
     if len(p["faces"]) <= 64:
         return winding_inside(p["points"], p["faces"], q)
-    import oracle
+    from tools.oracle import oracle
 
     return segment_parity(oracle.polyhedron_solid(leaf), p["points"], q, np.array([0.5734621, 0.6143793, 0.5420587]))
 

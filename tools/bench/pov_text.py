@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A scene's text as POV-Ray's own `text` objects, for tools/bench.py.
+"""A scene's text as POV-Ray's own `text` objects, for tools/bench/bench.py.
 
 csgrt's --export-pov writes each glyph of an extruded text() as a POV-Ray
 `prism` of the glyph's curves. POV-Ray has its own construction for text,
@@ -7,13 +7,13 @@ csgrt's --export-pov writes each glyph of an extruded text() as a POV-Ray
 outlines itself; issue 14 asks for the speed of both. This tool rewrites an
 export: every `prism` is replaced by one single-character `text` object a
 glyph, from the same font file (fonts/), placed where OpenSCAD's layout puts
-the glyph — the layout is the oracle's (tools/scene.py: HarfBuzz and
+the glyph — the layout is the oracle's (tools/oracle/scene.py: HarfBuzz and
 fontTools, independent of csgrt). POV-Ray sets a one-character string with
 its left edge (the glyph's xMin) at x = 0 and one font unit 1/upem, so the
 object is scaled by the layout's scale times upem and moved by the glyph's
 shift plus its xMin.
 
-It reads only what tools/bench_scenes.py writes for text: top-level
+It reads only what tools/bench/bench_scenes.py writes for text: top-level
 statements `translate([x, y, z]) linear_extrude(height = h) text("...",
 size = s);`, besides any other solids (not text). Anything else that makes
 prisms stops it with a message, as does a glyph count that does not match
@@ -26,8 +26,7 @@ import os
 import re
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import scene  # noqa: E402
+from tools.oracle import scene  # noqa: E402
 
 STATEMENT = re.compile(
     r'^translate\(\[([^\]]*)\]\) linear_extrude\(height = ([^)]*)\) '

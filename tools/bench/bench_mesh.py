@@ -8,7 +8,7 @@ with a fixed camera. Then, on one core (the process and its children bound
 to it, csgrt --threads 1, Embree's own threads too):
 
 * primary rays: the same camera rays (pixel centres, csgrt's camera as
-  tools/oracle.py builds it) traced by csgrt (`--trace-rays`, its own
+  tools/oracle/oracle.py builds it) traced by csgrt (`--trace-rays`, its own
   trace-loop seconds) and by Embree (embreex: rtcIntersect1 per ray, the
   build timed apart; each program's first pass after its build, Embree's
   second pass reported too); the ratio, and the pixels whose hit or miss differ
@@ -39,10 +39,9 @@ import time
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import oracle  # noqa: E402
+from tools.oracle import oracle  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from tools import ROOT
 DIR = os.path.join(ROOT, "bench", "mesh")
 R = 20.0
 ROUNDS = 7
@@ -67,7 +66,7 @@ def generate(edge):
     rec = np.zeros(len(t), dtype=np.dtype([("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")]))
     rec["v"] = v[t]
     with open(stl, "wb") as fh:
-        fh.write(b"gyroid sheet in a ball, tools/bench_mesh.py".ljust(80, b" "))
+        fh.write(b"gyroid sheet in a ball, tools/bench/bench_mesh.py".ljust(80, b" "))
         fh.write(np.uint32(len(t)).tobytes())
         fh.write(rec.tobytes())
     with open(os.path.join(DIR, "gyroid.csg"), "w") as fh:

@@ -8,7 +8,7 @@ machine's speed falls on all of them alike, and writes a Markdown table:
 the median `render_seconds` (--stats-json) at each count, and each count's
 speed-up over one thread both from those medians and as the median of each
 round's own ratio. No peer is needed: this is the measure for a machine
-without POV-Ray (`tools/bench.py` times csgrt against POV-Ray, and on a
+without POV-Ray (`tools/bench/bench.py` times csgrt against POV-Ray, and on a
 shared machine its all-core figure drifts with whatever else runs).
 
 With --ceiling each round also starts as many one-thread renders at once

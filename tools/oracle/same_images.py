@@ -21,7 +21,7 @@ import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from tools import ROOT
 PATTERNS = ["models/*.csg", "models/*.ray", "tests/scenes/*.csg", "tests/openscad/*.csg", "bench/*.csg"]
 
 
@@ -62,7 +62,7 @@ def main():
             rows[rel] = fingerprint(a.csgrt, path, work)
     if a.write:
         with open(a.file, "w") as f:
-            f.write("# scene, sha256 of the PNG (160x120, --spp 2), sha256 of the counters; tools/same_images.py\n")
+            f.write("# scene, sha256 of the PNG (160x120, --spp 2), sha256 of the counters; tools/oracle/same_images.py\n")
             for rel, (img, cnt, _) in rows.items():
                 f.write(f"{rel} {img} {cnt}\n")
         print(f"{len(rows)} scenes written to {os.path.relpath(a.file, ROOT)}")

@@ -26,7 +26,7 @@ import statistics
 import subprocess
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from tools import ROOT
 HEAD = "camera(eye = [{e}], lookat = [0, 0, 0], fov = 35);\nambient_light(color = [0.2, 0.2, 0.2]);\ndirectional_light(color = [1, 1, 1], direction = [-1, -2, -3]);\n"
 # The rounded box: sides 2a x 2b x 2c rounded by r.
 A, B, C, R = 10.0, 7.0, 4.0, 2.0

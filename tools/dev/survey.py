@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How many of a folder's OpenSCAD models csgrt renders, and why the others stop.
 
-    tools/survey.py [--csgrt target/release/csgrt] [--out DIR] FOLDER...
+    tools/dev/survey.py [--csgrt target/release/csgrt] [--out DIR] FOLDER...
 
 Each `.scad` under the folders is exported by OpenSCAD (`openscad -o x.csg`,
 60 s at most); a file that exports nothing (a library of modules, an error

@@ -43,6 +43,7 @@ import os
 import re
 
 import numpy as np
+from tools import ROOT
 
 # --------------------------------------------------------------------------
 # Errors
@@ -1121,7 +1122,7 @@ def leaf_box(leaf):
 # glyphs, from the font files csgrt builds in (fonts/).
 # --------------------------------------------------------------------------
 
-FONT_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "fonts")
+FONT_DIR = os.path.join(ROOT, "fonts")
 FONT_FILES = {
     (False, False): "LiberationSans-Regular.ttf",
     (True, False): "LiberationSans-Bold.ttf",
@@ -1608,7 +1609,7 @@ def swept_pieces(f, join, d):
             reach = max(reach, max(float(np.linalg.norm(q - v)) for q in kites[-1][1][0]))
         if kites:
             # Marked with their reach: a flattened circle's last chord
-            # turns a kite's side about its corner (tools/oracle.py).
+            # turns a kite's side about its corner (tools/oracle/oracle.py).
             pieces.append(("op", "union", kites, ("kites", reach)))
     return ("op", "union" if d > 0 else "difference", pieces)
 

@@ -1,0 +1,1 @@
+"""Benchmarks against POV-Ray, Embree and manifold3d, and profiles."""
