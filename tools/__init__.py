@@ -3,7 +3,7 @@
     .venv/bin/python -m tools.oracle.oracle --check models/*.csg
 
 tools.oracle: the checks that read a model independently of csgrt's code
-(the reader scene.py, the oracle's meshes, exact crossings, POV-Ray's
+(the reader tools.oracle.scene, the oracle's meshes, exact crossings, POV-Ray's
 reading, the mutants, image fingerprints); tools.bench: benchmarks and
 profiles; tools.dev: a developer's aids (galleries, surveys, OpenSCAD's
 view, explaining shadow decisions).

@@ -7,7 +7,7 @@ csgrt's --export-pov writes each glyph of an extruded text() as a POV-Ray
 outlines itself; issue 14 asks for the speed of both. This tool rewrites an
 export: every `prism` is replaced by one single-character `text` object a
 glyph, from the same font file (fonts/), placed where OpenSCAD's layout puts
-the glyph — the layout is the oracle's (tools/oracle/scene.py: HarfBuzz and
+the glyph — the layout is the oracle's (tools/oracle/scene/: HarfBuzz and
 fontTools, independent of csgrt). POV-Ray sets a one-character string with
 its left edge (the glyph's xMin) at x = 0 and one font unit 1/upem, so the
 object is scaled by the layout's scale times upem and moved by the glyph's

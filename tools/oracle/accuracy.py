@@ -4,7 +4,7 @@
 For every primitive (sphere, cube, cylinder, cone, frustum, torus, and the
 extrusions: a straight, a tapered and a twisted prism of an L-shaped polygon,
 a glyph's prism — quadratic Bézier edges, the letter from the built-in font
-laid out by tools/oracle/scene.py — and an L profile turned), placed at
+laid out by tools/oracle/scene/ — and an L profile turned), placed at
 offsets 0, 1e3 and 1e6 from the origin and at sizes 1e-3, 1 and 1e3, rays of
 several kinds are traced by csgrt (--trace-rays) and by mpmath at 50 digits
 from the very same f64 inputs:

@@ -7,7 +7,7 @@ with a reader of its own (POV-Ray's meaning: objects are placed by
 last three numbers the translation; `rotate x*90` turns +y to +z; `plane
 { z, 0 }` is z <= 0; a box, sphere, cylinder, cone and torus their usual
 solids; union, intersection, difference with POV-Ray's first-minus-rest),
-reads the same scene with the oracle's own reader (tools/oracle/scene.py), and
+reads the same scene with the oracle's own reader (tools/oracle/scene/), and
 compares:
 
 * the solid: inside or outside, at 4000 points of the scene's box (and a
