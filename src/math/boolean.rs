@@ -42,7 +42,7 @@ impl Op {
 /// The combination of `parts` by `op` (`None` for empty operands, with
 /// OpenSCAD's meaning: an empty operand empties an intersection; a
 /// difference with an empty first operand is empty).
-pub fn combine<T>(
+pub fn combine_parts<T>(
     op: Op,
     parts: Vec<Option<T>>,
     mut wrap: impl FnMut(Op, Vec<T>) -> T,

@@ -6,7 +6,7 @@ use super::figure::{is_circle, Figure};
 use super::hull::{convex_polygon, hull_indices_2d};
 use super::offset::Join;
 use super::Outlines;
-use crate::math::boolean::{combine, Op};
+use crate::math::boolean::{combine_parts, Op};
 use glam::{DAffine2, DVec2};
 
 /// The most convex pieces a 2-D Minkowski sum is the union of, and the
@@ -68,7 +68,7 @@ pub fn minkowski(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
         .into_iter()
         .map(|(pts, r)| grown_polygon(&pts, r))
         .collect();
-    Ok(combine(Op::Union, parts, Figure::Op))
+    Ok(combine_parts(Op::Union, parts, Figure::Op))
 }
 
 /// A polygon A that is not convex plus a union of convex polygons: for
@@ -105,7 +105,7 @@ fn polygon_plus(a: &Figure, pieces: &[Vec<Piece2>]) -> Result<Option<Figure>, St
             }
         }
     }
-    Ok(combine(Op::Union, parts, Figure::Op))
+    Ok(combine_parts(Op::Union, parts, Figure::Op))
 }
 
 /// Every choice of one convex piece from each of `pieces`, summed onto
@@ -195,5 +195,5 @@ fn grown_polygon(corners: &[DVec2], r: f64) -> Option<Figure> {
         None
     };
     parts.extend(poly.map(|p| Some(Figure::Polygon(Outlines::polygons(vec![p])))));
-    combine(Op::Union, parts, Figure::Op)
+    combine_parts(Op::Union, parts, Figure::Op)
 }

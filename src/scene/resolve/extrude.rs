@@ -48,7 +48,7 @@ impl Resolver<'_> {
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let Some(f) = self.flat(s, DAffine2::IDENTITY, 0)? else {
+        let Some(f) = self.figure(s, DAffine2::IDENTITY, 0)? else {
             return Ok(None);
         };
         let h = if self.subtracted { 1.1 } else { 1.0 };
@@ -439,8 +439,8 @@ impl Resolver<'_> {
         depth: usize,
     ) -> Result<Option<Figure>> {
         match legacy {
-            Some(child) => self.flat(&child, DAffine2::IDENTITY, depth + 1),
-            None => self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth),
+            Some(child) => self.figure(&child, DAffine2::IDENTITY, depth + 1),
+            None => self.figure_children(s, Op::Union, DAffine2::IDENTITY, depth),
         }
     }
 

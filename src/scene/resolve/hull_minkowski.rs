@@ -165,7 +165,7 @@ impl Resolver<'_> {
         mat: Material,
         depth: usize,
     ) -> Result<Option<u32>> {
-        if super::resize::is_flat(s) {
+        if super::resize::is_planar(s) {
             return self.slab(s, xf, mat);
         }
         crate::scene::args::Args::bind(self.src, s, &[])?;
@@ -186,7 +186,7 @@ impl Resolver<'_> {
         mat: Material,
         depth: usize,
     ) -> Result<Option<u32>> {
-        if super::resize::is_flat(s) {
+        if super::resize::is_planar(s) {
             return self.slab(s, xf, mat);
         }
         crate::scene::args::Args::bind(self.src, s, &["convexity"])?;

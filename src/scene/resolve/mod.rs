@@ -299,7 +299,7 @@ impl Resolver<'_> {
     /// are solids.
     fn op(&mut self, op: Op, parts: Vec<Option<u32>>) -> Option<u32> {
         let csg = &mut self.b.csg;
-        crate::math::boolean::combine(op, parts, |op, ids| csg.add_op(op, ids))
+        crate::math::boolean::combine_parts(op, parts, |op, ids| csg.add_op(op, ids))
     }
 
     /// The error for a statement of [`solids::SOLIDS`] without a binder.

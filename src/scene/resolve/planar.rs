@@ -1,7 +1,7 @@
 //! OpenSCAD's 2-D statements read into figures.
 //!
 //! Below `linear_extrude` and `rotate_extrude` the statements live in the
-//! plane: [`Resolver::flat`] reads them into a [`Figure`] tree — polygons
+//! plane: [`Resolver::figure`] reads them into a [`Figure`] tree — polygons
 //! and ellipses (a circle under the plane's part of its transforms, see
 //! [`plane::from_space`]) combined by the 2-D `union`, `intersection` and
 //! `difference`, offsets, hulls, sums, imported drawings and text. The
@@ -10,7 +10,7 @@
 use super::Resolver;
 use crate::error::Result;
 use crate::import::dxf_figure;
-use crate::math::boolean::{combine, Op};
+use crate::math::boolean::{combine_parts, Op};
 use crate::plane::figure::{is_circle, Figure};
 use crate::plane::offset::Join;
 use crate::plane::sum;
@@ -24,7 +24,7 @@ pub(super) const SHAPES_2D: &[&str] = &["square", "circle", "polygon", "text"];
 
 impl Resolver<'_> {
     /// A 2-D statement under the plane transform `m`; `None` when empty.
-    pub(super) fn flat(
+    pub(super) fn figure(
         &mut self,
         s: &Statement,
         m: DAffine2,
@@ -36,7 +36,7 @@ impl Resolver<'_> {
         let name = s.name.as_str();
         if SHAPES_2D.contains(&name) {
             self.no_children(s)?;
-            return self.flat_shape(s, m);
+            return self.figure_shape(s, m);
         }
         if super::TRANSFORMS.contains(&name) {
             let local = self.transform(s)?;
@@ -48,7 +48,7 @@ impl Resolver<'_> {
                 );
                 return Ok(None);
             };
-            return self.flat_children(s, Op::Union, m * l2, depth);
+            return self.figure_children(s, Op::Union, m * l2, depth);
         }
         if name == "offset" {
             return self.offset(s, m, depth);
@@ -58,7 +58,7 @@ impl Resolver<'_> {
             return self.import(s, m);
         }
         if name == "resize" {
-            return self.resize_flat(s, m, depth);
+            return self.resize_figure(s, m, depth);
         }
         if name == "projection" {
             let a = Args::bind(self.src, s, &["cut", "convexity"])?;
@@ -74,7 +74,7 @@ impl Resolver<'_> {
             // An extrusion is one new solid: colours below it are dropped,
             // as in OpenSCAD; the arguments are still checked.
             self.appearance(s, crate::scene::defaults::MATERIAL)?;
-            return self.flat_children(s, Op::Union, m, depth);
+            return self.figure_children(s, Op::Union, m, depth);
         }
         if super::OPERATIONS.contains(&name) {
             let params: &'static [&'static str] = if name == "render" {
@@ -88,13 +88,13 @@ impl Resolver<'_> {
                 "difference" => Op::Difference,
                 _ => Op::Union,
             };
-            return self.flat_children(s, op, m, depth);
+            return self.figure_children(s, op, m, depth);
         }
         if name == "hull" {
             Args::bind(self.src, s, &[])?;
             let mut kids = Vec::new();
             for c in s.children.iter().filter(|c| !super::skipped(c)) {
-                kids.extend(self.flat(c, m, depth + 1)?);
+                kids.extend(self.figure(c, m, depth + 1)?);
             }
             if kids.is_empty() {
                 return Ok(None);
@@ -134,7 +134,7 @@ impl Resolver<'_> {
             Args::bind(self.src, s, &["convexity"])?;
             let mut ops = Vec::new();
             for c in s.children.iter().filter(|c| !super::skipped(c)) {
-                ops.extend(self.flat(c, DAffine2::IDENTITY, depth + 1)?);
+                ops.extend(self.figure(c, DAffine2::IDENTITY, depth + 1)?);
             }
             if ops.is_empty() {
                 return Ok(None);
@@ -171,7 +171,7 @@ impl Resolver<'_> {
         Err(self.src.error(s.name_span, message, label))
     }
 
-    pub(super) fn flat_children(
+    pub(super) fn figure_children(
         &mut self,
         s: &Statement,
         op: Op,
@@ -180,13 +180,13 @@ impl Resolver<'_> {
     ) -> Result<Option<Figure>> {
         let mut parts = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
-            parts.push(self.flat(c, m, depth + 1)?);
+            parts.push(self.figure(c, m, depth + 1)?);
         }
-        Ok(combine(op, parts, Figure::Op))
+        Ok(combine_parts(op, parts, Figure::Op))
     }
 
     /// `square`, `circle` or `polygon` under `m`.
-    pub(super) fn flat_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
+    pub(super) fn figure_shape(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
         let moved = |o: Outlines| o.map(|p| m.transform_point2(p));
         match s.name.as_str() {
             "square" => {
@@ -350,7 +350,7 @@ impl Resolver<'_> {
             .into_iter()
             .map(|o| Some(Figure::Polygon(o.map(|p| m.transform_point2(p)))))
             .collect();
-        Ok(combine(Op::Union, glyphs, Figure::Op))
+        Ok(combine_parts(Op::Union, glyphs, Figure::Op))
     }
 
     /// `offset(r | delta, chamfer)` of its children's union, computed in
@@ -367,7 +367,7 @@ impl Resolver<'_> {
         if join == Join::Round {
             self.openscad_facets_unsupported(s, "offset(r)")?;
         }
-        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+        let Some(f) = self.figure_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
         match crate::plane::offset::offset(f, join, d) {

@@ -51,7 +51,7 @@ const PARAMS: &[&str] = &["newsize", "auto", "convexity"];
 
 /// Whether a statement makes a 2-D shape (its first live child decides
 /// for transforms and operations, as OpenSCAD's dimension rule).
-pub(super) fn is_flat(s: &Statement) -> bool {
+pub(super) fn is_planar(s: &Statement) -> bool {
     let name = s.name.as_str();
     if super::planar::SHAPES_2D.contains(&name) || ["offset", "projection"].contains(&name) {
         return true;
@@ -73,7 +73,7 @@ pub(super) fn is_flat(s: &Statement) -> bool {
         && s.children
             .iter()
             .find(|c| !super::skipped(c))
-            .is_some_and(is_flat)
+            .is_some_and(is_planar)
 }
 
 impl Resolver<'_> {
@@ -86,7 +86,7 @@ impl Resolver<'_> {
         mat: Material,
         depth: usize,
     ) -> Result<Option<u32>> {
-        if is_flat(s) {
+        if is_planar(s) {
             return self.slab(s, xf, mat);
         }
         let a = Args::bind(self.src, s, PARAMS)?;
@@ -145,7 +145,7 @@ impl Resolver<'_> {
     }
 
     /// 2-D `resize` under the plane transform `m`.
-    pub(super) fn resize_flat(
+    pub(super) fn resize_figure(
         &mut self,
         s: &Statement,
         m: DAffine2,
@@ -153,7 +153,7 @@ impl Resolver<'_> {
     ) -> Result<Option<Figure>> {
         let a = Args::bind(self.src, s, PARAMS)?;
         let (newsize, auto) = sizes(&a)?;
-        let Some(f) = self.flat_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
+        let Some(f) = self.figure_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
         let mut size = [0.0; 2];
