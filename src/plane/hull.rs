@@ -2,7 +2,10 @@
 //! discs and of [`Site`]s (points, discs and arcs), and whether a loop is
 //! convex.
 
-use super::sites::Site;
+use super::figure::Figure;
+use super::sites::{sites, Site};
+use super::Outlines;
+use crate::math::boolean::Op;
 use glam::DVec2;
 
 /// The most points, discs or sites whose hull is found (a 3-D hull by
@@ -206,4 +209,33 @@ pub fn convex_polygon(l: &[DVec2]) -> bool {
         neg |= x < 0.0;
     }
     !(pos && neg)
+}
+
+/// OpenSCAD's 2-D `hull()` of figures. Circles, polygons and their
+/// combinations: the polygon through the tangent points with the circles
+/// and arcs on it, exact and an ordinary 2-D tree; anything else (an
+/// offset of curved outlines, a projection) is kept as [`Figure::Hull`],
+/// for the extrusion to take the hull of its parts' extrusions.
+pub fn hull_of_figures(kids: Vec<Figure>) -> Figure {
+    let mut found = Vec::new();
+    if kids.iter().all(|k| sites(k, &mut found)) {
+        if let Some((poly, on)) = arc_hull(&found) {
+            let mut parts: Vec<Figure> = on
+                .into_iter()
+                .filter(|&i| {
+                    found[i].arc.is_none() || !crate::mutant::active("hull_arc_caps_dropped")
+                })
+                .map(|i| found[i].cap())
+                .collect();
+            if poly.len() >= 3 {
+                parts.push(Figure::Polygon(Outlines::polygons(vec![poly])));
+            }
+            return if parts.len() == 1 {
+                parts.pop().expect("one")
+            } else {
+                Figure::Op(Op::Union, parts)
+            };
+        }
+    }
+    Figure::Hull(kids)
 }

@@ -114,7 +114,15 @@ fn the_hull_of_a_box_and_a_disc() {
     let mut found: Vec<Site> = Vec::new();
     assert!(sites(&f, &mut found));
     let (poly, on) = arc_hull(&found).expect("a hull with area");
+    // OpenSCAD's hull() of the same figure, as the kernel builds it.
+    let hulled = csgrt::plane::hull::hull_of_figures(vec![f.clone()]);
     let inside = |p: DVec2| {
+        assert_eq!(
+            figure_contains(&hulled, p),
+            even_odd(std::slice::from_ref(&poly), p)
+                || on.iter().any(|&i| (p - found[i].c).length() <= found[i].r),
+            "hull_of_figures at {p:?}"
+        );
         even_odd(std::slice::from_ref(&poly), p)
             || on.iter().any(|&i| (p - found[i].c).length() <= found[i].r)
     };

@@ -99,34 +99,7 @@ impl Resolver<'_> {
             if kids.is_empty() {
                 return Ok(None);
             }
-            // Circles, polygons and their combinations: the polygon
-            // through the tangent points with the circles and arcs on it,
-            // exact and an ordinary 2-D tree.
-            let mut sites = Vec::new();
-            if kids
-                .iter()
-                .all(|k| crate::plane::sites::sites(k, &mut sites))
-            {
-                if let Some((poly, on)) = crate::plane::hull::arc_hull(&sites) {
-                    let mut parts: Vec<Figure> = on
-                        .into_iter()
-                        .filter(|&i| {
-                            sites[i].arc.is_none()
-                                || !crate::mutant::active("hull_arc_caps_dropped")
-                        })
-                        .map(|i| sites[i].cap())
-                        .collect();
-                    if poly.len() >= 3 {
-                        parts.push(Figure::Polygon(Outlines::polygons(vec![poly])));
-                    }
-                    return Ok(Some(if parts.len() == 1 {
-                        parts.pop().expect("one")
-                    } else {
-                        Figure::Op(Op::Union, parts)
-                    }));
-                }
-            }
-            return Ok(Some(Figure::Hull(kids)));
+            return Ok(Some(crate::plane::hull::hull_of_figures(kids)));
         }
         if name == "minkowski" {
             // Summed in its own frame, then placed: m(A ⊕ B) is m's image
