@@ -2,7 +2,7 @@
 //! `hull_test.cpp`: random points, points on the hull's edges, repeats and
 //! collinear points; hulls of discs against their support functions.
 
-use crate::common::{agree_on_grid, even_odd, support_margin, Rng};
+use crate::common::{agree_on_grid, even_odd, support_distance, support_margin, Rng};
 use csgrt::plane::hull::{convex_polygon, disc_hull, hull_indices_2d};
 use glam::DVec2;
 
@@ -116,9 +116,6 @@ fn discs_of_different_radii_against_their_support_function() {
     ];
     let (poly, on) = disc_hull(&discs).expect("a hull with area");
     assert!(!on.contains(&3) && !on.contains(&4), "{on:?}");
-    let dirs: Vec<DVec2> = (0..3600)
-        .map(|k| DVec2::from_angle(k as f64 * std::f64::consts::TAU / 3600.0))
-        .collect();
     agree_on_grid(
         "three discs",
         v(-1.5, -1.5),
@@ -126,15 +123,12 @@ fn discs_of_different_radii_against_their_support_function() {
         support_margin(),
         |p| in_disc_hull(&poly, &on, &discs, p),
         |p| {
-            dirs.iter()
-                .map(|u| {
-                    let h = discs
-                        .iter()
-                        .map(|(c, r)| c.dot(*u) + r)
-                        .fold(f64::MIN, f64::max);
-                    p.dot(*u) - h
-                })
-                .fold(f64::NEG_INFINITY, f64::max)
+            support_distance(p, |u| {
+                discs
+                    .iter()
+                    .map(|(c, r)| c.dot(u) + r)
+                    .fold(f64::MIN, f64::max)
+            })
         },
     );
     // Centres on one line with equal radii: a capsule's hull still has

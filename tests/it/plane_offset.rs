@@ -4,7 +4,7 @@
 //! result is read by the test's own inside test and compared with the
 //! exact region's signed distance over a grid, away from its boundary.
 
-use crate::common::{agree_on_grid, box_distance, figure_contains, polygon};
+use crate::common::{agree_on_grid, box_distance, figure_contains, polygon, L_CORNERS};
 use csgrt::plane::figure::Figure;
 use csgrt::plane::offset::{offset, Join};
 use glam::DVec2;
@@ -19,16 +19,8 @@ fn grown(f: Figure, join: Join, d: f64) -> Figure {
         .expect("a non-empty offset")
 }
 
-/// The L of two boxes, [0,2]×[0,1] ∪ [0,1]×[0,2].
 fn l_shape() -> Figure {
-    polygon(&[
-        (0.0, 0.0),
-        (2.0, 0.0),
-        (2.0, 1.0),
-        (1.0, 1.0),
-        (1.0, 2.0),
-        (0.0, 2.0),
-    ])
+    polygon(&L_CORNERS)
 }
 
 /// The union's signed distance: exact outside, a bound of the right sign

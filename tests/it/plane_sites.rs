@@ -4,7 +4,8 @@
 //! against its support function.
 
 use crate::common::{
-    agree_on_grid, box_distance, even_odd, figure_contains, polygon, support_margin,
+    agree_on_grid, box_distance, even_odd, figure_contains, polygon, support_distance,
+    support_margin,
 };
 use csgrt::math::boolean::Op;
 use csgrt::plane::figure::Figure;
@@ -127,9 +128,6 @@ fn the_hull_of_a_box_and_a_disc() {
             || on.iter().any(|&i| (p - found[i].c).length() <= found[i].r)
     };
     let corners = [v(0.0, 0.0), v(2.0, 0.0), v(2.0, 1.0), v(0.0, 1.0)];
-    let dirs: Vec<DVec2> = (0..3600)
-        .map(|k| DVec2::from_angle(k as f64 * std::f64::consts::TAU / 3600.0))
-        .collect();
     agree_on_grid(
         "hull of box and disc",
         v(-1.0, -1.0),
@@ -137,15 +135,12 @@ fn the_hull_of_a_box_and_a_disc() {
         support_margin(),
         inside,
         |p| {
-            dirs.iter()
-                .map(|u| {
-                    let h = corners
-                        .iter()
-                        .map(|q| q.dot(*u))
-                        .fold(c.dot(*u) + r, f64::max);
-                    p.dot(*u) - h
-                })
-                .fold(f64::NEG_INFINITY, f64::max)
+            support_distance(p, |u| {
+                corners
+                    .iter()
+                    .map(|q| q.dot(u))
+                    .fold(c.dot(u) + r, f64::max)
+            })
         },
     );
 }

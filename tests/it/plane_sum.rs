@@ -3,7 +3,10 @@
 //! polygons (against the hull of every pair's sum, found here by brute
 //! force) and discs.
 
-use crate::common::{agree_on_grid, box_distance, figure_contains, polygon, support_margin};
+use crate::common::{
+    agree_on_grid, box_distance, figure_contains, polygon, support_distance, support_margin,
+    L_CORNERS,
+};
 use csgrt::plane::figure::Figure;
 use csgrt::plane::sum::minkowski;
 use glam::DVec2;
@@ -21,14 +24,7 @@ fn square(lo: f64, hi: f64) -> Figure {
 }
 
 fn l_shape() -> Figure {
-    polygon(&[
-        (0.0, 0.0),
-        (2.0, 0.0),
-        (2.0, 1.0),
-        (1.0, 1.0),
-        (1.0, 2.0),
-        (0.0, 2.0),
-    ])
+    polygon(&L_CORNERS)
 }
 
 /// The signed distance to the L grown by the box of half-side h: the two
@@ -106,9 +102,6 @@ fn convex_polygons_sum_to_the_hull_of_their_corners_sums() {
         .iter()
         .flat_map(|&p| b.iter().map(move |&q| p + q))
         .collect();
-    let dirs: Vec<DVec2> = (0..3600)
-        .map(|k| DVec2::from_angle(k as f64 * std::f64::consts::TAU / 3600.0))
-        .collect();
     agree_on_grid(
         "triangle + quadrilateral",
         v(-1.0, -1.0),
@@ -116,9 +109,9 @@ fn convex_polygons_sum_to_the_hull_of_their_corners_sums() {
         support_margin(),
         |p| figure_contains(&f, p),
         |p| {
-            dirs.iter()
-                .map(|u| p.dot(*u) - sums.iter().map(|s| s.dot(*u)).fold(f64::MIN, f64::max))
-                .fold(f64::NEG_INFINITY, f64::max)
+            support_distance(p, |u| {
+                sums.iter().map(|s| s.dot(u)).fold(f64::MIN, f64::max)
+            })
         },
     );
 }

@@ -181,18 +181,28 @@ pub fn l_lathe() -> csgrt::geometry::Shape {
     )))
 }
 
+/// The L of two boxes, [0,2]×[0,1] ∪ [0,1]×[0,2], counter-clockwise.
+pub const L_CORNERS: [(f64, f64); 6] = [
+    (0.0, 0.0),
+    (2.0, 0.0),
+    (2.0, 1.0),
+    (1.0, 1.0),
+    (1.0, 2.0),
+    (0.0, 2.0),
+];
+
+fn l_points() -> Vec<glam::DVec2> {
+    L_CORNERS
+        .iter()
+        .map(|&(x, y)| glam::DVec2::new(x, y))
+        .collect()
+}
+
 fn l_region() -> csgrt::plane::Region {
     use csgrt::plane::{Outlines, Region};
     let p = |x: f64, y: f64| glam::DVec2::new(x, y);
     let outlines = Outlines::polygons(vec![
-        vec![
-            p(0.0, 0.0),
-            p(2.0, 0.0),
-            p(2.0, 1.0),
-            p(1.0, 1.0),
-            p(1.0, 2.0),
-            p(0.0, 2.0),
-        ],
+        l_points(),
         vec![p(1.3, 0.2), p(1.8, 0.2), p(1.8, 0.7)],
     ]);
     Region::new(outlines)
@@ -334,15 +344,7 @@ pub fn rounded_box() -> Shape {
 /// its hole, as a soup of triangles, swept from z = 0 to 1.
 pub fn l_shadow() -> Shape {
     use csgrt::geometry::shadow::{Shadow, Soup};
-    let p = |x: f64, y: f64| glam::DVec2::new(x, y);
-    let pts = vec![
-        p(0.0, 0.0),
-        p(2.0, 0.0),
-        p(2.0, 1.0),
-        p(1.0, 1.0),
-        p(1.0, 2.0),
-        p(0.0, 2.0),
-    ];
+    let pts = l_points();
     // Overlapping triangles, as a solid's faces project: the lower bar
     // twice, the upright once.
     let tris = vec![[0, 1, 2], [0, 2, 3], [0, 1, 3], [0, 3, 4], [0, 4, 5]];
@@ -458,4 +460,19 @@ pub fn polygon(pts: &[(f64, f64)]) -> csgrt::plane::figure::Figure {
 /// the set's farthest point v, so 10·π/3600 ≈ 0.0087.
 pub fn support_margin() -> f64 {
     10.0 * std::f64::consts::PI / 3600.0
+}
+
+/// The signed distance to the convex hull of a set whose support function
+/// is `support` (h(u) = max over the set of x·u), maximising p·u − h(u)
+/// over 3600 directions: within [`support_margin`] of the truth.
+pub fn support_distance(p: glam::DVec2, support: impl Fn(glam::DVec2) -> f64) -> f64 {
+    static DIRS: std::sync::OnceLock<Vec<glam::DVec2>> = std::sync::OnceLock::new();
+    let dirs = DIRS.get_or_init(|| {
+        (0..3600)
+            .map(|k| glam::DVec2::from_angle(k as f64 * std::f64::consts::TAU / 3600.0))
+            .collect()
+    });
+    dirs.iter()
+        .map(|&u| p.dot(u) - support(u))
+        .fold(f64::NEG_INFINITY, f64::max)
 }
