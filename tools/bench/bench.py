@@ -21,7 +21,7 @@ With --sweep SCENE it instead measures run time against error: csgrt at
 +R1..+R4), both against a 256-spp csgrt reference (RMSE over 8-bit channels),
 plotted in --plot (matplotlib, tools/requirements-bench.txt), and counts
 the silhouette pixels of each at one sample that disagree with the
-manifold3d oracle (tools/oracle/oracle.py; tools/requirements.txt).
+manifold3d oracle (tools/oracle/oracle/; tools/requirements.txt).
 
 Usage: bench.py [--csgrt BIN] [--size WxH] [--runs N] [--out BENCHMARKS.md] [SCENE...]
        bench.py --sweep SCENE [--size WxH] [--plot docs/time-vs-error.png]

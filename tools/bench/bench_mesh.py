@@ -8,7 +8,7 @@ with a fixed camera. Then, on one core (the process and its children bound
 to it, csgrt --threads 1, Embree's own threads too):
 
 * primary rays: the same camera rays (pixel centres, csgrt's camera as
-  tools/oracle/oracle.py builds it) traced by csgrt (`--trace-rays`, its own
+  tools/oracle/oracle/ builds it) traced by csgrt (`--trace-rays`, its own
   trace-loop seconds) and by Embree (embreex: rtcIntersect1 per ray, the
   build timed apart; each program's first pass after its build, Embree's
   second pass reported too); the ratio, and the pixels whose hit or miss differ

@@ -338,7 +338,7 @@ def swept_pieces(f, join, d):
             reach = max(reach, max(float(np.linalg.norm(q - v)) for q in kites[-1][1][0]))
         if kites:
             # Marked with their reach: a flattened circle's last chord
-            # turns a kite's side about its corner (tools/oracle/oracle.py).
+            # turns a kite's side about its corner (tools/oracle/oracle/).
             pieces.append(("op", "union", kites, ("kites", reach)))
     return ("op", "union" if d > 0 else "difference", pieces)
 

@@ -1,0 +1,5 @@
+"""`python -m tools.oracle.oracle`: see the package's text."""
+
+from tools.oracle.oracle.run import main
+
+main()
