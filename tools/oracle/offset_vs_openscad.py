@@ -51,13 +51,20 @@ for seed in range(seed0, seed0+N):
     rays = "\n".join(f"{x} {y} 5 0 0 -1" for x, y in pts) + "\n"
     r = subprocess.run([BIN, f"{d}/m.csg", "--trace-rays", "-"], input=rays, capture_output=True, text=True)
     if r.returncode != 0:
-        print(seed, "csgrt:", r.stderr.strip().splitlines()[0][:150]); continue
+        bad += 1
+        print(seed, "REFUSED by csgrt:", (r.stderr.strip().splitlines() or [""])[0][:150]); continue
     got = [ln.split()[0] != "miss" for ln in r.stdout.strip().splitlines()]
     # OpenSCAD's own mesh, read: membership by the 2-D polygons of its top faces via manifold
     try:
         txt = open(f"{d}/m.off").read().split()
     except FileNotFoundError:
-        print(seed, "empty (OpenSCAD wrote no mesh)"); continue
+        # OpenSCAD writes no mesh for an empty result: csgrt must draw nothing.
+        if any(got):
+            bad += 1
+            print(seed, "MISMATCH: OpenSCAD's result is empty, csgrt hits", sum(got), "rays")
+        else:
+            print(seed, "ok (empty)")
+        continue
     nv, nf = int(txt[1]), int(txt[2]); vals = txt[4:]
     V = np.array(vals[:3*nv], float).reshape(-1, 3)
     i = 3*nv; tris = []
@@ -86,5 +93,5 @@ for seed in range(seed0, seed0+N):
         print(seed, "MISMATCH", mism, scad.strip().replace("\n", " ")[:300])
     else:
         print(seed, "ok", sum(got))
-print("bad", bad)
+print(f"{N - bad} passed, {bad} failed")
 sys.exit(1 if bad else 0)
