@@ -32,28 +32,27 @@ pub fn resolve_ray(src: &Source, statements: &[(RayStatement, TextRange)]) -> Re
     let mut camera_span = None;
     for (st, span) in statements {
         let span = *span;
+        // The first camera statement is where a degenerate camera is reported.
+        if let RayStatement::Eye(_)
+        | RayStatement::Lookat(_)
+        | RayStatement::Up(_)
+        | RayStatement::Fov(_) = st
+        {
+            camera_span.get_or_insert(span);
+        }
         match st {
-            RayStatement::Eye(_)
-            | RayStatement::Lookat(_)
-            | RayStatement::Up(_)
-            | RayStatement::Fov(_) => {
-                camera_span.get_or_insert(span);
-                match *st {
-                    RayStatement::Eye(v) => cam.eye = v,
-                    RayStatement::Lookat(v) => cam.lookat = v,
-                    RayStatement::Up(v) => cam.up = v,
-                    RayStatement::Fov(f) => {
-                        if !(f > 0.0 && f < 180.0) {
-                            return Err(src.error(
-                                span,
-                                "the field of view is out of range",
-                                "expected degrees strictly between 0 and 180",
-                            ));
-                        }
-                        cam.fov = f;
-                    }
-                    _ => unreachable!(),
+            RayStatement::Eye(v) => cam.eye = *v,
+            RayStatement::Lookat(v) => cam.lookat = *v,
+            RayStatement::Up(v) => cam.up = *v,
+            RayStatement::Fov(f) => {
+                if !(*f > 0.0 && *f < 180.0) {
+                    return Err(src.error(
+                        span,
+                        "the field of view is out of range",
+                        "expected degrees strictly between 0 and 180",
+                    ));
                 }
+                cam.fov = *f;
             }
             RayStatement::Background(c) => b.background = Some(*c),
             RayStatement::Light { color, kind } => {

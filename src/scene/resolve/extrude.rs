@@ -191,7 +191,7 @@ impl Resolver<'_> {
                         "csgrt extrudes a hull straight or tapered",
                     ));
                 }
-                let marks = self.b.csg.mark();
+                let mark = self.b.csg.mark();
                 // Extruded in the statement's own frame; the hull carries xf.
                 let mut parts = Vec::new();
                 for k in kids {
@@ -200,7 +200,7 @@ impl Resolver<'_> {
                 let Some(node) = self.op(Op::Union, parts) else {
                     return Ok(None);
                 };
-                self.hull_of(s, node, marks, xf, mat)
+                self.hull_of(s, node, mark, xf, mat)
             }
         }
     }

@@ -146,13 +146,13 @@ impl Resolver<'_> {
         &mut self,
         s: &Statement,
         node: u32,
-        marks: Mark,
+        mark: Mark,
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
         let mut parts = Vec::new();
         let found = self.parts_of(node, &mut parts);
-        self.b.csg.rewind(marks);
+        self.b.csg.rewind(mark);
         found.map_err(|why| self.not_convex(s, &why))?;
         self.convex_leaf(s, vec![parts], frame, mat)
     }
@@ -170,12 +170,12 @@ impl Resolver<'_> {
         }
         crate::scene::args::Args::bind(self.src, s, &[])?;
         // The children in the statement's own frame: the leaf carries xf.
-        let marks = self.b.csg.mark();
+        let mark = self.b.csg.mark();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
         let Some(node) = self.union(ids) else {
             return Ok(None);
         };
-        self.hull_of(s, node, marks, xf, mat)
+        self.hull_of(s, node, mark, xf, mat)
     }
 
     /// 3-D `minkowski(convexity)` of its children.
@@ -192,7 +192,7 @@ impl Resolver<'_> {
         crate::scene::args::Args::bind(self.src, s, &["convexity"])?;
         // The operands in the statement's own frame (the sum moves once,
         // with the leaf's transform), each a union of primitives.
-        let marks = self.b.csg.mark();
+        let mark = self.b.csg.mark();
         let mut nodes = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
             // The fault: each later operand moved by the statement's
@@ -205,7 +205,7 @@ impl Resolver<'_> {
             nodes.extend(self.statement(c, at, mat, depth + 1)?);
         }
         let read = self.sum_of(&nodes);
-        self.b.csg.rewind(marks);
+        self.b.csg.rewind(mark);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
                 let pieces = crate::geometry::ball_sum::mesh_rounded(&mesh, to, r);

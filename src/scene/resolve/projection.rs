@@ -47,7 +47,7 @@ impl Resolver<'_> {
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let marks = self.b.csg.mark();
+        let mark = self.b.csg.mark();
         let ids = self.children(p, DAffine3::IDENTITY, mat, 0)?;
         let Some(child) = self.union(ids) else {
             return Ok(None);
@@ -103,7 +103,7 @@ impl Resolver<'_> {
                 break;
             }
         }
-        self.b.csg.rewind(marks);
+        self.b.csg.rewind(mark);
         if let Some(what) = refused {
             return Err(self.src.error(
                 p.name_span,

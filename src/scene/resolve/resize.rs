@@ -91,7 +91,7 @@ impl Resolver<'_> {
         }
         let a = Args::bind(self.src, s, PARAMS)?;
         let (newsize, auto) = sizes(&a)?;
-        let marks = self.b.csg.mark();
+        let mark = self.b.csg.mark();
         let warned = self.b.warnings.len();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
         let Some(child) = self.union(ids) else {
@@ -107,7 +107,7 @@ impl Resolver<'_> {
             let lo = csg.extreme(child, -e).map_err(|why| self.not_yet(s, why))?;
             size[i] = hi.0 + lo.0;
         }
-        self.b.csg.rewind(marks);
+        self.b.csg.rewind(mark);
         self.b.warnings.truncate(warned);
         // CGAL_Nef_polyhedron::resize, line for line.
         let mut scale = [1.0; 3];

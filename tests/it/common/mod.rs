@@ -1,6 +1,8 @@
 //! Helpers for running the csgrt binary in a scratch folder.
 #![allow(dead_code)]
 
+use csgrt::geometry::{Cuboid, Shape, Sphere};
+use glam::{DAffine3, DQuat, DVec3};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -259,9 +261,6 @@ pub fn l_offset(r: f64) -> csgrt::geometry::Shape {
         centered: false,
     })
 }
-
-use csgrt::geometry::{Cuboid, Shape, Sphere};
-use glam::{DAffine3, DQuat, DVec3};
 
 /// A convex mesh: the octahedron of the unit axis points.
 pub fn octahedron() -> Shape {

@@ -1,20 +1,10 @@
 """The faceting bounds: how far a mesh of n segments may stand off the exact
 solid (derived in the package's text), per leaf and per face."""
 
-import argparse
-import itertools
 import hashlib
 import math
-import multiprocessing
-import os
-import subprocess
-import sys
-import tempfile
-import time
 
-import manifold3d as mf
 import numpy as np
-from PIL import Image
 
 from tools.oracle import scene as reader
 from . import mesh

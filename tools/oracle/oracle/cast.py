@@ -1,19 +1,9 @@
 """Casting rays on the oracle's own meshes with IEEE-exact slab tests."""
 
-import argparse
-import itertools
-import hashlib
 import math
-import multiprocessing
-import os
-import subprocess
-import sys
-import tempfile
-import time
 
 import manifold3d as mf
 import numpy as np
-from PIL import Image
 
 from tools.oracle import scene as reader
 from . import mesh

@@ -1,18 +1,11 @@
 """The verdict: csgrt's image, mask and traced rays against the oracle's side,
 off the edges and within the bounds, and the same-outputs check of two builds."""
 
-import argparse
-import itertools
-import hashlib
 import math
-import multiprocessing
 import os
 import subprocess
-import sys
 import tempfile
-import time
 
-import manifold3d as mf
 import numpy as np
 from PIL import Image
 

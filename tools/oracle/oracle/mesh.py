@@ -1,20 +1,11 @@
 """Meshing: each leaf of the reader's tree as a manifold3d mesh of n segments
 (extrusions through their cross-sections, polyhedra, hulls)."""
 
-import argparse
 import itertools
-import hashlib
 import math
-import multiprocessing
-import os
-import subprocess
-import sys
-import tempfile
-import time
 
 import manifold3d as mf
 import numpy as np
-from PIL import Image
 
 from tools.oracle import scene as reader
 from . import bounds

@@ -1,18 +1,10 @@
 """The rays compared: the camera's through every pixel centre, random rays
 from all around, and csgrt's answers for them (--trace-rays)."""
 
-import argparse
-import itertools
-import hashlib
 import math
-import multiprocessing
 import os
 import subprocess
-import sys
-import tempfile
-import time
 
-import manifold3d as mf
 import numpy as np
 from PIL import Image
 

@@ -1,21 +1,11 @@
 """The command line: scenes checked in parallel, the table, the exit status."""
 
 import argparse
-import itertools
-import hashlib
-import math
 import multiprocessing
 import os
-import subprocess
 import sys
-import tempfile
 import time
 
-import manifold3d as mf
-import numpy as np
-from PIL import Image
-
-from tools.oracle import scene as reader
 from . import compare_side
 
 __all__ = ['TABLE_HEAD', 'main', 'one', 'table_row']

@@ -2,12 +2,8 @@
 framing of the scene's box."""
 
 import math
-import os
-import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import meaning
 from . import plane

@@ -1,12 +1,8 @@
 """The seed's display list (.ray)."""
 
-import math
-import os
 import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import meaning
 from . import syntax

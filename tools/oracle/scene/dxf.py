@@ -7,8 +7,6 @@ import re
 
 import numpy as np
 
-from tools import ROOT
-
 from . import meaning
 from . import plane
 from . import svg

@@ -2,12 +2,8 @@
 leaves under operations; read() is the entry point."""
 
 import math
-import os
-import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import bounds
 from . import display_list

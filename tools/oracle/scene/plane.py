@@ -2,12 +2,8 @@
 extents of the 2-D trees the statements below extrusions make."""
 
 import math
-import os
-import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import meaning
 from . import solids

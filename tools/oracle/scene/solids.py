@@ -2,12 +2,8 @@
 leaves (projection), twists and turns of extrusions."""
 
 import math
-import os
-import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import bounds
 from . import meaning

@@ -2,12 +2,9 @@
 its own libsvg), with the standard library's XML parser."""
 
 import math
-import os
 import re
 
 import numpy as np
-
-from tools import ROOT
 
 from . import plane
 

@@ -1,12 +1,6 @@
 """The .csg text: tokens and statements, and the reader's error."""
 
-import math
-import os
 import re
-
-import numpy as np
-
-from tools import ROOT
 
 __all__ = ['Parser', 'ReadError', 'Stmt', 'TOKEN', 'UNDEF']
 

@@ -3,7 +3,6 @@ HarfBuzz (uharfbuzz) for shaping and fontTools for the glyphs."""
 
 import math
 import os
-import re
 
 import numpy as np
 
