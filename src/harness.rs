@@ -58,7 +58,7 @@ pub fn exercise(data: &[u8]) {
 /// OpenSCAD's dependency list: an error or a drawing, a layout or the
 /// fallback, a list of names, never a panic.
 pub fn exercise_readers(data: &[u8]) {
-    if let Ok(d) = crate::import::dxf::read(data, "", glam::DVec2::ZERO, 1.0) {
+    if let Ok(d) = crate::import::dxf::read(data, "", glam::DVec2::ZERO, 1.0, &|_| None) {
         assert!(d.paths.iter().all(|p| p.pts.len() == p.arcs.len()));
     }
     let _ = crate::import::text::layout_with_font_bytes(data, "AVo fi");

@@ -25,7 +25,6 @@ use super::svg::{Seg, Svg, SvgPart, SvgPiece, SvgShape, SvgStroke};
 use crate::math::boolean::Op;
 use crate::plane::figure::Figure;
 use crate::plane::{Ctrl, Outlines};
-use glam::{DAffine2, DVec2};
 
 /// The drawing's tree in OpenSCAD's plane (before the import's own
 /// transform).
@@ -43,28 +42,6 @@ pub fn from_svg(d: &Svg) -> Option<Figure> {
     }
 }
 
-/// The part of `ellipse` on `mid`'s side of the chord a–b: the ellipse
-/// met with a rectangle on that side big enough to hold all of it there.
-fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Figure {
-    let t = (b - a).normalize_or_zero();
-    let mut n = t.perp();
-    if (mid - a).dot(n) < 0.0 {
-        n = -n;
-    }
-    // Every point of the ellipse lies within D of a.
-    let m = ellipse.matrix2;
-    let stretch = m.x_axis.length() + m.y_axis.length();
-    let d = (ellipse.translation - a).length() + stretch + (b - a).length();
-    let rect = vec![a - t * d, b + t * d, b + t * d + n * d, a - t * d + n * d];
-    Figure::Op(
-        Op::Intersection,
-        vec![
-            Figure::Ellipse(ellipse),
-            Figure::Polygon(Outlines::polygons(vec![rect])),
-        ],
-    )
-}
-
 /// One element's region in the page's user space.
 fn shape_flat(s: &SvgShape) -> Option<Figure> {
     let (mut loops, mut ctrl, mut odd) = (Vec::new(), Vec::new(), Vec::new());
@@ -80,7 +57,12 @@ fn shape_flat(s: &SvgShape) -> Option<Figure> {
                         Seg::Cubic(c1, c2) => Ctrl::Cubic(c1, c2),
                         Seg::Arc { ellipse, mid } => {
                             if !crate::mutant::active("svg_arcs_as_chords") {
-                                odd.push(arc_segment(l.pts[i], l.pts[(i + 1) % n], ellipse, mid));
+                                odd.push(Figure::arc_segment(
+                                    l.pts[i],
+                                    l.pts[(i + 1) % n],
+                                    ellipse,
+                                    mid,
+                                ));
                             }
                             Ctrl::Line
                         }
@@ -130,6 +112,7 @@ pub fn stroke_figure(st: &SvgStroke) -> Option<Figure> {
 mod tests {
     use super::*;
     use crate::import::svg::{Cap, SvgJoin};
+    use glam::{DAffine2, DVec2};
 
     /// Whether `p` is in the tree (the ops' meanings, point by point).
     fn inside(f: &Figure, p: DVec2) -> bool {
@@ -213,7 +196,7 @@ mod tests {
         // A half disc: the chord from (1, 0) to (−1, 0) and the arc over
         // (0, 1); points below the chord are out, those under the arc in.
         let e = DAffine2::IDENTITY;
-        let seg = arc_segment(DVec2::X, -DVec2::X, e, DVec2::Y);
+        let seg = Figure::arc_segment(DVec2::X, -DVec2::X, e, DVec2::Y);
         assert!(inside(&seg, DVec2::new(0.0, 0.5)));
         assert!(inside(&seg, DVec2::new(0.7, 0.7)));
         assert!(!inside(&seg, DVec2::new(0.0, -0.5)));

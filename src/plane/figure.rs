@@ -135,6 +135,30 @@ impl Figure {
         }
     }
 
+    /// The part of `ellipse` (the image of the unit disc) on `mid`'s side
+    /// of the chord a–b — the region between an elliptical arc from a to b
+    /// through `mid` and its chord: the ellipse met with a rectangle on
+    /// that side big enough to hold all of it there.
+    pub fn arc_segment(a: DVec2, b: DVec2, ellipse: DAffine2, mid: DVec2) -> Figure {
+        let t = (b - a).normalize_or_zero();
+        let mut n = t.perp();
+        if (mid - a).dot(n) < 0.0 {
+            n = -n;
+        }
+        // Every point of the ellipse lies within d of a.
+        let m = ellipse.matrix2;
+        let stretch = m.x_axis.length() + m.y_axis.length();
+        let d = (ellipse.translation - a).length() + stretch + (b - a).length();
+        let rect = vec![a - t * d, b + t * d, b + t * d + n * d, a - t * d + n * d];
+        Figure::Op(
+            Op::Intersection,
+            vec![
+                Figure::Ellipse(ellipse),
+                Figure::Polygon(Outlines::polygons(vec![rect])),
+            ],
+        )
+    }
+
     /// The disc of radius r about c.
     pub fn disc(c: DVec2, r: f64) -> Figure {
         Figure::Ellipse(DAffine2::from_scale_angle_translation(

@@ -52,15 +52,16 @@ def flatten_curves(f, n):
 
 
 def arc_sweep(a, arc, b):
-    """(centre, radius, start angle, sweep) of a drawing's arc from a to b
-    through its middle point (either way round)."""
-    c, r, mid = arc
-    a0 = math.atan2(a[1] - c[1], a[0] - c[0])
-    am = math.atan2(mid[1] - c[1], mid[0] - c[0])
-    a1 = math.atan2(b[1] - c[1], b[0] - c[0])
+    """(A, centre, start angle, sweep) of a drawing's arc of the ellipse
+    c + A (cos w, sin w) from a to b through its middle point (either way
+    round), the angles those of the ellipse's parameter."""
+    A, c, mid = arc
+    inv = np.linalg.inv(A)
+    w = lambda p: math.atan2(*(inv @ (p - c))[::-1])
+    a0, am, a1 = w(a), w(mid), w(b)
     ccw = (am - a0) % (2 * math.pi) < (a1 - a0) % (2 * math.pi) or abs(a1 - a0) < 1e-15
     sweep = (a1 - a0) % (2 * math.pi) if ccw else -((a0 - a1) % (2 * math.pi))
-    return c, r, a0, sweep if sweep != 0 else 2 * math.pi
+    return A, c, a0, sweep if sweep != 0 else 2 * math.pi
 
 
 class Line:
@@ -111,7 +112,7 @@ def circle_pieces(A, c, n):
 def drawing_pieces(f, n):
     """A drawing's loops as pieces: its paths' lines and arcs (cut into
     steps of at most 2 pi / n), then its circles."""
-    _, paths, circles = f[3]
+    _, paths, ellipses = f[3]
     loops = []
     for path in paths:
         pieces = []
@@ -120,12 +121,12 @@ def drawing_pieces(f, n):
             if arc is None:
                 pieces.append(Line(a, b))
                 continue
-            c, r, a0, sweep = arc_sweep(a, arc, b)
+            A, c, a0, sweep = arc_sweep(a, arc, b)
             k = max(1, math.ceil(abs(sweep) / (2 * math.pi / n)))
-            pieces += [Arc(r * np.eye(2), c, a0 + sweep * j / k, sweep / k, a if j == 0 else None) for j in range(k)]
+            pieces += [Arc(A, c, a0 + sweep * j / k, sweep / k, a if j == 0 else None) for j in range(k)]
         loops.append(pieces)
-    for c, r in circles:
-        loops.append(circle_pieces(r * np.eye(2), c, n))
+    for A, c in ellipses:
+        loops.append(circle_pieces(A, c, n))
     return loops
 
 
@@ -254,7 +255,7 @@ def refined(f, m):
         u = np.arange(m)[:, None] / m
         return ("poly", [np.concatenate([(1 - u) * l[i] + u * l[(i + 1) % len(l)] for i in range(len(l))]) for l in f[1]])
     if f[0] == "op" and len(f) == 4 and f[3][0] == "drawing":
-        _, paths, circles = f[3]
+        _, paths, ellipses = f[3]
         cut = []
         for path in paths:
             out = []
@@ -264,7 +265,7 @@ def refined(f, m):
                     b = path[(i + 1) % len(path)][0]
                     out += [((1 - j / m) * a + j / m * b, None) for j in range(1, m)]
             cut.append(out)
-        return ("op", f[1], [refined(k, m) for k in f[2]], ("drawing", cut, circles))
+        return ("op", f[1], [refined(k, m) for k in f[2]], ("drawing", cut, ellipses))
     if f[0] == "op":
         return ("op", f[1], [refined(k, m) for k in f[2]]) + tuple(f[3:])
     return f

@@ -16,43 +16,67 @@ __all__ = ['DXF_GRID', 'drawing_tree', 'dxf_paths', 'dxf_pieces', 'import_2d', '
 
 # --------------------------------------------------------------------------
 # import(): a DXF drawing as OpenSCAD 2021.01 reads it (src/dxfdata.cc),
-# parsed by ezdxf: LINE, LWPOLYLINE, ARC, CIRCLE and INSERT entities of the
-# layer, points moved by -origin and scaled, pieces joined into paths where
-# their ends meet on a 2^-20 grid (open chains first, each closed by a
-# straight edge, then the closed loops), filled even-odd. Arcs stay arcs.
+# parsed by ezdxf: LINE, LWPOLYLINE, ARC, CIRCLE, ELLIPSE and INSERT entities
+# of the layer, points moved by -origin and scaled, pieces joined into paths
+# where their ends meet on OpenSCAD's coarse grid of 2^-10 (open chains
+# first, each closed by a straight edge, then the rest: a chain that stops
+# away from its start loses one end), all paths filled together even-odd.
+# Curves stay curves, or are cut into OpenSCAD's fragments for an explicit
+# $fn of 3 to 8.
 # --------------------------------------------------------------------------
 
-DXF_GRID = 2.0**-20
+DXF_GRID = 2.0**-10
 
 
-def dxf_pieces(path, layer, origin, scale):
-    """(pieces, circles): pieces (a, b, arc) with arc None or (centre,
-    radius, a point of the arc between its ends)."""
+def dxf_pieces(path, layer, origin, scale, fragments=None):
+    """(pieces, ellipses): pieces (a, b, arc) with arc None or (A, c, a
+    point of the arc between its ends), the arc on the ellipse c + A (cos w,
+    sin w); whole circles and ellipses as (A, c). `fragments`, when given,
+    cuts every curve into that many straight pieces a turn."""
     import ezdxf
 
     doc = ezdxf.readfile(path)
-    pieces, circles = [], []
+    pieces, ellipses = [], []
 
-    def add(e, m, k):
+    def curve(A, c, w0, w1, m):
+        """A curve of the entity's own ellipse (A, c), placed by m (a 2 x 3
+        matrix), from w0 to w1 as OpenSCAD reads one."""
+        while w0 > w1:
+            w1 += 2 * math.pi
+        if w1 == w0:
+            return
+        A, c = m[:, :2] @ A, m[:, :2] @ c + m[:, 2]
+        at = lambda w: c + A @ np.array([math.cos(w), math.sin(w)])
+        if fragments:
+            k = int(math.ceil(fragments * (w1 - w0) / (2 * math.pi)))
+            ws = [w0 + (w1 - w0) * i / k for i in range(k + 1)]
+            pieces.extend((at(ws[i]), at(ws[i + 1]), None) for i in range(k))
+        elif w1 - w0 >= 2 * math.pi:
+            ellipses.append((A, c))
+        else:
+            pieces.append((at(w0), at(w1), (A, c, at((w0 + w1) / 2))))
+
+    def add(e, m):
         t = e.dxftype()
+        pt = lambda p: m[:, :2] @ np.array([p[0], p[1]], float) + m[:, 2]
         if t == "LINE":
-            pieces.append((m(e.dxf.start), m(e.dxf.end), None))
+            pieces.append((pt(e.dxf.start), pt(e.dxf.end), None))
         elif t == "LWPOLYLINE":
-            v = [m(p) for p in e.get_points("xy")]
+            v = [pt(p) for p in e.get_points("xy")]
             pieces.extend((v[i], v[i + 1], None) for i in range(len(v) - 1))
             if e.closed and len(v) > 1:
                 pieces.append((v[-1], v[0], None))
         elif t == "CIRCLE":
-            circles.append((m(e.dxf.center), e.dxf.radius * k))
+            curve(e.dxf.radius * np.eye(2), np.array([e.dxf.center[0], e.dxf.center[1]], float), 0.0, 2 * math.pi, m)
         elif t == "ARC":
-            a0, a1 = e.dxf.start_angle, e.dxf.end_angle
-            if a1 <= a0:
-                a1 += 360.0
-            c, r = np.array([e.dxf.center[0], e.dxf.center[1]], float), e.dxf.radius
-            at = lambda a: c + r * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))])
-            pieces.append((m(at(a0)), m(at(a1)), (m(c), r * k, m(at((a0 + a1) / 2)))))
+            curve(e.dxf.radius * np.eye(2), np.array([e.dxf.center[0], e.dxf.center[1]], float), math.radians(e.dxf.start_angle), math.radians(e.dxf.end_angle), m)
+        elif t == "ELLIPSE":
+            u = np.array([e.dxf.major_axis[0], e.dxf.major_axis[1]], float)
+            A = np.column_stack([u, e.dxf.ratio * np.array([-u[1], u[0]])])
+            curve(A, np.array([e.dxf.center[0], e.dxf.center[1]], float), e.dxf.start_param, e.dxf.end_param, m)
 
-    place = lambda p: (np.array([p[0], p[1]], float) - origin) * scale
+    # (p - origin) * scale, as a 2 x 3 matrix.
+    place = np.array([[scale, 0.0, -origin[0] * scale], [0.0, scale, -origin[1] * scale]])
     for e in doc.modelspace():
         if layer and e.dxf.layer != layer:
             continue
@@ -61,31 +85,29 @@ def dxf_pieces(path, layer, origin, scale):
             if blk is None:
                 continue
             a = math.radians(e.dxf.rotation)
-            sx, sy = e.dxf.xscale, e.dxf.yscale
-            at = np.array([e.dxf.insert[0], e.dxf.insert[1]], float)
-
-            def m(p, a=a, sx=sx, sy=sy, at=at):
-                q = np.array([p[0] * sx, p[1] * sy])
-                return place(np.array([math.cos(a) * q[0] - math.sin(a) * q[1], math.sin(a) * q[0] + math.cos(a) * q[1]]) + at)
-
+            turn = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+            lin = scale * turn @ np.diag([e.dxf.xscale, e.dxf.yscale])
+            at = place[:, :2] @ np.array([e.dxf.insert[0], e.dxf.insert[1]], float) + place[:, 2]
             for be in blk:
-                add(be, m, scale * abs(sx))
+                add(be, np.column_stack([lin, at]))
             continue
-        add(e, place, scale)
-    return pieces, circles
+        add(e, place)
+    return pieces, ellipses
 
 
 def dxf_paths(pieces):
-    """Closed paths [(point, arc or None)] from pieces joined at their ends."""
+    """Paths [(point, arc or None)] from pieces joined at their ends, as
+    OpenSCAD's DxfData joins its lines, and how many did not close."""
     pts, keys = [], {}
 
     def key(p):
         i, j = round(p[0] / DXF_GRID), round(p[1] / DXF_GRID)
-        for di in (-1, 0, 1):
-            for dj in (-1, 0, 1):
-                k = keys.get((i + di, j + dj))
-                if k is not None and abs(pts[k][0] - p[0]) <= DXF_GRID and abs(pts[k][1] - p[1]) <= DXF_GRID:
-                    return k
+        if (i, j) in keys:
+            return keys[(i, j)]
+        # Grid2d::align: the nearest occupied neighbour cell (by steps).
+        near = [(abs(di) + abs(dj), keys[(i + di, j + dj)]) for di in (-1, 0, 1) for dj in (-1, 0, 1) if (i + di, j + dj) in keys]
+        if near:
+            return min(near, key=lambda x: x[0])[1]
         pts.append(np.asarray(p, float))
         keys[(i, j)] = len(pts) - 1
         return len(pts) - 1
@@ -114,20 +136,55 @@ def dxf_paths(pieces):
         return [(pts[ends[k][0] if f else ends[k][1]], pieces[k][2]) for k, f in chain]
 
     paths, n_open = [], 0
+    # Open chains: the lowest piece with an end no other piece left reaches,
+    # scanning again from the start after each.
+    while True:
+        found = None
+        for i in range(len(pieces)):
+            if used[i]:
+                continue
+            for end in ends[i]:
+                if all(k == i or used[k] for k in at[end]):
+                    found = (i, end)
+                    break
+            if found:
+                break
+        if not found:
+            break
+        chain, last = walk(*found)
+        n_open += 1
+        paths.append(as_path(chain) + [(pts[last], None)])
+    turn = n_open == 0
     for i in range(len(pieces)):
-        for end in ends[i]:
-            if not used[i] and ends[i][0] != ends[i][1] and sum(not used[k] for k in at[end]) == 1:
-                chain, last = walk(i, end)
-                n_open += 1
-                path = as_path(chain) + [(pts[last], None)]
-                if len(path) >= 3:
-                    paths.append(path)
-    for i in range(len(pieces)):
-        if not used[i]:
-            chain, last = walk(i, ends[i][0])
-            path = as_path(chain)
-            paths.append(path)
+        if used[i]:
+            continue
+        chain, last = walk(i, ends[i][0])
+        path = as_path(chain)
+        if last != ends[i][0]:
+            # toPolygon2d leaves out the first point, after
+            # fixup_path_direction may have turned the path round.
+            n_open += 1
+            path = path + [(pts[last], None)]
+            if turn and turned([p for p, _ in path]):
+                path = path[:-2] + [(path[-2][0], None)]
+            else:
+                path = path[1:-1] + [(path[-1][0], None)]
+        paths.append(path)
     return paths, n_open
+
+
+def turned(ps):
+    """Whether OpenSCAD's fixup_path_direction reverses a path with these
+    points: at the first point of least x, atan2(dx, dy) of the step back
+    below that of the step on."""
+    n, b = len(ps), 0
+    for j, p in enumerate(ps):
+        if p[0] < ps[b][0]:
+            b = j
+    a = n - 2 if b == 0 else b - 1
+    c = 1 if b == n - 1 else b + 1
+    u, v = ps[a] - ps[b], ps[c] - ps[b]
+    return math.atan2(u[0], u[1]) < math.atan2(v[0], v[1])
 
 
 def merged(pts, faces):
@@ -271,72 +328,44 @@ def import_2d(rd, s, a):
     if not file.lower().endswith(".dxf"):
         raise rd.err(s, f"import of {file} is not in the oracle")
     origin = np.array(a.get("origin", [0.0, 0.0])[:2], float)
-    pieces, circles = dxf_pieces(path, a.get("layer", a.get("layername", "")) or "", origin, meaning.num(rd.path, s, a, "scale", 1.0))
+    fn = a.get("$fn", 0.0)
+    fragments = int(max(fn, 3.0)) if 0 < fn < 9 else None
+    scale = meaning.num(rd.path, s, a, "scale", 1.0)
+    pieces, ellipses = dxf_pieces(path, a.get("layer", a.get("layername", "")) or "", origin, scale, fragments)
     paths, _ = dxf_paths(pieces)
-    # A single arc closing on itself is a whole circle.
-    circles += [(path[0][1][0], path[0][1][1]) for path in paths if len(path) == 1 and path[0][1] is not None]
-    return drawing_tree([p for p in paths if len(p) >= 2], circles)
+    # A single arc closing on itself is a whole ellipse.
+    ellipses += [path[0][1][:2] for path in paths if len(path) == 1 and path[0][1] is not None]
+    keep = [p for p in paths if len(p) >= 3 or (len(p) == 2 and any(x is not None for _, x in p))]
+    return drawing_tree(keep, ellipses)
 
 
-def drawing_tree(paths, circles):
-    """A drawing as the oracle's 2-D tree: each path the polygon of its
-    chords minus the circular segments (the disc cut by the chord's
-    half-plane on the arc's side) of arcs bulging inward, plus those bulging
-    outward, a circle a disc; nested paths (a point of one's boundary inside
-    another) combined even-odd: each path of even depth minus the paths of
-    the next depth inside it. A 4th element carries the paths and circles
-    for the oracle's own mesh."""
-    disc = lambda c, r: ("ellipse", np.eye(2) * r, np.asarray(c, float))
-    regions = []  # (tree, inside(x), probe)
-    for c, r in circles:
-        c = np.asarray(c, float)
-        regions.append((disc(c, r), lambda x, c=c, r=r: np.linalg.norm(x - c) <= r, c + np.array([r, 0.0])))
+def drawing_tree(paths, ellipses):
+    """A drawing as the oracle's 2-D tree, filled even-odd: the parity
+    ("xor") of all its paths' polygons of chords, each arc's segment (the
+    ellipse cut by the chord's half-plane on the arc's side) and each whole
+    ellipse. A 4th element carries the paths and ellipses for the oracle's
+    own mesh."""
+    parts, loops = [], []
     for path in paths:
         pts = [p for p, _ in path]
-        chord = np.array(pts) if len(pts) >= 3 else None
-        segs, inward, outward = [], [], []
+        if len(pts) >= 3:
+            loops.append(np.array(pts))
         for i, (a, arc) in enumerate(path):
             if arc is None:
                 continue
             b = path[(i + 1) % len(path)][0]
-            c, r, mid = arc
+            A, c, mid = arc
             t = (b - a) / np.linalg.norm(b - a)
             n = np.array([-t[1], t[0]])
             if (mid - a) @ n < 0:
                 n = -n
-            rect = np.array([a - 2 * r * t, b + 2 * r * t, b + 2 * r * t + 2 * r * n, a - 2 * r * t + 2 * r * n])
-            seg = ("op", "intersection", [disc(c, r), ("poly", [rect])])
-            out = chord is None or not plane.even_odd_inside([chord], mid)
-            (outward if out else inward).append(seg)
-            segs.append((a, b, c, r, mid, out))
-        parts = []
-        if chord is not None:
-            parts.append(("poly", [chord]) if not inward else ("op", "difference", [("poly", [chord])] + inward))
-        parts += outward
-        if not parts:
-            continue
-        tree = parts[0] if len(parts) == 1 else ("op", "union", parts)
-
-        def inside(x, chord=chord, segs=segs):
-            ins = chord is not None and plane.even_odd_inside([chord], x)
-            for a, b, c, r, mid, out in segs:
-                n = np.array([a[1] - b[1], b[0] - a[0]])
-                if np.linalg.norm(x - c) <= r and ((x - a) @ n > 0) == ((mid - a) @ n > 0):
-                    ins = out
-            return ins
-
-        probe = path[0][1][2] if path[0][1] is not None else (pts[0] + pts[1 % len(pts)]) / 2
-        regions.append((tree, inside, probe))
-    m = len(regions)
-    holders = [[p for p in range(m) if p != q and regions[p][1](regions[q][2])] for q in range(m)]
-    depth = [len(h) for h in holders]
-    out = []
-    for p in range(m):
-        if depth[p] % 2:
-            continue
-        inner = [regions[q][0] for q in range(m) if depth[q] == depth[p] + 1 and p in holders[q]]
-        out.append(regions[p][0] if not inner else ("op", "difference", [regions[p][0]] + inner))
-    if not out:
+            d = np.linalg.norm(c - a) + np.abs(A).sum() + np.linalg.norm(b - a)
+            rect = np.array([a - d * t, b + d * t, b + d * t + d * n, a - d * t + d * n])
+            parts.append(("op", "intersection", [("ellipse", A, c), ("poly", [rect])]))
+    parts += [("ellipse", A, c) for A, c in ellipses]
+    if loops:
+        parts.insert(0, ("poly", loops))
+    if not parts:
         return None
-    extra = ("drawing", paths, circles)
-    return ("op", "union", out, extra) if len(out) > 1 else ("op", "union", out + [out[0]], extra) if out[0][0] == "op" else out[0]
+    extra = ("drawing", paths, ellipses)
+    return ("op", "xor", parts, extra) if len(parts) > 1 else ("op", "union", parts + parts, extra)

@@ -30,10 +30,10 @@ def flat_moved(f, m):
         moved = [(m @ g, [svg.part_moved(x, m) for x in parts], sl) for g, parts, sl in f[3][1]]
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("svg", moved))
     if len(f) == 4 and f[3][0] == "drawing":
-        _, paths, circles = f[3]
+        _, paths, ellipses = f[3]
         mv = lambda q: m[:2, :2] @ q + m[:2, 2]
-        arc = lambda x: None if x is None else (mv(x[0]), x[1] * math.sqrt(abs(np.linalg.det(m[:2, :2]))), mv(x[2]))
-        moved = ([[(mv(p), arc(x)) for p, x in path] for path in paths], [(mv(c), r * math.sqrt(abs(np.linalg.det(m[:2, :2])))) for c, r in circles])
+        arc = lambda x: None if x is None else (m[:2, :2] @ x[0], mv(x[1]), mv(x[2]))
+        moved = ([[(mv(p), arc(x)) for p, x in path] for path in paths], [(m[:2, :2] @ A, mv(c)) for A, c in ellipses])
         return ("op", f[1], [flat_moved(k, m) for k in f[2]], ("drawing",) + moved)
     if len(f) == 4 and f[3][0] == "bands":
         # Distances scale with a similarity's factor.
@@ -624,17 +624,36 @@ def has_section(f):
 
 
 def flat_stmt(s):
-    """Whether a statement makes a 2-D shape (its first live child decides
-    for transforms, operations, colours and resize)."""
+    """Whether a statement makes a 2-D shape."""
+    return dimension(s) is True
+
+
+def dimension(s):
+    """OpenSCAD 2021.01's dimension of what a statement makes (its
+    GeometryEvaluator::applyToChildren): True for a 2-D shape, False for a
+    solid, None for nothing (a skipped statement, an empty group); a
+    transform, operation, colour or resize has its first child's that has
+    one."""
+    if "%" in s.mods or "*" in s.mods:
+        return None
     if s.name in meaning.SHAPES_2D and s.name != "import" or s.name in ("offset", "projection"):
         return True
     if s.name == "import":
         f = next((v for k, v in s.args if k in ("file", None) and isinstance(v, str)), "")
-        return f.lower().endswith((".dxf", ".svg"))
+        return True if f.lower().endswith((".dxf", ".svg")) else False
     if s.name in meaning.TRANSFORMS or s.name in ("union", "intersection", "difference", "group", "render", "color", "material", "resize", "hull", "minkowski"):
-        live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
-        return bool(live) and flat_stmt(live[0])
-    return False
+        return next((d for d in map(dimension, s.children) if d is not None), None)
+    if s.name in meaning.SOLIDS or s.name in meaning.EXTRUSIONS:
+        return False
+    return None
+
+
+def operands(children):
+    """The live children as OpenSCAD's render takes them: a child of the
+    other dimension than the first that has one stands as None."""
+    live = [c for c in children if not ("%" in c.mods or "*" in c.mods)]
+    first = next((d for d in map(dimension, live) if d is not None), None)
+    return [None if first is not None and dimension(c) not in (None, first) else c for c in live]
 
 
 def curve_pieces(f):
