@@ -550,12 +550,58 @@ fn polygons_openscad_leaves_out_are_left_out_with_a_warning_at_their_place() {
 }
 
 #[test]
+fn a_child_of_the_other_dimension_is_left_out_as_openscad_renders_it() {
+    // OpenSCAD 2021.01's render (GeometryEvaluator::applyToChildren): an
+    // operation has the dimension of its first child; a child of the other
+    // dimension is empty there, with a warning; an empty operand empties a
+    // 2-D minkowski (Clipper's sum with no paths). The picture is the
+    // picture of what is left.
+    let cube = "translate([2, 0, 0]) cube(1);\n";
+    let square = "linear_extrude(1) square(1);\n";
+    let (alone, _) = image_of(cube);
+    let (with_square, _) = image_of(&format!("{cube}{square}"));
+    let cases = [
+        // An extrusion of a 3-D child extrudes nothing.
+        (
+            format!("linear_extrude(height = 2) {{\n  cube(1);\n}}\n{cube}"),
+            &alone,
+            "Ignoring 3D child object for 2D operation",
+        ),
+        // A 2-D difference is not cut by a solid.
+        (
+            format!("{cube}linear_extrude(1) difference() {{ square(1); sphere(0.5); }}\n"),
+            &with_square,
+            "Ignoring 3D child object for 2D operation",
+        ),
+        // A 3-D union (its first child a solid) leaves a 2-D child out.
+        (
+            format!("union() {{ {}  square(3); }}\n", cube),
+            &alone,
+            "Ignoring 2D child object for 3D operation",
+        ),
+        // A 3-D intersection with a 2-D child is empty.
+        (
+            format!("{cube}intersection() {{ cube(5); square(3); }}\n"),
+            &alone,
+            "Ignoring 2D child object for 3D operation",
+        ),
+        // A 2-D minkowski with an empty operand is empty.
+        (
+            format!("{cube}linear_extrude(1) minkowski() {{ square(1); circle(r = 0); }}\n"),
+            &alone,
+            "this `circle` is empty",
+        ),
+    ];
+    for (text, want, says) in cases {
+        let (img, said) = image_of(&text);
+        assert!(said.contains(says), "{text}: {said}");
+        assert!(&img == want, "{text}: another picture");
+    }
+    assert!(alone != with_square);
+}
+
+#[test]
 fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
-    // An extrusion of a 3-D child, at the child.
-    assert_eq!(
-        fails("linear_extrude(height = 2) {\n  cube(1);\n}\n"),
-        "error: `cube` is a 3-D solid and cannot stand in a 2-D shape\n --> bad.csg:2:3\n  |\n2 |   cube(1);\n  |   ^^^^ expected a 2-D shape (square, circle, polygon) or a 2-D operation\n"
-    );
     // An offset csgrt cannot compute exactly yet, at the offset.
     assert_eq!(
         fails("linear_extrude(1) offset(delta = -1) union() { scale([2, 1]) circle(2); circle(1); }\n"),

@@ -68,20 +68,25 @@ pub fn resolve_with(src: &Source, stmts: &[Statement], facets: super::Facets) ->
     let root = find_root(stmts);
     let solids: Vec<&Statement> = match root {
         Some(s) => vec![s],
-        None => stmts
-            .iter()
-            .filter(|s| !SCENE.contains(&s.name.as_str()))
+        None => r
+            .operands(stmts.iter().filter(|s| !SCENE.contains(&s.name.as_str())))
+            .into_iter()
+            .flatten()
             .collect(),
     };
     let mut ids = Vec::new();
+    let mut planar = true;
     for s in solids {
         if let Some(id) = r.statement(s, DAffine3::IDENTITY, defaults::MATERIAL, 0)? {
             ids.push(id);
+            planar &= resize::is_planar(s);
         }
     }
     let root = r.b.union(ids);
     let place = stmts.first().map_or(TextRange::default(), |s| s.span);
-    Ok(r.b.finish(src, root, place, defaults::BACKGROUND))
+    let mut scene = r.b.finish(src, root, place, defaults::BACKGROUND);
+    scene.planar = planar && root.is_some();
+    Ok(scene)
 }
 
 fn skipped(s: &Statement) -> bool {
@@ -206,12 +211,41 @@ impl Resolver<'_> {
         depth: usize,
     ) -> Result<Vec<u32>> {
         let mut ids = Vec::new();
-        for c in &s.children {
+        for c in self.operands(&s.children).into_iter().flatten() {
             if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
                 ids.push(id);
             }
         }
         Ok(ids)
+    }
+
+    /// The live children of an operation (or a transform, or the top
+    /// level) as OpenSCAD's render takes them: the operation has the
+    /// dimension of its first child that has one, and a child of the other
+    /// dimension stands as an empty operand (`None`), with OpenSCAD's
+    /// warning (`GeometryEvaluator::collectChildren3D`/`2D`).
+    fn operands<'s>(
+        &mut self,
+        children: impl IntoIterator<Item = &'s Statement>,
+    ) -> Vec<Option<&'s Statement>> {
+        let live: Vec<&Statement> = children.into_iter().filter(|c| !skipped(c)).collect();
+        let Some(planar) = live.iter().find_map(|c| resize::dimension(c)) else {
+            return live.into_iter().map(Some).collect();
+        };
+        live.into_iter()
+            .map(|c| match resize::dimension(c) {
+                Some(d) if d != planar && !mutant::active("dimensions_mixed") => {
+                    let (other, this) = if d { ("2D", "3D") } else { ("3D", "2D") };
+                    self.warn(
+                        c.name_span,
+                        &format!("Ignoring {other} child object for {this} operation"),
+                        "it is left out, as OpenSCAD's render leaves it out",
+                    );
+                    None
+                }
+                _ => Some(c),
+            })
+            .collect()
     }
 
     /// One statement under the world transform `xf` and material `mat`;
@@ -265,8 +299,11 @@ impl Resolver<'_> {
                     // Every operand is built (so errors in any are reported);
                     // an empty operand makes the intersection empty.
                     let mut parts = Vec::new();
-                    for c in s.children.iter().filter(|c| !skipped(c)) {
-                        parts.push(self.statement(c, xf, mat, depth + 1)?);
+                    for c in self.operands(&s.children) {
+                        parts.push(match c {
+                            Some(c) => self.statement(c, xf, mat, depth + 1)?,
+                            None => None,
+                        });
                     }
                     Ok(self.op(Op::Intersection, parts))
                 }
@@ -337,8 +374,9 @@ impl Resolver<'_> {
         mat: Material,
         depth: usize,
     ) -> Result<Option<u32>> {
-        let mut kids = s.children.iter().filter(|c| !skipped(c));
-        let Some(first) = kids.next() else {
+        let operands = self.operands(&s.children);
+        let mut kids = operands.into_iter();
+        let Some(Some(first)) = kids.next() else {
             return Ok(None);
         };
         let Some(a) = self.statement(first, xf, mat, depth + 1)? else {
@@ -346,7 +384,7 @@ impl Resolver<'_> {
         };
         let mut ids = vec![a];
         self.subtracted = !self.subtracted;
-        for c in kids {
+        for c in kids.flatten() {
             if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
                 ids.push(id);
             }

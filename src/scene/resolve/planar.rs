@@ -33,6 +33,16 @@ impl Resolver<'_> {
         if super::skipped(s) {
             return Ok(None);
         }
+        if super::resize::dimension(s) == Some(false) && !crate::mutant::active("dimensions_mixed")
+        {
+            // GeometryEvaluator::collectChildren2D.
+            self.warn(
+                s.name_span,
+                "Ignoring 3D child object for 2D operation",
+                "it is left out, as OpenSCAD's render leaves it out",
+            );
+            return Ok(None);
+        }
         let name = s.name.as_str();
         if SHAPES_2D.contains(&name) {
             self.no_children(s)?;
@@ -107,8 +117,13 @@ impl Resolver<'_> {
             Args::bind(self.src, s, &["convexity"])?;
             let mut ops = Vec::new();
             for c in s.children.iter().filter(|c| !super::skipped(c)) {
-                ops.extend(self.figure(c, DAffine2::IDENTITY, depth + 1)?);
+                ops.push(self.figure(c, DAffine2::IDENTITY, depth + 1)?);
             }
+            // An empty operand makes the sum empty (Clipper's sum with no
+            // paths, as OpenSCAD calls it).
+            let Some(ops) = ops.into_iter().collect::<Option<Vec<Figure>>>() else {
+                return Ok(None);
+            };
             if ops.is_empty() {
                 return Ok(None);
             }
@@ -226,7 +241,8 @@ impl Resolver<'_> {
                 return Ok(None);
             }
         };
-        let paths = match a.number_lists("paths")? {
+        // No paths, or an empty list of them: all points, in order.
+        let paths = match a.number_lists("paths")?.filter(|l| !l.is_empty()) {
             Some(lists) => lists,
             None if pts.len() < 3 => {
                 let found = format!("expected 3 or more points, found {}", pts.len());
@@ -238,8 +254,12 @@ impl Resolver<'_> {
                 return Ok(None);
             }
             None => {
-                let loops = vec![pts.iter().map(|p| p.truncate()).collect()];
-                return Ok(Some(Outlines::polygons(loops)));
+                let path: Vec<DVec2> = pts.iter().map(|p| p.truncate()).collect();
+                if on_one_line(&path) {
+                    self.empty(s, "its points lie on one line")?;
+                    return Ok(None);
+                }
+                return Ok(Some(Outlines::polygons(vec![path])));
             }
         };
         let mut loops = Vec::new();
@@ -257,6 +277,14 @@ impl Resolver<'_> {
             if path.len() < 3 {
                 let found = format!("expected 3 or more points, found {}", path.len());
                 self.warn(l.span, "a path of fewer than 3 points adds nothing", &found);
+                continue;
+            }
+            if on_one_line(&path) {
+                self.warn(
+                    l.span,
+                    "a path whose points lie on one line adds nothing",
+                    "it has no area",
+                );
                 continue;
             }
             loops.push(path);
@@ -402,7 +430,6 @@ impl Resolver<'_> {
             };
             return Err(self.src.error(span, message, label));
         }
-        self.openscad_facets_unsupported(s, "a drawing's arcs")?;
         let layer = match (a.string("layer")?, a.string("layername")?) {
             (Some(l), _) | (None, Some(l)) => l,
             _ => "",
@@ -417,7 +444,8 @@ impl Resolver<'_> {
             "drawing",
             "expected a DXF file beside the scene",
         )?;
-        let d = crate::import::dxf::read(&bytes, layer, origin, scale).map_err(|e| {
+        let cut = |r: f64| self.fragments(&a, r);
+        let d = crate::import::dxf::read(&bytes, layer, origin, scale, &cut).map_err(|e| {
             self.src.error(
                 span,
                 format!(
@@ -543,4 +571,16 @@ pub(super) fn file_child(s: &Statement, a: &Args) -> Option<Statement> {
         children: Vec::new(),
         span: s.span,
     })
+}
+
+/// Whether every point lies on one line (exactly): a path with no area,
+/// which OpenSCAD's sanitizing leaves out.
+fn on_one_line(path: &[DVec2]) -> bool {
+    let Some(&a) = path.first() else {
+        return true;
+    };
+    let Some(&b) = path.iter().find(|&&p| p != a) else {
+        return true;
+    };
+    path.iter().all(|&p| (b - a).perp_dot(p - a) == 0.0)
 }

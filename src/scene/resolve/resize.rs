@@ -11,7 +11,7 @@
 //! unbounded or twisted leaf, a slice, an extreme point cut away) is "not
 //! supported yet", never a guess.
 
-use super::{Resolver, TRANSFORMS};
+use super::{Resolver, APPEARANCE, TRANSFORMS};
 use crate::error::Result;
 use crate::math::boolean::Op;
 use crate::plane::figure::Figure;
@@ -49,31 +49,78 @@ fn sizes(a: &Args) -> Result<([f64; 3], [bool; 3])> {
 
 const PARAMS: &[&str] = &["newsize", "auto", "convexity"];
 
+/// Whether OpenSCAD 2021.01 hands `resize` these children as a CGAL Nef
+/// polyhedron — a union of two or more, the result of a CSG operation on
+/// two or more, `render`, `minkowski` — rather than as a PolySet (a
+/// primitive, an extrusion, a mesh, a hull, under any transforms). Only
+/// `CGAL_Nef_polyhedron::resize` takes a size below 0 (a mirror);
+/// `PolySet::resize` leaves that axis as it is.
+fn nef_result(children: &[Statement]) -> bool {
+    let live: Vec<&Statement> = children
+        .iter()
+        .filter(|c| !super::skipped(c) && c.name != "echo")
+        .collect();
+    match live[..] {
+        [] => false,
+        [one] => match one.name.as_str() {
+            "render" | "minkowski" => true,
+            n if TRANSFORMS.contains(&n)
+                || APPEARANCE.contains(&n)
+                || ["group", "union", "difference", "intersection"].contains(&n) =>
+            {
+                nef_result(&one.children)
+            }
+            _ => false,
+        },
+        _ => true,
+    }
+}
+
 /// Whether a statement makes a 2-D shape (its first live child decides
 /// for transforms and operations, as OpenSCAD's dimension rule).
 pub(super) fn is_planar(s: &Statement) -> bool {
+    dimension(s) == Some(true)
+}
+
+/// The dimension of what a statement makes, as OpenSCAD 2021.01 reads it
+/// (`GeometryEvaluator::applyToChildren`): `Some(true)` for a 2-D shape,
+/// `Some(false)` for a solid, `None` for nothing at all (a skipped
+/// statement, an empty group, a scene statement, an unknown name).
+/// Transforms and operations take the dimension of their first child that
+/// has one.
+pub(super) fn dimension(s: &Statement) -> Option<bool> {
+    if super::skipped(s) {
+        return None;
+    }
     let name = s.name.as_str();
     if super::planar::SHAPES_2D.contains(&name) || ["offset", "projection"].contains(&name) {
-        return true;
+        return Some(true);
     }
     if name == "import" {
-        // Drawings are 2-D; meshes (STL, OFF, ...) are solids.
+        // Drawings are 2-D; meshes (STL, OFF, ...) are solids; what csgrt
+        // does not read has no dimension here (its error comes later).
         let file = s.args.iter().find_map(|a| match (&a.name, &a.value.kind) {
             (Some((n, _)), ValueKind::Str(f)) if n == "file" => Some(f.to_lowercase()),
             (None, ValueKind::Str(f)) => Some(f.to_lowercase()),
             _ => None,
-        });
-        return file.is_some_and(|f| f.ends_with(".dxf") || f.ends_with(".svg"));
+        })?;
+        let ext = file.rsplit_once('.').map_or("", |(_, e)| e);
+        if ["dxf", "svg"].contains(&ext) {
+            return Some(true);
+        }
+        return crate::import::meshfile::FORMATS
+            .contains(&ext)
+            .then_some(false);
     }
     let passes = TRANSFORMS.contains(&name)
         || super::OPERATIONS.contains(&name)
         || super::APPEARANCE.contains(&name)
         || ["resize", "hull", "minkowski"].contains(&name);
-    passes
-        && s.children
-            .iter()
-            .find(|c| !super::skipped(c))
-            .is_some_and(is_planar)
+    if passes {
+        return s.children.iter().find_map(dimension);
+    }
+    // A solid csgrt builds; a statement it refuses has its error later.
+    matches!(super::solids::binder(name), Some(Some(_))).then_some(false)
 }
 
 impl Resolver<'_> {
@@ -90,7 +137,11 @@ impl Resolver<'_> {
             return self.slab(s, xf, mat);
         }
         let a = Args::bind(self.src, s, PARAMS)?;
-        let (newsize, auto) = sizes(&a)?;
+        let (mut newsize, auto) = sizes(&a)?;
+        if !nef_result(&s.children) {
+            // `PolySet::resize` takes only sizes above 0.
+            newsize = newsize.map(|x| x.max(0.0));
+        }
         let mark = self.b.csg.mark();
         let warned = self.b.warnings.len();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;

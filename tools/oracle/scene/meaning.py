@@ -226,8 +226,8 @@ class Reader:
                 if s.mods:
                     raise self.err(s, "a scene statement takes no modifiers")
                 self.scene_statement(s)
-        for s in stmts_used:
-            if s.name in SCENE:
+        for s in plane.operands([s for s in stmts_used if s.name not in SCENE]):
+            if s is None:
                 continue
             n = self.node(s, np.eye(4), dict(CORNFIELD))
             if n is not None:
@@ -270,7 +270,7 @@ class Reader:
                 raise self.err(s, "import takes no children")
             pts, faces = dxf.import_mesh(self, s, a)
             return self.leaf(s, "polyhedron", dict(points=pts, faces=faces), xf, mat)
-        kids = lambda x, m: [k for k in (self.node(c, x, m) for c in s.children) if k is not None]
+        kids = lambda x, m: [k for k in (self.node(c, x, m) for c in plane.operands(s.children) if c is not None) if k is not None]
         if name in ("hull", "minkowski") and not plane.flat_stmt(s):
             # Its children's leaves, read in place and kept out of the
             # scene's: one leaf of its own, meshed by manifold's hull or
@@ -280,7 +280,7 @@ class Reader:
                 parts = union_leaves(self, s, self.union(kids(xf, mat)))
                 params = dict(parts=parts)
             else:
-                live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+                live = [c for c in plane.operands(s.children) if c is not None]
                 # The sum moves once: the first operand under the whole
                 # transform, the others under its linear part.
                 lin = xf.copy()
@@ -306,14 +306,15 @@ class Reader:
         if name in ("color", "material"):
             return self.union(kids(xf, self.appearance(s, a, mat)))
         if name == "intersection":
-            parts = [self.node(c, xf, mat) for c in s.children if not ("%" in c.mods or "*" in c.mods)]
+            parts = [None if c is None else self.node(c, xf, mat) for c in plane.operands(s.children)]
             if not parts or any(p is None for p in parts):
                 return None
             return parts[0] if len(parts) == 1 else Op("intersection", parts)
         if name == "difference":
-            live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
-            if not live:
+            live = plane.operands(s.children)
+            if not live or live[0] is None:
                 return None
+            live = [c for c in live if c is not None]
             first = self.node(live[0], xf, mat)
             if first is None:
                 return None
@@ -447,9 +448,10 @@ class Reader:
         name = s.name
         if name not in PARAMS or name in SCENE:
             raise self.err(s, f"{name} cannot stand in a 2-D shape")
+        if plane.dimension(s) is False:
+            # A solid in a 2-D operation is left out (OpenSCAD's render).
+            return None
         a = bind(self.path, s)
-        if name in SOLIDS or name in EXTRUSIONS:
-            raise self.err(s, f"{name} is 3-D and cannot stand in a 2-D shape")
         if name in SHAPES_2D:
             return self.shape_2d(s, a, m)
         if name in TRANSFORMS:
@@ -491,8 +493,9 @@ class Reader:
         if name == "minkowski":
             # Summed in its own frame, then placed (the sum moves once).
             live = [c for c in s.children if not ("%" in c.mods or "*" in c.mods)]
-            kids = [k for k in (self.flat(c, np.eye(3)) for c in live) if k is not None]
-            if not kids:
+            kids = [self.flat(c, np.eye(3)) for c in live]
+            # An empty operand empties the sum.
+            if not kids or any(k is None for k in kids):
                 return None
             try:
                 return plane.minkowski_flat(kids, m)
@@ -503,8 +506,23 @@ class Reader:
 
     def resize(self, s, a, xf, mat):
         """3-D resize: the children's exact box in the resize's frame, then
-        CGAL_Nef_polyhedron::resize's scale about the origin."""
+        CGAL_Nef_polyhedron::resize's scale about the origin. Only a Nef
+        polyhedron (a union or CSG operation of two or more, render,
+        minkowski) takes a size below 0; PolySet::resize leaves that axis."""
         newsize, auto = solids.resize_args(self, s, a)
+
+        def nef(children):
+            live = [c for c in children if not ("%" in c.mods or "*" in c.mods)]
+            if len(live) != 1:
+                return len(live) > 1
+            c = live[0]
+            if c.name in ("render", "minkowski"):
+                return True
+            passes = c.name in TRANSFORMS or c.name in ("color", "material", "group", "union", "difference", "intersection")
+            return passes and nef(c.children)
+
+        if not nef(s.children):
+            newsize = [max(x, 0.0) for x in newsize]
         n0 = len(self.scene.leaves)
         node = self.union([k for k in (self.node(c, np.eye(4), mat) for c in s.children) if k is not None])
         del self.scene.leaves[n0:]
@@ -663,7 +681,8 @@ class Reader:
             return None
         pts = np.array(pts, dtype=float).reshape(-1, 2)
         paths = a.get("paths")
-        if paths is None:
+        # No paths, or an empty list: all points in order.
+        if not paths:
             if len(pts) < 3:
                 return None
             paths = [list(range(len(pts)))]
@@ -672,7 +691,9 @@ class Reader:
             if not isinstance(path, list) or not all(map(number, path)):
                 raise self.err(s, "paths of polygon must be lists of indices")
             idx = [int(i) for i in path if 0 <= int(i) < len(pts) and i >= 0]
-            if len(idx) >= 3:
+            # A path on one line has no area (OpenSCAD's sanitizing).
+            flat = len(idx) < 3 or np.linalg.matrix_rank(pts[idx] - pts[idx[0]]) < 2
+            if not flat:
                 loops.append(place(pts[idx]))
         return ("poly", loops) if loops else None
 
