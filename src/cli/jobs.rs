@@ -184,7 +184,7 @@ fn set_view(cli: &Cli, scene: &mut Scene) {
         projection: cli.projection,
     };
     if opts.is_openscad() {
-        let bounds = scene.framing_bounds();
+        let bounds = scene.result_bounds();
         scene.camera = Some(openscad_view::camera(&opts, &bounds, width, height));
     } else if let Some(projection) = cli.projection {
         scene.camera = Some(csgrt::scene::CameraSpec {

@@ -834,7 +834,16 @@ impl Csg {
 fn op_bounds(op: Op, mut boxes: impl Iterator<Item = Aabb>) -> Aabb {
     match op {
         Op::Union | Op::Xor => boxes.fold(Aabb::EMPTY, |a, x| a.union(&x)),
-        Op::Intersection => boxes.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x)),
+        Op::Intersection => {
+            let b = boxes.fold(Aabb::EVERYTHING, |a, x| a.intersect(&x));
+            // Boxes apart meet in nothing: not in a box whose sides
+            // cross, which a union would then take sides from.
+            if b.is_empty() {
+                Aabb::EMPTY
+            } else {
+                b
+            }
+        }
         Op::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
     }
 }

@@ -88,6 +88,7 @@ impl SceneBuilder {
             materials: self.materials,
             csg: self.csg,
             warnings: self.warnings,
+            planar: false,
         }
     }
 }

@@ -117,6 +117,9 @@ pub struct Scene {
     pub materials: Vec<Material>,
     pub csg: Csg,
     pub warnings: Vec<Diagnostic>,
+    /// The model is 2-D at the top level: each of its shapes is shown as
+    /// a slab (see `resolve::extrude`), and OpenSCAD's box of it is flat.
+    pub planar: bool,
 }
 
 impl Scene {
@@ -135,6 +138,23 @@ impl Scene {
     pub fn view(&self, width: u32, height: u32) -> CameraSpec {
         self.camera
             .unwrap_or_else(|| defaults::framing_camera(&self.framing_bounds(), width, height))
+    }
+
+    /// What OpenSCAD's `--viewall` frames: the box of the result itself
+    /// ([`crate::csg::Csg::tight_bounds`], flat for a 2-D model) when the
+    /// tree is bounded, else [`Scene::framing_bounds`].
+    pub fn result_bounds(&self) -> Aabb {
+        let b = self.csg.bounds();
+        if !b.is_bounded() || b.is_empty() {
+            return self.framing_bounds();
+        }
+        let mut t = self.csg.tight_bounds();
+        if self.planar && !crate::mutant::active("framing_loose") {
+            // In the slabs' middle plane, as OpenSCAD's 2-D box (z = 0).
+            let mid = 0.5 * (t.min.z + t.max.z);
+            (t.min.z, t.max.z) = (mid, mid);
+        }
+        t
     }
 
     /// What the default camera frames: the tree's box if it is bounded,
