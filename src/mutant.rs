@@ -26,6 +26,7 @@ pub const NAMES: &[&str] = &[
     "dxf_union_fill",
     "framing_loose",
     "dimensions_mixed",
+    "offset_miter_squared",
     "section_unflattened",
     "resize_auto_ignored",
     "ellipse_turned_back",

@@ -420,7 +420,9 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
     let cos = n1.dot(n2);
     match join {
         Join::Round => Figure::disc(v, k),
-        Join::Miter if 1.0 + cos >= MITER_LIMIT => {
+        Join::Miter
+            if 1.0 + cos >= MITER_LIMIT && !crate::mutant::active("offset_miter_squared") =>
+        {
             let miter = v + (n1 + n2) * (k / (1.0 + cos));
             Figure::Polygon(Outlines::polygons(vec![vec![
                 v,

@@ -10,7 +10,10 @@ copied to target/mutants/release/csgrt before the real build replaces it:
 fault of src/mutant.rs, switched on one at a
 time by CSGRT_MUTANT=NAME. For each fault this runs the oracle on the
 scenes that show it (the oracle's side is computed once a scene and kept),
-and the accuracy tool where it applies, and requires each to fail. It also
+and the accuracy tool where it applies, OpenSCAD's own suite (tools/oracle/suite.py),
+OpenSCAD's own meshes (tools/oracle/openscad_meshes.py) and OpenSCAD's own
+offsets (tools/oracle/offset_vs_openscad.py) for the faults they catch,
+and requires each to fail. It also
 requires the mutant build with no fault switched on to answer exactly as
 the real build does on those same scenes and primitives (which the real
 build passes: .ci/run's own lines), so a failure means the fault, not the
@@ -46,7 +49,6 @@ MUTANTS = {
     "curves_as_chords": (["tests/openscad/text.csg"], ["glyph", "cubic"]),
     "kerning_ignored": (["tests/openscad/text.csg"], False),
     "twist_reversed": (["tests/openscad/twist.csg"], ["twisted"]),
-    "drawing_unnested": (["tests/openscad/example015.csg"], False),
     "section_unflattened": (["tests/openscad/projection_cut.csg"], False),
     "resize_auto_ignored": (["tests/openscad/resize.csg"], False),
     "ellipse_turned_back": (["tests/openscad/twisted_circles.csg"], ["twisted_ellipse"]),
@@ -57,6 +59,27 @@ MUTANTS = {
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
     "outline_first_loop_only": (["tests/openscad/offsets.csg"], False),
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
+}
+
+# fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)
+# that must then fail it.
+SUITE = {
+    "dxf_ellipses_dropped": "dxf/ellipse",
+    "dxf_union_fill": "dxf/circle-small,dxf/polygon-holes-touch",
+    "framing_loose": "2D/issues/issue666_2D,misc/internal-cavity.csg",
+    "dimensions_mixed": "3D/features/2d-3d,2D/features/difference-2d-tests",
+}
+
+# fault -> scenes of tools/oracle/openscad_meshes.py (OpenSCAD's own meshes)
+# that must then fail it.
+MESHES = {
+    "dxf_fine_grid": "dxf_gaps",
+}
+
+# fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own
+# offsets) that must then fail.
+OFFSETS = {
+    "offset_miter_squared": ("5", "1"),
 }
 
 # fault -> a scene tools/oracle/pov_check.py must then reject (the export is read
@@ -101,7 +124,7 @@ def check_fault(job):
     """(table rows, what escaped) for one fault."""
     binary, fault = job
     rows, escaped = [], []
-    scenes, acc = MUTANTS[fault]
+    scenes, acc = MUTANTS.get(fault, ([], False))
     for scene in scenes:
         bad = oracle_problems(binary, scene, fault)
         rows.append(f"| {fault} | oracle {scene} | {bad[0] if bad else 'NOT CAUGHT'} |")
@@ -112,6 +135,23 @@ def check_fault(job):
         rows.append(f"| {fault} | pov_check.py {POV[fault]} | {first if failed else 'NOT CAUGHT'} |")
         if not failed:
             escaped.append(f"{fault} passes tools/oracle/pov_check.py")
+    if fault in SUITE:
+        failed, lines = tool_fails(fault, "suite", "--csgrt", binary, "--only", SUITE[fault])
+        rows.append(f"| {fault} | suite.py --only {SUITE[fault]} | {lines[0] if failed and lines else 'NOT CAUGHT'} |")
+        if not failed:
+            escaped.append(f"{fault} passes tools/oracle/suite.py")
+    if fault in MESHES:
+        failed, lines = tool_fails(fault, "openscad_meshes", "--csgrt", binary, "--only", MESHES[fault])
+        first = next((x for x in lines if x.startswith("FAIL")), "")
+        rows.append(f"| {fault} | openscad_meshes.py --only {MESHES[fault]} | {first[:160] if failed else 'NOT CAUGHT'} |")
+        if not failed:
+            escaped.append(f"{fault} passes tools/oracle/openscad_meshes.py")
+    if fault in OFFSETS:
+        failed, lines = tool_fails(fault, "offset_vs_openscad", *OFFSETS[fault], "--csgrt", binary)
+        first = next((x for x in lines if "MISMATCH" in x or "REFUSED" in x), lines[-1] if lines else "")
+        rows.append(f"| {fault} | offset_vs_openscad.py {' '.join(OFFSETS[fault])} | {first[:160] if failed else 'NOT CAUGHT'} |")
+        if not failed:
+            escaped.append(f"{fault} passes tools/oracle/offset_vs_openscad.py")
     if acc:
         failed, last = accuracy_fails(binary, fault, acc)
         rows.append(f"| {fault} | accuracy.py | {last if failed else 'NOT CAUGHT'} |")
@@ -128,21 +168,31 @@ def main():
     ap.add_argument("--report", default=None, help="write the table (Markdown) here")
     a = ap.parse_args()
     binary = os.path.abspath(a.csgrt)
-    faults = a.only.split(",") if a.only else list(MUTANTS)
+    faults = a.only.split(",") if a.only else list(dict.fromkeys([*MUTANTS, *SUITE, *MESHES, *OFFSETS]))
     lines = ["| mutant | scene or tool | caught by |", "|---|---|---|"]
     escaped = []
     # The build itself, no fault on, must answer as the real build does to
     # the byte, on everything the oracle and the accuracy tool read of it;
     # the real build passes both (.ci/run's own lines), so a failure below
     # is the fault's, not the build's.
-    kinds = sorted({k for f in faults for k in (MUTANTS[f][1] or [])})
+    kinds = sorted({k for f in faults for k in (MUTANTS.get(f, ([], False))[1] or [])})
     failed, said = tool_fails("", "accuracy.py", "--csgrt", binary, "--same-as", a.real, "--check", "--kinds", ",".join(kinds))
     if failed:
         escaped.append(f"the mutant build with no fault answers otherwise than the real one in tools/oracle/accuracy.py: {said[-1] if said else ''}")
-    for scene in sorted({s for f in faults for s in MUTANTS[f][0]}):
+    for scene in sorted({s for f in faults for s in MUTANTS.get(f, ([], False))[0]}):
         bad = oracle.same_outputs(os.path.join(ROOT, scene), [binary], [a.real], *SIZE, RAYS, env=dict(os.environ, CSGRT_MUTANT=""))
         if bad:
             escaped.append(f"the mutant build with no fault answers otherwise than the real one on {scene}: {bad[0]}")
+    for tool, table in (("suite", SUITE), ("openscad_meshes", MESHES)):
+        picked = ",".join(table[f] for f in faults if f in table)
+        if picked:
+            failed, said = tool_fails("", tool, "--csgrt", binary, "--only", picked)
+            if failed:
+                escaped.append(f"the mutant build with no fault fails tools/oracle/{tool}.py: {said[-1] if said else ''}")
+    if any(f in OFFSETS for f in faults):
+        failed, said = tool_fails("", "offset_vs_openscad", *OFFSETS["offset_miter_squared"], "--csgrt", binary)
+        if failed:
+            escaped.append(f"the mutant build with no fault fails tools/oracle/offset_vs_openscad.py: {said[-1] if said else ''}")
     # The faults checked two (or as many as there are cores) at once, each
     # worker keeping the oracle's side of the scenes it has met.
     with multiprocessing.Pool(os.cpu_count() or 1) as pool:
