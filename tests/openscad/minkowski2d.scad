@@ -1,7 +1,8 @@
 // 2-D minkowski(), exact: a shape with circles is its offset by their
 // radii (a rounded outline, convex or not); convex shapes sum by the hull
 // of their corners' sums, a union operand distributing. Extruded straight,
-// twisted and turned; and one left flat, shown as a slab.
+// twisted and turned; and one left flat at the top level, which OpenSCAD's
+// render leaves out of a 3-D model (with a warning).
 linear_extrude(height = 3) minkowski() {
   square([10, 6]);
   circle(r = 2);
