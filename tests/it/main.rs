@@ -10,6 +10,7 @@ mod csg_properties;
 mod docs;
 mod facets;
 mod formats;
+mod framing;
 mod fuzz_corpus;
 mod layers;
 mod limits;
