@@ -27,6 +27,7 @@ pub const NAMES: &[&str] = &[
     "framing_loose",
     "dimensions_mixed",
     "offset_miter_squared",
+    "sum_circle_dropped",
     "section_unflattened",
     "resize_auto_ignored",
     "ellipse_turned_back",

@@ -154,12 +154,17 @@ fn convex_pieces(f: &Figure, out: &mut Vec<Piece2>) -> bool {
 }
 
 /// The corners of the convex hull of points, counter-clockwise (points on
-/// an edge left out).
+/// an edge left out); the one point, when they are all one (a circle's
+/// centre summed with a point: the piece is that circle).
 fn hull2(pts: Vec<DVec2>) -> Vec<DVec2> {
-    hull_indices_2d(&pts, 0.0)
+    let corners: Vec<DVec2> = hull_indices_2d(&pts, 0.0)
         .into_iter()
         .map(|i| pts[i])
-        .collect()
+        .collect();
+    if corners.is_empty() && !crate::mutant::active("sum_circle_dropped") {
+        return pts.into_iter().take(1).collect();
+    }
+    corners
 }
 
 /// The convex polygon of `corners` (counter-clockwise) grown by a disc of

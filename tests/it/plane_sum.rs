@@ -131,3 +131,25 @@ fn discs_sum_to_a_disc() {
         |p| (p - v(0.75, 0.5)).length() - 1.2,
     );
 }
+
+#[test]
+fn a_circle_inside_a_union_operand_is_summed_too() {
+    // (box ∪ disc) ⊕ disc = (box ⊕ disc) ∪ (disc grown by the radius):
+    // the union's circle summed with the other disc's centre is one point,
+    // and its piece must stay the grown disc (found by OpenSCAD's own sums,
+    // tools/oracle/offset_vs_openscad.py --kind sum).
+    use csgrt::math::boolean::Op;
+    let union = Figure::Op(
+        Op::Union,
+        vec![square(0.0, 1.0), Figure::disc(v(3.0, 0.5), 1.0)],
+    );
+    let f = sum(vec![union, Figure::disc(v(0.0, 0.0), 0.5)]);
+    agree_on_grid(
+        "(box + disc) + disc",
+        v(-1.0, -1.5),
+        v(5.0, 2.5),
+        MARGIN,
+        |p| figure_contains(&f, p),
+        |p| box_distance(p, v(0.0, 0.0), v(1.0, 1.0)).min((p - v(3.0, 0.5)).length() - 1.0) - 0.5,
+    );
+}

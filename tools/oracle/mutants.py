@@ -80,6 +80,7 @@ MESHES = {
 # offsets) that must then fail.
 OFFSETS = {
     "offset_miter_squared": ("5", "1"),
+    "sum_circle_dropped": ("18", "1", "--kind", "sum"),
 }
 
 # fault -> a scene tools/oracle/pov_check.py must then reject (the export is read
@@ -189,10 +190,11 @@ def main():
             failed, said = tool_fails("", tool, "--csgrt", binary, "--only", picked)
             if failed:
                 escaped.append(f"the mutant build with no fault fails tools/oracle/{tool}.py: {said[-1] if said else ''}")
-    if any(f in OFFSETS for f in faults):
-        failed, said = tool_fails("", "offset_vs_openscad", *OFFSETS["offset_miter_squared"], "--csgrt", binary)
-        if failed:
-            escaped.append(f"the mutant build with no fault fails tools/oracle/offset_vs_openscad.py: {said[-1] if said else ''}")
+    for f in faults:
+        if f in OFFSETS:
+            failed, said = tool_fails("", "offset_vs_openscad", *OFFSETS[f], "--csgrt", binary)
+            if failed:
+                escaped.append(f"the mutant build with no fault fails tools/oracle/offset_vs_openscad.py {' '.join(OFFSETS[f])}: {said[-1] if said else ''}")
     # The faults checked two (or as many as there are cores) at once, each
     # worker keeping the oracle's side of the scenes it has met.
     with multiprocessing.Pool(os.cpu_count() or 1) as pool:

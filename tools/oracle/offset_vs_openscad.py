@@ -1,14 +1,16 @@
 #!/usr/bin/env python3
-"""Random offsets of random 2-D combinations of circles and squares, each
-rendered by csgrt and by OpenSCAD itself: csgrt's prism of the offset
+"""Random offsets of random 2-D combinations of circles and squares (or,
+with --kind sum, their Minkowski sums with a circle or a turned rectangle;
+with --kind hull, hulls of circles and squares), each
+rendered by csgrt and by OpenSCAD itself: csgrt's prism of the result
 (linear_extrude(1), traced by vertical rays on a 61 x 61 grid) against the
 top faces of OpenSCAD's own mesh (`openscad -o m.off`, $fn = 256), point by
 point, points within 2e-3 of OpenSCAD's outline left out (its facets and
 Clipper's miters on them). A check of `offset` against the reference
-implementation itself, not run in CI (it needs the openscad binary and
+implementation itself, run in CI (it needs the openscad binary and
 takes about 4 s a scene).
 
-Usage: offset_vs_openscad.py FIRST_SEED COUNT [--dir DIR] [--csgrt BIN]
+Usage: offset_vs_openscad.py FIRST_SEED COUNT [--kind offset|sum|hull] [--dir DIR] [--csgrt BIN]
 Prints one line a scene and `bad N`; exit status 1 if any scene disagrees.
 """
 import sys, os, subprocess, random, math, tempfile, numpy as np
@@ -31,6 +33,21 @@ def offs(rng):
     if j == 'r': return f"offset(r = {d:.3f})"
     if j == 'delta': return f"offset(delta = {d:.3f})"
     return f"offset(delta = {d:.3f}, chamfer = true)"
+def piece(rng):
+    """A circle or a turned rectangle, somewhere."""
+    if rng.random() < 0.5:
+        return f"translate([{rng.uniform(-3,3):.3f}, {rng.uniform(-3,3):.3f}]) circle(r = {rng.uniform(0.3,2):.3f});"
+    return f"translate([{rng.uniform(-3,3):.3f}, {rng.uniform(-3,3):.3f}]) rotate({rng.uniform(0,90):.2f}) square([{rng.uniform(0.3,3):.3f}, {rng.uniform(0.3,3):.3f}], center = true);"
+def summed(rng):
+    """A Minkowski sum csgrt makes exact: any shape with a circle (its
+    offset), or a union of circles and rectangles with a turned rectangle."""
+    if rng.random() < 0.5:
+        return f"minkowski() {{ union() {{ {shape(rng)} {shape(rng)} }} circle(r = {rng.uniform(0.1,1.5):.3f}); }}"
+    parts = " ".join(piece(rng) for _ in range(rng.randint(1, 3)))
+    return f"minkowski() {{ union() {{ {parts} }} rotate({rng.uniform(0,90):.2f}) square([{rng.uniform(0.2,2):.3f}, {rng.uniform(0.2,2):.3f}], center = true); }}"
+def hulled(rng):
+    return "hull() { " + " ".join(piece(rng) for _ in range(rng.randint(2, 4))) + " }"
+KIND = sys.argv[sys.argv.index("--kind") + 1] if "--kind" in sys.argv else "offset"
 seed0 = int(sys.argv[1]); N = int(sys.argv[2])
 if "--csgrt" in sys.argv:
     BIN = sys.argv[sys.argv.index("--csgrt") + 1]
@@ -38,10 +55,13 @@ ROOT_DIR = sys.argv[sys.argv.index("--dir") + 1] if "--dir" in sys.argv else tem
 bad = 0
 for seed in range(seed0, seed0+N):
     rng = random.Random(seed)
-    o = offs(rng)
-    if rng.random() < 0.3: o = o + " " + offs(rng)
-    body = f"union() {{ {shape(rng)} {shape(rng)} }}"
-    scad = f"$fn = 256;\nlinear_extrude(1) {o} {body}\n"
+    if KIND == "offset":
+        o = offs(rng)
+        if rng.random() < 0.3: o = o + " " + offs(rng)
+        body = f"{o} union() {{ {shape(rng)} {shape(rng)} }}"
+    else:
+        body = summed(rng) if KIND == "sum" else hulled(rng)
+    scad = f"$fn = 256;\nlinear_extrude(1) {body}\n"
     d = os.path.join(ROOT_DIR, f"s{seed}"); os.makedirs(d, exist_ok=True)
     open(f"{d}/m.scad", "w").write(scad)
     subprocess.run(["openscad", "-o", f"{d}/m.csg", f"{d}/m.scad"], capture_output=True)
