@@ -121,6 +121,19 @@ def pov_fails(binary, scene, fault):
     return failed, lines[0] if lines else ""
 
 
+def openscad_checks(fault):
+    """The checks by OpenSCAD itself that must fail with `fault` on:
+    (tool, its arguments) from SUITE, MESHES and OFFSETS."""
+    out = []
+    if fault in SUITE:
+        out.append(("suite", ["--only", SUITE[fault]]))
+    if fault in MESHES:
+        out.append(("openscad_meshes", ["--only", MESHES[fault]]))
+    if fault in OFFSETS:
+        out.append(("offset_vs_openscad", list(OFFSETS[fault])))
+    return out
+
+
 def check_fault(job):
     """(table rows, what escaped) for one fault."""
     binary, fault = job
@@ -136,23 +149,12 @@ def check_fault(job):
         rows.append(f"| {fault} | pov_check.py {POV[fault]} | {first if failed else 'NOT CAUGHT'} |")
         if not failed:
             escaped.append(f"{fault} passes tools/oracle/pov_check.py")
-    if fault in SUITE:
-        failed, lines = tool_fails(fault, "suite", "--csgrt", binary, "--only", SUITE[fault])
-        rows.append(f"| {fault} | suite.py --only {SUITE[fault]} | {lines[0] if failed and lines else 'NOT CAUGHT'} |")
+    for tool, args in openscad_checks(fault):
+        failed, lines = tool_fails(fault, tool, *args, "--csgrt", binary)
+        first = next((x for x in lines if x.lower().startswith("fail") or "MISMATCH" in x or "REFUSED" in x), lines[-1] if lines else "")
+        rows.append(f"| {fault} | {tool}.py {' '.join(args)} | {first[:160] if failed else 'NOT CAUGHT'} |")
         if not failed:
-            escaped.append(f"{fault} passes tools/oracle/suite.py")
-    if fault in MESHES:
-        failed, lines = tool_fails(fault, "openscad_meshes", "--csgrt", binary, "--only", MESHES[fault])
-        first = next((x for x in lines if x.startswith("FAIL")), "")
-        rows.append(f"| {fault} | openscad_meshes.py --only {MESHES[fault]} | {first[:160] if failed else 'NOT CAUGHT'} |")
-        if not failed:
-            escaped.append(f"{fault} passes tools/oracle/openscad_meshes.py")
-    if fault in OFFSETS:
-        failed, lines = tool_fails(fault, "offset_vs_openscad", *OFFSETS[fault], "--csgrt", binary)
-        first = next((x for x in lines if "MISMATCH" in x or "REFUSED" in x), lines[-1] if lines else "")
-        rows.append(f"| {fault} | offset_vs_openscad.py {' '.join(OFFSETS[fault])} | {first[:160] if failed else 'NOT CAUGHT'} |")
-        if not failed:
-            escaped.append(f"{fault} passes tools/oracle/offset_vs_openscad.py")
+            escaped.append(f"{fault} passes tools/oracle/{tool}.py")
     if acc:
         failed, last = accuracy_fails(binary, fault, acc)
         rows.append(f"| {fault} | accuracy.py | {last if failed else 'NOT CAUGHT'} |")
@@ -184,17 +186,10 @@ def main():
         bad = oracle.same_outputs(os.path.join(ROOT, scene), [binary], [a.real], *SIZE, RAYS, env=dict(os.environ, CSGRT_MUTANT=""))
         if bad:
             escaped.append(f"the mutant build with no fault answers otherwise than the real one on {scene}: {bad[0]}")
-    for tool, table in (("suite", SUITE), ("openscad_meshes", MESHES)):
-        picked = ",".join(table[f] for f in faults if f in table)
-        if picked:
-            failed, said = tool_fails("", tool, "--csgrt", binary, "--only", picked)
-            if failed:
-                escaped.append(f"the mutant build with no fault fails tools/oracle/{tool}.py: {said[-1] if said else ''}")
-    for f in faults:
-        if f in OFFSETS:
-            failed, said = tool_fails("", "offset_vs_openscad", *OFFSETS[f], "--csgrt", binary)
-            if failed:
-                escaped.append(f"the mutant build with no fault fails tools/oracle/offset_vs_openscad.py {' '.join(OFFSETS[f])}: {said[-1] if said else ''}")
+    for tool, args in sorted({(t, tuple(x)) for f in faults for t, x in openscad_checks(f)}):
+        failed, said = tool_fails("", tool, *args, "--csgrt", binary)
+        if failed:
+            escaped.append(f"the mutant build with no fault fails tools/oracle/{tool}.py {' '.join(args)}: {said[-1] if said else ''}")
     # The faults checked two (or as many as there are cores) at once, each
     # worker keeping the oracle's side of the scenes it has met.
     with multiprocessing.Pool(os.cpu_count() or 1) as pool:

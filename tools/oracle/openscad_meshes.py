@@ -329,7 +329,8 @@ def main():
         return 0
     only = [x for x in a.only.split(",") if x]
     table = by_design()
-    jobs = [(a.csgrt, n, p) for n, p in scenes() if os.path.exists(os.path.join(MESHES, n + ".off")) and (not only or any(o in n for o in only))]
+    paths = dict(scenes())
+    jobs = [(a.csgrt, n, p) for n, p in paths.items() if os.path.exists(os.path.join(MESHES, n + ".off")) and (not only or any(o in n for o in only))]
     failed = listed = 0
     with concurrent.futures.ThreadPoolExecutor(os.cpu_count() or 1) as ex:
         for name, ok, said in ex.map(check, jobs):
@@ -337,7 +338,7 @@ def main():
                 cls, reason = table[name]
                 if ok:
                     ok, said = False, f"listed as {cls} but agrees: take it out of by_design.txt"
-                elif cls == "font" and "text(" not in open(dict(scenes())[name]).read():
+                elif cls == "font" and "text(" not in open(paths[name]).read():
                     ok, said = False, "listed as font, but the scene has no text()"
                 else:
                     listed += 1
