@@ -229,23 +229,31 @@ impl Resolver<'_> {
         children: impl IntoIterator<Item = &'s Statement>,
     ) -> Vec<Option<&'s Statement>> {
         let live: Vec<&Statement> = children.into_iter().filter(|c| !skipped(c)).collect();
-        let Some(planar) = live.iter().find_map(|c| resize::dimension(c)) else {
+        let dims: Vec<Option<bool>> = live.iter().map(|c| resize::dimension(c)).collect();
+        let Some(&planar) = dims.iter().flatten().next() else {
             return live.into_iter().map(Some).collect();
         };
         live.into_iter()
-            .map(|c| match resize::dimension(c) {
+            .zip(dims)
+            .map(|(c, d)| match d {
                 Some(d) if d != planar && !mutant::active("dimensions_mixed") => {
-                    let (other, this) = if d { ("2D", "3D") } else { ("3D", "2D") };
-                    self.warn(
-                        c.name_span,
-                        &format!("Ignoring {other} child object for {this} operation"),
-                        "it is left out, as OpenSCAD's render leaves it out",
-                    );
+                    self.left_out(c, d);
                     None
                 }
                 _ => Some(c),
             })
             .collect()
+    }
+
+    /// OpenSCAD's warning for a child of the other dimension than its
+    /// operation's (`planar`: the child's), which is left out.
+    fn left_out(&mut self, c: &Statement, planar: bool) {
+        let (other, this) = if planar { ("2D", "3D") } else { ("3D", "2D") };
+        self.warn(
+            c.name_span,
+            &format!("Ignoring {other} child object for {this} operation"),
+            "it is left out, as OpenSCAD's render leaves it out",
+        );
     }
 
     /// One statement under the world transform `xf` and material `mat`;

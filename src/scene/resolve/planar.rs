@@ -36,11 +36,7 @@ impl Resolver<'_> {
         if super::resize::dimension(s) == Some(false) && !crate::mutant::active("dimensions_mixed")
         {
             // GeometryEvaluator::collectChildren2D.
-            self.warn(
-                s.name_span,
-                "Ignoring 3D child object for 2D operation",
-                "it is left out, as OpenSCAD's render leaves it out",
-            );
+            self.left_out(s, false);
             return Ok(None);
         }
         let name = s.name.as_str();
