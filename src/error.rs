@@ -43,6 +43,10 @@ impl From<pest::Span<'_>> for TextRange {
 pub enum Severity {
     Error,
     Warning,
+    /// A problem OpenSCAD warns about and renders past: an error where it
+    /// is made, which the statement it belongs to turns into a warning
+    /// and an empty statement (`--strict` makes every warning an error).
+    Lenient,
 }
 
 /// A message tied to a place in a source file.
@@ -62,7 +66,7 @@ pub struct Diagnostic {
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let kind = match self.severity {
-            Severity::Error => "error",
+            Severity::Error | Severity::Lenient => "error",
             Severity::Warning => "warning",
         };
         let num = self.line.to_string();

@@ -38,6 +38,7 @@ pub const NAMES: &[&str] = &[
     "hull_arc_caps_dropped",
     "outline_first_loop_only",
     "offset_arcs_unswept",
+    "lenient_refused",
 ];
 
 /// Whether the fault `name` is switched on.

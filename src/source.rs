@@ -88,6 +88,22 @@ impl Source {
             label,
         )))
     }
+
+    /// An error OpenSCAD only warns about ([`Severity::Lenient`]): the
+    /// statement it is in renders empty, with it as a warning.
+    pub fn lenient(
+        &self,
+        span: TextRange,
+        message: impl Into<String>,
+        label: impl Into<String>,
+    ) -> Error {
+        Error::Scene(Box::new(self.diagnostic(
+            Severity::Lenient,
+            span,
+            message,
+            label,
+        )))
+    }
 }
 
 fn floor_char_boundary(s: &str, mut i: usize) -> usize {

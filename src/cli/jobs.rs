@@ -142,7 +142,7 @@ pub(super) fn jobs(cli: &Cli) -> Result<Vec<Job>> {
 /// printed.
 pub(super) fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
     let mut scene = load_model(&job.model, cli.facets, &job.defines)?;
-    finish_scene(cli, &mut scene);
+    finish_scene(cli, &mut scene)?;
     Ok(scene)
 }
 
@@ -154,13 +154,21 @@ pub(super) fn watched_scene(cli: &Cli, job: &Job) -> Result<(Scene, Vec<PathBuf>
     }
     let (src, deps) = csgrt::import::scad::export_with(&job.model, &job.defines, true)?;
     let mut scene = csgrt::load_csg_with(&src, cli.facets)?;
-    finish_scene(cli, &mut scene);
+    finish_scene(cli, &mut scene)?;
     Ok((scene, deps))
 }
 
 /// The command line's view and colours applied to a loaded scene; its
-/// warnings printed.
-fn finish_scene(cli: &Cli, scene: &mut Scene) {
+/// warnings printed, or under `--strict` the first of them the error.
+fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
+    if cli.strict {
+        if let Some(w) = scene.warnings.first() {
+            let mut d = w.clone();
+            d.severity = csgrt::error::Severity::Error;
+            d.label = format!("{} (an error under --strict)", d.label);
+            return Err(csgrt::Error::Scene(Box::new(d)));
+        }
+    }
     set_view(cli, scene);
     if let Some(c) = &cli.colorscheme {
         scene.apply_color_scheme(c);
@@ -168,6 +176,7 @@ fn finish_scene(cli: &Cli, scene: &mut Scene) {
     for w in &scene.warnings {
         eprintln!("{w}");
     }
+    Ok(())
 }
 
 /// The command line's camera options put into the scene: OpenSCAD's camera

@@ -134,6 +134,12 @@ pub struct Cli {
     #[arg(long)]
     pub watch: bool,
 
+    /// Every warning an error: where OpenSCAD warns and renders the rest
+    /// (a missing import, a non-finite size, …) csgrt does the same unless
+    /// this is given; then the first warning stops the render, exit 2.
+    #[arg(long)]
+    pub strict: bool,
+
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,

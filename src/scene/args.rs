@@ -18,6 +18,19 @@ pub struct NumberList {
     pub items: Vec<(f64, TextRange)>,
 }
 
+/// csgrt's scene statements (the camera and lights), at the top level.
+pub const SCENE: &[&str] = &[
+    "camera",
+    "background",
+    "ambient_light",
+    "directional_light",
+    "point_light",
+];
+
+/// csgrt's own statements besides [`SCENE`]: OpenSCAD has no leniency to
+/// copy for them, so a bad number in one stays an error.
+const OWN: &[&str] = &["material", "torus", "halfspace"];
+
 pub struct Args<'a> {
     src: &'a Source,
     stmt: &'a Statement,
@@ -98,14 +111,14 @@ impl<'a> Args<'a> {
     }
 
     /// An OpenSCAD special variable given to this statement as a number
-    /// (`$fn`, …); `None` when absent or not a finite number.
+    /// (`$fn`, …), finite or not; `None` when absent or not a number.
     pub fn special(&self, name: &str) -> Option<f64> {
         self.stmt
             .args
             .iter()
             .rev()
             .find_map(|a| match (&a.name, &a.value.kind) {
-                (Some((n, _)), ValueKind::Number(x)) if n == name && x.is_finite() => Some(*x),
+                (Some((n, _)), ValueKind::Number(x)) if n == name => Some(*x),
                 _ => None,
             })
     }
@@ -116,6 +129,10 @@ impl<'a> Args<'a> {
     /// otherwise: the exact round surface.
     pub fn few_facets(&self) -> Option<usize> {
         let f = self.special("$fn")?;
+        if !f.is_finite() {
+            // `get_fragments_from_r`: 3 for an infinite or NaN `$fn`.
+            return Some(3);
+        }
         if f <= 0.0 {
             return None;
         }
@@ -163,11 +180,38 @@ impl<'a> Args<'a> {
         )
     }
 
+    /// An error at `span`, or for a statement of OpenSCAD's a problem it
+    /// warns about and renders past ([`Source::lenient`]).
+    fn problem(
+        &self,
+        span: TextRange,
+        message: impl Into<String>,
+        label: impl Into<String>,
+    ) -> Error {
+        let name = self.stmt.name.as_str();
+        if SCENE.contains(&name) || OWN.contains(&name) {
+            self.src.error(span, message, label)
+        } else {
+            self.src.lenient(span, message, label)
+        }
+    }
+
+    /// [`Args::wrong_type`] where OpenSCAD warns and leaves the shape out.
+    fn lenient_type(&self, name: &str, v: &Value, want: &str) -> Error {
+        self.problem(
+            v.span,
+            format!("`{name}` of `{}` must be {want}", self.stmt.name),
+            format!("expected {want}, found {}", v.kind.type_name()),
+        )
+    }
+
     fn finite(&self, name: &str, v: &Value, x: f64) -> Result<f64> {
         if x.is_finite() {
             Ok(x)
         } else {
-            Err(self.src.error(
+            // OpenSCAD makes nothing of a non-finite size, and removes
+            // what a non-finite transform moves.
+            Err(self.problem(
                 v.span,
                 format!("`{name}` of `{}` must be finite", self.stmt.name),
                 "expected a finite number",
@@ -190,7 +234,8 @@ impl<'a> Args<'a> {
         let x = self.number(name)?;
         if let (Some(x), Some(v)) = (x, self.get(name)) {
             if x < 0.0 {
-                return Err(self.src.error(
+                // OpenSCAD makes nothing of a negative radius.
+                return Err(self.problem(
                     v.span,
                     format!("`{name}` of `{}` must not be negative", self.stmt.name),
                     "expected a number ≥ 0",
@@ -336,11 +381,16 @@ impl<'a> Args<'a> {
         }
         let mut out = Vec::with_capacity(items.len());
         for it in items {
+            // OpenSCAD's "Unable to convert points[i]": the shape is empty.
             let ValueKind::Vector(xs) = &it.kind else {
-                return Err(self.wrong_type(name, it, &format!("a point of {} numbers", dims[0])));
+                return Err(self.lenient_type(
+                    name,
+                    it,
+                    &format!("a point of {} numbers", dims[0]),
+                ));
             };
             if !dims.contains(&xs.len()) {
-                return Err(self.src.error(
+                return Err(self.problem(
                     it.span,
                     format!("`{name}` of `{}` must be {want}", self.stmt.name),
                     format!(
@@ -354,7 +404,7 @@ impl<'a> Args<'a> {
             for (k, x) in xs.iter().enumerate() {
                 match x.kind {
                     ValueKind::Number(n) => p[k] = self.finite(name, x, n)?,
-                    _ => return Err(self.wrong_type(name, x, "a number")),
+                    _ => return Err(self.lenient_type(name, x, "a number")),
                 }
             }
             out.push(DVec3::from(p));

@@ -70,9 +70,8 @@ impl Resolver<'_> {
         } else {
             (0.0, cut.h)
         };
-        let fnv = a.special("$fn").unwrap_or(0.0);
-        let fa = a.special("$fa").unwrap_or(12.0);
-        let fs = a.special("$fs").unwrap_or(2.0);
+        let finite = |name: &str, or: f64| a.special(name).filter(|v| v.is_finite()).unwrap_or(or);
+        let (fnv, fa, fs) = (finite("$fn", 0.0), finite("$fa", 12.0), finite("$fs", 2.0));
         let given = cut.slices.filter(|v| v.is_finite()).unwrap_or(0.0) as i64;
         let all = loops.iter().flat_map(|(l, _)| l.iter());
         let slices = if given > 0 {

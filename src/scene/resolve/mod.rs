@@ -18,10 +18,10 @@ mod transforms;
 
 pub use solids::unsupported;
 
-use super::args::Args;
+use super::args::{Args, SCENE};
 use super::builder::SceneBuilder;
 use super::{defaults, Material, Scene};
-use crate::error::{Result, TextRange};
+use crate::error::{Result, Severity, TextRange};
 use crate::geometry::transform::{Degenerate, MAX_MAGNITUDE};
 use crate::geometry::{Shape, Transform};
 use crate::math::boolean::Op;
@@ -36,13 +36,6 @@ pub const MAX_FRAGMENTS: usize = 100_000;
 const TRANSFORMS: &[&str] = &["multmatrix", "translate", "rotate", "scale", "mirror"];
 const OPERATIONS: &[&str] = &["union", "intersection", "difference", "group", "render"];
 const APPEARANCE: &[&str] = &["color", "material"];
-const SCENE: &[&str] = &[
-    "camera",
-    "background",
-    "ambient_light",
-    "directional_light",
-    "point_light",
-];
 
 pub fn resolve(src: &Source, stmts: &[Statement]) -> Result<Scene> {
     resolve_with(src, stmts, super::Facets::default())
@@ -138,8 +131,8 @@ impl Resolver<'_> {
             super::Facets::Shapes => a.few_facets(),
             super::Facets::OpenScad => {
                 let fnv = a.special("$fn").unwrap_or(0.0);
-                let fa = a.special("$fa").unwrap_or(12.0);
-                let fs = a.special("$fs").unwrap_or(2.0);
+                let fa = a.special("$fa").filter(|v| v.is_finite()).unwrap_or(12.0);
+                let fs = a.special("$fs").filter(|v| v.is_finite()).unwrap_or(2.0);
                 let n = if r < GRID_FINE || !fnv.is_finite() {
                     3.0
                 } else if fnv > 0.0 {
@@ -186,8 +179,9 @@ impl Resolver<'_> {
         what: &str,
         label: &str,
     ) -> Result<Vec<u8>> {
+        // OpenSCAD: "Can't open import file", and the statement is empty.
         std::fs::read(path).map_err(|e| {
-            self.src.error(
+            self.src.lenient(
                 place,
                 format!("cannot read {what} `{}`: {e}", path.display()),
                 label,
@@ -259,6 +253,42 @@ impl Resolver<'_> {
     /// One statement under the world transform `xf` and material `mat`;
     /// `None` when it adds no solid.
     fn statement(
+        &mut self,
+        s: &Statement,
+        xf: DAffine3,
+        mat: Material,
+        depth: usize,
+    ) -> Result<Option<u32>> {
+        let r = self.solid_of(s, xf, mat, depth);
+        self.rendered_past(s, r)
+    }
+
+    /// A statement's result as OpenSCAD renders past it: a problem it only
+    /// warns about ([`Severity::Lenient`]) becomes that warning, and the
+    /// statement is empty.
+    pub(super) fn rendered_past<T>(
+        &mut self,
+        s: &Statement,
+        r: Result<Option<T>>,
+    ) -> Result<Option<T>> {
+        match r {
+            Err(crate::Error::Scene(mut d))
+                if d.severity == Severity::Lenient && !mutant::active("lenient_refused") =>
+            {
+                d.severity = Severity::Warning;
+                d.label = format!(
+                    "{}; this `{}` is left out, as OpenSCAD leaves it out",
+                    d.label, s.name
+                );
+                self.b.warnings.push(*d);
+                Ok(None)
+            }
+            r => r,
+        }
+    }
+
+    /// [`Resolver::statement`] before OpenSCAD's leniency.
+    fn solid_of(
         &mut self,
         s: &Statement,
         xf: DAffine3,

@@ -30,6 +30,12 @@ impl Resolver<'_> {
         m: DAffine2,
         depth: usize,
     ) -> Result<Option<Figure>> {
+        let r = self.figure_of(s, m, depth);
+        self.rendered_past(s, r)
+    }
+
+    /// [`Resolver::figure`] before OpenSCAD's leniency.
+    fn figure_of(&mut self, s: &Statement, m: DAffine2, depth: usize) -> Result<Option<Figure>> {
         if super::skipped(s) {
             return Ok(None);
         }
@@ -386,11 +392,12 @@ impl Resolver<'_> {
         let file = match (a.string("file")?, a.string("filename")?) {
             (Some(f), _) | (None, Some(f)) => f,
             (None, None) => {
-                return Err(a.error(
+                // OpenSCAD: "Unsupported file format", and nothing.
+                return Err(self.src.lenient(
                     a.list_span(),
                     "`import` needs a `file`",
                     "expected file = \"name.dxf\" or \"name.stl\"",
-                ))
+                ));
             }
         };
         let span = if a.has("file") {
@@ -420,11 +427,16 @@ impl Resolver<'_> {
                 )
             } else {
                 (
-                    format!("importing `.{ext}` files is not supported yet"),
+                    format!(
+                        "cannot import `{}`: not a drawing or mesh file",
+                        path.display()
+                    ),
                     "csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes",
                 )
             };
-            return Err(self.src.error(span, message, label));
+            // OpenSCAD: "Unsupported file format" (or a 3-D child of a 2-D
+            // operation), and the import is empty.
+            return Err(self.src.lenient(span, message, label));
         }
         let layer = match (a.string("layer")?, a.string("layername")?) {
             (Some(l), _) | (None, Some(l)) => l,
@@ -442,7 +454,7 @@ impl Resolver<'_> {
         )?;
         let cut = |r: f64| self.fragments(&a, r);
         let d = crate::import::dxf::read(&bytes, layer, origin, scale, &cut).map_err(|e| {
-            self.src.error(
+            self.src.lenient(
                 span,
                 format!(
                     "`{}` is not a DXF drawing csgrt can read: {e}",

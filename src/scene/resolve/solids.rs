@@ -406,8 +406,9 @@ fn import(
         return res.slab(s, xf, mat);
     }
     let bytes = res.read_named(span, &path, "mesh", "expected a mesh file beside the scene")?;
+    // OpenSCAD warns of a file it cannot parse and imports nothing.
     let m = crate::import::meshfile::read(&ext, &bytes).map_err(|e| {
-        res.src.error(
+        res.src.lenient(
             span,
             file_message(&path, &e),
             format!("expected a .{ext} mesh"),
@@ -432,16 +433,22 @@ fn surface(
         s,
         &["file", "center", "convexity", "invert", "timestamp"],
     )?;
-    let file = a.string("file")?;
-    let file = a.require("file", file)?;
     let span = a.span_of("file");
+    let Some(file) = a.string("file")? else {
+        // OpenSCAD: "Can't open DAT file ''", and nothing.
+        return Err(res.src.lenient(
+            span,
+            "`surface` needs a `file`",
+            "expected file = \"name.dat\" or \"name.png\"",
+        ));
+    };
     let center = a.boolean("center")?.unwrap_or(false);
     let invert = a.boolean("invert")?.unwrap_or(false);
     let path = res.named_file(file);
     let label = "expected a .dat grid or a PNG image beside the scene";
     let bytes = res.read_named(span, &path, "heights", label)?;
     let (h, warning) = crate::import::meshfile::heights(&bytes, invert).map_err(|e| {
-        res.src.error(
+        res.src.lenient(
             span,
             file_message(&path, &e),
             "expected a .dat grid or a PNG image",

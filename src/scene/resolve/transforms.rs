@@ -67,15 +67,27 @@ impl Resolver<'_> {
                 let Some(m) = a.matrix("m", &[3, 4], 4)? else {
                     return Ok(DAffine3::IDENTITY);
                 };
+                // OpenSCAD's affine transform of any 4 rows: all divided
+                // by the last number, the rest of the last row ignored.
+                let mut w = 1.0;
                 if m.len() == 4 && m[3] != [0.0, 0.0, 0.0, 1.0] {
+                    w = m[3][3];
                     let span = a.span_of("m");
-                    return Err(a.error(
+                    let message = "the last row of a multmatrix is not [0, 0, 0, 1]";
+                    if w == 0.0 {
+                        return Err(self.src.lenient(
+                            span,
+                            message,
+                            "its last number is 0: OpenSCAD's matrix is not finite",
+                        ));
+                    }
+                    self.warn(
                         span,
-                        "the last row of a multmatrix must be [0, 0, 0, 1]",
-                        "csgrt renders affine transforms only",
-                    ));
+                        message,
+                        "as OpenSCAD, the matrix is divided by its last number and the rest of that row is ignored",
+                    );
                 }
-                let col = |j: usize| DVec3::new(m[0][j], m[1][j], m[2][j]);
+                let col = |j: usize| DVec3::new(m[0][j], m[1][j], m[2][j]) / w;
                 Ok(DAffine3::from_cols(col(0), col(1), col(2), col(3)))
             }
             _ => unreachable!("not a transform: {}", s.name),

@@ -103,6 +103,38 @@ pub fn fails(text: &str) -> String {
     r.stderr
 }
 
+/// Runs `bad.csg`, a scene OpenSCAD renders with a warning: csgrt warns
+/// and renders it, exit 0, to the same image as `without` (the scene with
+/// the statement OpenSCAD leaves out taken out); under `--strict` the
+/// warning is the error, exit 2, nothing written. Returns that stderr.
+pub fn lenient(text: &str, without: &str) -> String {
+    let (dir, _) = scene("bad.csg", text);
+    std::fs::write(dir.path().join("good.csg"), without).unwrap();
+    let run = |first: &[&str]| {
+        let mut v = first.to_vec();
+        v.extend(["--size", "16x12", "-q"]);
+        csgrt(dir.path(), &v)
+    };
+    let strict = run(&["bad.csg", "--strict"]);
+    assert_eq!(strict.status, 2, "{}", strict.stderr);
+    assert_eq!(
+        files(dir.path()),
+        ["bad.csg", "good.csg"],
+        "no output may be left"
+    );
+    let warned = run(&["bad.csg", "-o", "bad.png"]);
+    assert_eq!(warned.status, 0, "{}", warned.stderr);
+    assert!(warned.stderr.starts_with("warning: "), "{}", warned.stderr);
+    let good = run(&["good.csg", "-o", "good.png"]);
+    assert_eq!(good.status, 0, "{}", good.stderr);
+    let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+    assert!(
+        read("bad.png") == read("good.png"),
+        "{text} and {without} differ"
+    );
+    strict.stderr
+}
+
 /// The names of the files in a folder, sorted.
 pub fn files(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
