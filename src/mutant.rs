@@ -39,6 +39,7 @@ pub const NAMES: &[&str] = &[
     "outline_first_loop_only",
     "offset_arcs_unswept",
     "lenient_refused",
+    "spindle_lemon_kept",
 ];
 
 /// Whether the fault `name` is switched on.

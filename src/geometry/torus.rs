@@ -13,7 +13,12 @@ use super::{Aabb, Part};
 use crate::math::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use glam::{DAffine3, DVec3};
 
-/// A torus around the z axis, major radius 1, tube radius `minor` < 1.
+/// A torus around the z axis, major radius 1, tube radius `minor` > 0.
+/// With `minor` ≥ 1 (a horn or spindle torus: OpenSCAD's turn of a circle
+/// that reaches or crosses the axis, cut back to x ≥ 0 by a combination)
+/// the solid is the outer "apple", (ρ − 1)² + z² ≤ r² — the turn of the
+/// disc's part at x ≥ 0; the quartic's other factor, the inner "lemon"
+/// (ρ + 1)² + z² = r², lies inside it and its roots are passed over.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Torus {
     pub minor: f64,
@@ -119,7 +124,13 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     // beyond the rim, the line misses, with no quartic to solve. Through
     // the hole of a ring seen face on, this is most rays.
     let rho2 = |s: f64| cxy + s * (2.0 * bxy + s * axy);
-    let (inner, outer) = ((1.0 - minor) * (1.0 - minor), (1.0 + minor) * (1.0 + minor));
+    // (No hole when the tube reaches the axis.)
+    let inner = if minor < 1.0 {
+        (1.0 - minor) * (1.0 - minor)
+    } else {
+        0.0
+    };
+    let outer = (1.0 + minor) * (1.0 + minor);
     // The vertex clamped to [0, span], by selects as above.
     let s_min = if axy > 0.0 {
         let v = -bxy / axy;
@@ -152,11 +163,22 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
     let mut starts = [0.0; 4];
     let ns = quartic_estimates(&poly, &mut starts);
     let n = roots_in_from(&poly, 4, 0.0, span, &starts[..ns], &mut roots);
-    // The box ends are outside the torus; spans are where the quartic < 0.
+    // The box ends are outside the torus; spans are where the quartic < 0
+    // (the apple's own test past the horn: a root on the lemon inside it
+    // changes nothing).
+    let apple = minor >= 1.0 && !crate::mutant::active("spindle_lemon_kept");
+    let inside_at = |s: f64| {
+        if apple {
+            let q = p + s * u;
+            q.length_squared() + k - 2.0 * q.truncate().length() < 0.0
+        } else {
+            eval(&poly, 4, s) < 0.0
+        }
+    };
     let mut prev = 0.0;
     let mut inside_from = None;
     for &r in roots[..n].iter().chain(std::iter::once(&span)) {
-        let inside = eval(&poly, 4, 0.5 * (prev + r)) < 0.0;
+        let inside = inside_at(0.5 * (prev + r));
         match (inside, inside_from) {
             (true, None) => inside_from = Some(prev),
             (false, Some(s0)) => {

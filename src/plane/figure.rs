@@ -81,6 +81,74 @@ impl Figure {
         }
     }
 
+    /// Whether `f` is proved to have no area where x > 0 (`right`) or
+    /// x < 0: its extent says so, or, for a difference, a subtracted convex
+    /// shape covers the first operand's box on that side. `false` is no
+    /// proof either way.
+    pub fn no_area_beyond_axis(&self, right: bool) -> bool {
+        let sign = if right { 1.0 } else { -1.0 };
+        let (lo, hi) = self.x_range();
+        if (right && hi <= 0.0) || (!right && lo >= 0.0) {
+            return true;
+        }
+        match self {
+            Figure::Op(Op::Union, kids) => kids.iter().all(|k| k.no_area_beyond_axis(right)),
+            Figure::Op(Op::Intersection, kids) => kids.iter().any(|k| k.no_area_beyond_axis(right)),
+            Figure::Op(Op::Difference, kids) if !kids.is_empty() => {
+                if kids[0].no_area_beyond_axis(right) {
+                    return true;
+                }
+                // The first operand's box on that side of the axis.
+                let (xlo, xhi) = kids[0].x_range();
+                let (ylo, yhi) = kids[0].range(DVec2::Y);
+                let far = if right { xhi } else { xlo };
+                let corners = [
+                    DVec2::new(0.0, ylo),
+                    DVec2::new(0.0, yhi),
+                    DVec2::new(far, ylo),
+                    DVec2::new(far, yhi),
+                ];
+                debug_assert!(far * sign > 0.0);
+                kids[1..].iter().any(|k| k.covers_convexly(&corners))
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether `f` holds the convex hull of `pts`: a leaf that is convex
+    /// (an ellipse, a straight convex polygon of one loop) holding each
+    /// point, or a union one of whose shapes does.
+    fn covers_convexly(&self, pts: &[DVec2]) -> bool {
+        match self {
+            Figure::Ellipse(e) => {
+                let inv = e.inverse();
+                pts.iter()
+                    .all(|&p| inv.transform_point2(p).length_squared() <= 1.0)
+            }
+            Figure::Polygon(o) if o.loops.len() == 1 && !o.curved() => {
+                let l = &o.loops[0];
+                if !super::hull::convex_polygon(l) {
+                    return false;
+                }
+                // Inside or on each edge's line (a point on the boundary is
+                // held: the sets are closed), on the side the loop turns.
+                let area2: f64 = (0..l.len())
+                    .map(|i| l[i].perp_dot(l[(i + 1) % l.len()]))
+                    .sum();
+                let size = l.iter().fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+                let tol = 1e-12 * size * size;
+                pts.iter().all(|&p| {
+                    (0..l.len()).all(|i| {
+                        let (a, b) = (l[i], l[(i + 1) % l.len()]);
+                        (b - a).perp_dot(p - a) * area2.signum() >= -tol
+                    })
+                })
+            }
+            Figure::Op(Op::Union, kids) => kids.iter().any(|k| k.covers_convexly(pts)),
+            _ => false,
+        }
+    }
+
     /// The extent in x (exact for leaves; a union or symmetric difference
     /// joins, an intersection meets, a difference keeps its first
     /// operand's).

@@ -75,6 +75,7 @@ SUITE = {
 # that must then fail it.
 MESHES = {
     "dxf_fine_grid": "dxf_gaps",
+    "spindle_lemon_kept": "turned_across_axis",
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own

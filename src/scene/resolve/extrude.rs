@@ -373,7 +373,14 @@ impl Resolver<'_> {
                 "csgrt extrudes a projection with linear_extrude",
             ));
         }
-        let (lo, hi) = f.x_range();
+        let (mut lo, mut hi) = f.x_range();
+        // What a combination leaves may lie on one side though its parts
+        // reach across (a circle across the axis, its right half cut away).
+        if lo < 0.0 && hi > 0.0 && f.no_area_beyond_axis(true) {
+            hi = 0.0;
+        } else if lo < 0.0 && hi > 0.0 && f.no_area_beyond_axis(false) {
+            lo = 0.0;
+        }
         if lo < 0.0 && hi > 0.0 {
             // OpenSCAD 2021.01 reports this as an error and renders the
             // rest of the model without the extrusion.
@@ -485,11 +492,16 @@ impl Resolver<'_> {
                     );
                     return self.leaf(s, Shape::Sphere(Sphere), xf * local, mat);
                 }
-                if c.x <= ra {
+                // Centred right of the axis and reaching it (a combination
+                // cuts the rest away, or the whole shape would have been
+                // refused above): the horn or spindle torus's apple, the
+                // turn of its part at x ≥ 0. Centred left of the axis and
+                // crossing it, its part at x ≥ 0 turns into the lemon.
+                if c.x < 0.0 {
                     return Err(self.src.error(
                         s.name_span,
-                        "turning a circle across the axis is not supported yet",
-                        "csgrt turns circles that stay on one side of x = 0, or centred on it",
+                        "turning a circle centred left of the axis that crosses it is not supported yet",
+                        "csgrt turns circles centred on the axis or right of it",
                     ));
                 }
                 let local = DAffine3::from_scale_rotation_translation(

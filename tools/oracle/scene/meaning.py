@@ -741,11 +741,12 @@ class Reader:
             angle = 360.0
         if f is None or angle == 0:
             return None
-        lo, hi = plane.flat_x_range(f)
-        if lo < 0 < hi:
+        try:
+            side = solids.revolve_setup(dict(flat=f))
+        except ValueError:
             # OpenSCAD's error: it renders the rest without this.
             return None
-        return self.leaf(s, "rotate_extrude", dict(flat=f, angle=angle), xf, mat)
+        return self.leaf(s, "rotate_extrude", dict(flat=f, angle=angle, side=side), xf, mat)
 
     def transform(self, s, a):
         k = s.name

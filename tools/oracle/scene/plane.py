@@ -744,21 +744,44 @@ def flat_x_range(f):
     """The x extent of a 2-D tree (union joins, intersection meets, a
     difference keeps its first operand's), as csgrt reads OpenSCAD's axis
     rule for rotate_extrude."""
+    return flat_range(f, 0)
+
+
+def flat_range(f, k):
+    """The extent along axis k (0 = x, 1 = y), by flat_x_range's rules."""
     if f[0] == "poly":
-        xs = np.concatenate([l[:, 0] for l in f[1]])
+        xs = np.concatenate([l[:, k] for l in f[1]])
         return xs.min(), xs.max()
     if f[0] == "curves":
         lo, hi = curve_extent(f)
-        return lo[0], hi[0]
+        return lo[k], hi[k]
     if f[0] == "ellipse":
-        h = math.hypot(f[1][0, 0], f[1][0, 1])
-        return f[2][0] - h, f[2][0] + h
-    rs = [flat_x_range(k) for k in f[2]]
+        h = math.hypot(f[1][k, 0], f[1][k, 1])
+        return f[2][k] - h, f[2][k] + h
+    rs = [flat_range(c, k) for c in f[2]]
     if f[1] in ("union", "xor", "hull"):
         return min(r[0] for r in rs), max(r[1] for r in rs)
     if f[1] == "intersection":
         return max(r[0] for r in rs), min(r[1] for r in rs)
     return rs[0]
+
+
+def flat_empty_beyond_axis(f, right, n=41):
+    """Whether a 2-D tree has no area at x > 0 (right) or x < 0, by its
+    extent or, failing that, by point tests on an n x n grid of the box's
+    part on that side (its inside points: none). False where a part has no
+    point test."""
+    lo, hi = flat_x_range(f)
+    if (right and hi <= 0) or (not right and lo >= 0):
+        return True
+    ylo, yhi = flat_range(f, 1)
+    far = hi if right else lo
+    for x in np.linspace(0.0, far, n)[1:]:
+        for y in np.linspace(ylo, yhi, n):
+            got = flat_inside(f, np.array([x, y]))
+            if got is None or got:
+                return False
+    return True
 
 
 def flat_inside(f, p):

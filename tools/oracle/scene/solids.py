@@ -319,9 +319,18 @@ def twist_frame(p, t):
 
 def revolve_setup(p):
     """(tree at x >= 0, flipped, angle) of a rotate_extrude's parameters;
-    raises on a shape across the axis (OpenSCAD's error)."""
+    raises on a shape across the axis (OpenSCAD's error). Read once, when
+    the leaf is made (its "side")."""
+    if "side" in p:
+        return p["side"]
     f = p["flat"]
     lo, hi = plane.flat_x_range(f)
+    # What a combination leaves may lie on one side though its parts reach
+    # across (OpenSCAD turns the shape it has computed).
+    if lo < 0 < hi and plane.flat_empty_beyond_axis(f, True):
+        hi = 0.0
+    elif lo < 0 < hi and plane.flat_empty_beyond_axis(f, False):
+        lo = 0.0
     if lo < 0 < hi:
         raise ValueError(f"all points for rotate_extrude() must have the same X coordinate sign ({lo:.2f} -> {hi:.2f})")
     return (plane.flat_mirror(f), True) if hi <= 0 else (f, False)
