@@ -40,6 +40,7 @@ pub const NAMES: &[&str] = &[
     "offset_arcs_unswept",
     "lenient_refused",
     "spindle_lemon_kept",
+    "svg_stroke_chords",
 ];
 
 /// Whether the fault `name` is switched on.

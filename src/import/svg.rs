@@ -466,13 +466,17 @@ fn path_parts(
         // only in a path that never closes.
         let open = !closed && (a - b).length() > 0.1 && (i + 1 < last || !closed_any);
         if open {
-            if s.segs.iter().any(|g| *g != Seg::Line) {
-                return Err(fail(
-                    line,
-                    "stroking an open path with curves or arcs is not supported yet",
-                ));
+            // libsvg strokes the line through its points of the curves
+            // (OpenSCAD's own stroke: its faceting is the meaning).
+            let mut pts = vec![s.pts[0]];
+            for (i, seg) in s.segs.iter().enumerate() {
+                if crate::mutant::active("svg_stroke_chords") {
+                    pts.push(s.pts[i + 1]);
+                } else {
+                    libsvg_steps(s.pts[i], *seg, s.pts[i + 1], &mut pts);
+                }
             }
-            parts.push(SvgPart::Stroke(stroke_of(n, s.pts)));
+            parts.push(SvgPart::Stroke(stroke_of(n, pts)));
             continue;
         }
         // Closed: the last point back to the first by a straight edge
@@ -586,44 +590,7 @@ fn openscad_points(p: &SvgPart, out: &mut Vec<DVec2>) {
             for (i, seg) in l.segs.iter().enumerate() {
                 let (a, b) = (l.pts[i], l.pts[(i + 1) % l.pts.len()]);
                 out.push(a);
-                match *seg {
-                    Seg::Line => {}
-                    Seg::Quad(c) => (1..=20).for_each(|k| {
-                        let u = k as f64 / 20.0;
-                        out.push(a * (1.0 - u).powi(2) + c * 2.0 * (1.0 - u) * u + b * u * u);
-                    }),
-                    Seg::Cubic(c1, c2) => (1..=20).for_each(|k| {
-                        let u = k as f64 / 20.0;
-                        let v = 1.0 - u;
-                        out.push(
-                            a * v * v * v
-                                + c1 * 3.0 * v * v * u
-                                + c2 * 3.0 * v * u * u
-                                + b * u * u * u,
-                        );
-                    }),
-                    Seg::Arc { ellipse, mid } => {
-                        let inv = ellipse.inverse();
-                        let ang = |p: DVec2| {
-                            let q = inv.transform_point2(p);
-                            q.y.atan2(q.x)
-                        };
-                        let (t0, tm, t1) = (ang(a), ang(mid), ang(b));
-                        // The sweep from t0 through tm to t1.
-                        let tau = std::f64::consts::TAU;
-                        let fwd = (t1 - t0).rem_euclid(tau);
-                        let delta = if (tm - t0).rem_euclid(tau) < fwd {
-                            fwd
-                        } else {
-                            fwd - tau
-                        };
-                        let steps = (delta.abs().to_degrees() * 10.0 / 180.0 + 4.0) as usize;
-                        for k in 0..=steps {
-                            let t = t0 + delta * k as f64 / steps as f64;
-                            out.push(ellipse.transform_point2(DVec2::new(t.cos(), t.sin())));
-                        }
-                    }
-                }
+                libsvg_steps(a, *seg, b, out);
             }
         }
         SvgPart::Stroke(s) => {
@@ -637,6 +604,45 @@ fn openscad_points(p: &SvgPart, out: &mut Vec<DVec2>) {
                         c + DVec2::new(cs, sn) * r
                     })),
                 }
+            }
+        }
+    }
+}
+
+/// The points after `a` up to `b` of the edge `seg` from `a` to `b`, as
+/// libsvg cuts it up: 20 steps a curve, |Δθ|·10/180 + 4 an arc, none a line
+/// (`b` alone).
+fn libsvg_steps(a: DVec2, seg: Seg, b: DVec2, out: &mut Vec<DVec2>) {
+    match seg {
+        Seg::Line => out.push(b),
+        Seg::Quad(c) => (1..=20).for_each(|k| {
+            let u = k as f64 / 20.0;
+            out.push(a * (1.0 - u).powi(2) + c * 2.0 * (1.0 - u) * u + b * u * u);
+        }),
+        Seg::Cubic(c1, c2) => (1..=20).for_each(|k| {
+            let u = k as f64 / 20.0;
+            let v = 1.0 - u;
+            out.push(a * v * v * v + c1 * 3.0 * v * v * u + c2 * 3.0 * v * u * u + b * u * u * u);
+        }),
+        Seg::Arc { ellipse, mid } => {
+            let inv = ellipse.inverse();
+            let ang = |p: DVec2| {
+                let q = inv.transform_point2(p);
+                q.y.atan2(q.x)
+            };
+            let (t0, tm, t1) = (ang(a), ang(mid), ang(b));
+            // The sweep from t0 through tm to t1.
+            let tau = std::f64::consts::TAU;
+            let fwd = (t1 - t0).rem_euclid(tau);
+            let delta = if (tm - t0).rem_euclid(tau) < fwd {
+                fwd
+            } else {
+                fwd - tau
+            };
+            let steps = (delta.abs().to_degrees() * 10.0 / 180.0 + 4.0) as usize;
+            for k in 1..=steps {
+                let t = t0 + delta * k as f64 / steps as f64;
+                out.push(ellipse.transform_point2(DVec2::new(t.cos(), t.sin())));
             }
         }
     }
@@ -945,13 +951,19 @@ mod tests {
         assert!(e.message.contains("path"), "{}", e.message);
         let e = read(b"<svg>\n\n<rect x=1/></svg>", 72.0, false).unwrap_err();
         assert_eq!(e.line, Some(3), "{}", e.message);
-        let e = read(
+        // An open cubic is stroked along libsvg's 20 steps of it.
+        let d = read(
             b"<svg xmlns='http://www.w3.org/2000/svg'><path d='M0 0 C 1 1 2 1 3 0'/></svg>",
             72.0,
             false,
         )
-        .unwrap_err();
-        assert!(e.message.contains("not supported yet"), "{}", e.message);
+        .unwrap();
+        let SvgPart::Stroke(st) = &d.shapes[0].parts[0] else {
+            panic!("a stroke: {:?}", d.shapes[0].parts[0]);
+        };
+        assert_eq!(st.pts.len(), 21);
+        // The closed form of the cubic at u = 1/2: (1.5, 0.75).
+        assert!((st.pts[10] - DVec2::new(1.5, 0.75)).length() < 1e-12);
         let e = read(
             b"<svg xmlns='http://www.w3.org/2000/svg'>\n\n<circle r='1e300'/></svg>",
             72.0,

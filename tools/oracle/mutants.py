@@ -69,6 +69,7 @@ SUITE = {
     "framing_loose": "2D/issues/issue666_2D,misc/internal-cavity.csg",
     "dimensions_mixed": "3D/features/2d-3d,2D/features/difference-2d-tests",
     "lenient_refused": "3D/features/primitive-inf-tests,stl/stl-import-unparseable",
+    "svg_stroke_chords": "svg/svg-spec/spec-paths-quad01,svg/svg-spec/spec-paths-arcs01",
 }
 
 # fault -> scenes of tools/oracle/openscad_meshes.py (OpenSCAD's own meshes)
