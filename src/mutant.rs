@@ -41,6 +41,7 @@ pub const NAMES: &[&str] = &[
     "lenient_refused",
     "spindle_lemon_kept",
     "svg_stroke_chords",
+    "ring_unslanted",
 ];
 
 /// Whether the fault `name` is switched on.

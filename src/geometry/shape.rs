@@ -3,8 +3,8 @@
 
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{
-    Aabb, Cone, Convex, Cuboid, Halfspace, Lathe, Mesh, OffsetPrism, Part, Prism, Rounded, Shadow,
-    Sphere, Torus, Twisted,
+    Aabb, Cone, Convex, Cuboid, Halfspace, Lathe, Mesh, OffsetPrism, Part, Prism, Ring, Rounded,
+    Shadow, Sphere, Torus, Twisted,
 };
 use glam::{DAffine3, DVec3};
 
@@ -24,6 +24,7 @@ pub enum Shape {
     Convex(Convex),
     Rounded(Rounded),
     OffsetPrism(OffsetPrism),
+    Ring(Ring),
 }
 
 /// `each!(shape, s => expr)`: `expr` with `s` bound to the primitive inside.
@@ -43,6 +44,7 @@ macro_rules! each {
             Shape::Convex($s) => $e,
             Shape::Rounded($s) => $e,
             Shape::OffsetPrism($s) => $e,
+            Shape::Ring($s) => $e,
         }
     };
 }

@@ -137,7 +137,7 @@ pub fn clip(poly: &[DVec2], side: impl Fn(DVec2) -> f64) -> Vec<DVec2> {
 /// The most boundary pieces (polygon edges and circles) a combination may
 /// have to be read here: each is cut at every other (n² tests), and each
 /// stretch tested against the whole tree (n² again, times the cuts).
-pub const MAX_PIECES: usize = 2048;
+pub const MAX_PIECES: usize = 20_000;
 
 /// Whether `f` is made of pieces [`strokes`] reads but has more than
 /// [`MAX_PIECES`] of them.

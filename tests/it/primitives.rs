@@ -65,6 +65,14 @@ fn shapes() -> Vec<(&'static str, Shape)> {
             }),
         ),
         ("torus", Shape::Torus(Torus { minor: 0.35 })),
+        ("spindle torus's apple", Shape::Torus(Torus { minor: 1.4 })),
+        (
+            "turned slanted ellipse",
+            Shape::Ring(
+                csgrt::geometry::Ring::new(glam::DMat2::from_cols_array(&[0.5, 0.3, -0.15, 0.25]))
+                    .unwrap(),
+            ),
+        ),
         ("mesh", octahedron()),
         ("hull of two balls", hull_and_sum()[0].clone()),
         ("box plus ball", hull_and_sum()[1].clone()),
@@ -92,19 +100,20 @@ fn solid_index(s: &Shape) -> usize {
         Shape::Convex(_) => 10,
         Shape::Rounded(_) => 11,
         Shape::OffsetPrism(_) => 12,
+        Shape::Ring(_) => 13,
     }
 }
 
 #[test]
 fn every_solid_has_the_properties_checked() {
-    let mut seen = [false; 13];
+    let mut seen = [false; 14];
     for (_, s) in shapes() {
         seen[solid_index(&s)] = true;
     }
     // The half-space is unbounded: no inner point to aim at, no far side;
     // `support_points_…` checks that it has no support point.
     seen[solid_index(&Shape::Halfspace(csgrt::geometry::Halfspace))] = true;
-    let missing: Vec<usize> = (0..13).filter(|&i| !seen[i]).collect();
+    let missing: Vec<usize> = (0..14).filter(|&i| !seen[i]).collect();
     assert!(
         missing.is_empty(),
         "solids missing from shapes(): {missing:?}"
@@ -146,7 +155,7 @@ fn size_of(m: &DAffine3) -> f64 {
 /// A point inside the primitive, in object space.
 fn inner_point(shape: &Shape) -> DVec3 {
     match shape {
-        Shape::Torus(_) => DVec3::new(1.0, 0.0, 0.0),
+        Shape::Torus(_) | Shape::Ring(_) => DVec3::new(1.0, 0.0, 0.0),
         // In the L's lower-left square, at a quarter of the height (its
         // section scaled by the taper there).
         Shape::Prism(p) => {
@@ -218,7 +227,7 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                     "{name}: the next crossing must leave"
                 );
                 // Leaving in any outward direction: a convex solid is never
-                // met again; the torus only far from the point.
+                // met again; the torus and the ring only far from the point.
                 let mut out = rng.unit();
                 if out.dot(n) < 0.0 {
                     out = -out;
@@ -233,6 +242,7 @@ fn reintersection_from_a_surface_point_finds_nothing_closer() {
                         if matches!(
                             shape,
                             Shape::Torus(_)
+                                | Shape::Ring(_)
                                 | Shape::Prism(_)
                                 | Shape::Lathe(_)
                                 | Shape::Twisted(_)
@@ -386,6 +396,13 @@ fn normals_agree_with_the_inside_test() {
 /// How far an object-space surface point is from an edge of its solid.
 fn seam_distance(shape: &Shape, p: DVec3) -> f64 {
     match shape.clone() {
+        // A spindle torus's apple meets itself in two cusps on the axis.
+        Shape::Torus(Torus { minor }) if minor >= 1.0 => {
+            let h = (minor * minor - 1.0).sqrt();
+            (p - DVec3::new(0.0, 0.0, h))
+                .length()
+                .min((p - DVec3::new(0.0, 0.0, -h)).length())
+        }
         Shape::Cuboid(Cuboid { centered }) => {
             let lo = if centered { -1.0 } else { 0.0 };
             // Distances to the two nearest faces other than the one hit.

@@ -77,6 +77,7 @@ SUITE = {
 MESHES = {
     "dxf_fine_grid": "dxf_gaps",
     "spindle_lemon_kept": "turned_across_axis",
+    "ring_unslanted": "turned_slanted_ellipses",
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own

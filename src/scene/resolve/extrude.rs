@@ -474,11 +474,29 @@ impl Resolver<'_> {
             Figure::Ellipse(e) => {
                 let m = e.matrix2;
                 if m.x_axis.y != 0.0 || m.y_axis.x != 0.0 {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "turning a slanted ellipse is not supported yet",
-                        "csgrt turns circles scaled along x and y, not rotated ellipses",
-                    ));
+                    // A slanted ellipse: the turned ellipse, about its
+                    // centre's distance c from the axis, scaled by c.
+                    let c = e.translation;
+                    let reach = m.row(0).length();
+                    if c.x - reach >= 0.0 {
+                        let ring = crate::geometry::Ring::new(m / c.x);
+                        if let Some(ring) = ring {
+                            let local = DAffine3::from_scale_rotation_translation(
+                                DVec3::splat(c.x),
+                                glam::DQuat::IDENTITY,
+                                DVec3::new(0.0, 0.0, c.y),
+                            );
+                            return self.leaf(s, Shape::Ring(ring), xf * local, mat);
+                        }
+                    }
+                    if c.x + reach > 0.0 {
+                        return Err(self.src.error(
+                            s.name_span,
+                            "turning a slanted ellipse that reaches the axis is not supported yet",
+                            "csgrt turns slanted ellipses wholly on one side of x = 0",
+                        ));
+                    }
+                    return Ok(None);
                 }
                 let (ra, rz, c) = (m.x_axis.x.abs(), m.y_axis.y.abs(), e.translation);
                 if c.x + ra <= 0.0 {

@@ -178,6 +178,14 @@ def extrusion_box(leaf):
             pts = np.concatenate(loops)
             r = max(pts[:, 0].max(), 0.0)
             return corner_box(m, np.array([-r, -r, pts[:, 1].min()]), np.array([r, r, pts[:, 1].max()]))
+        if f[0] == "ellipse" and (f[1][0, 1] != 0 or f[1][1, 0] != 0):
+            # A slanted ellipse (wholly on one side): its reach along x and z.
+            A, c = f[1], f[2]
+            ex, ez = math.hypot(A[0, 0], A[0, 1]), math.hypot(A[1, 0], A[1, 1])
+            if c[0] + ex <= 0:
+                return EMPTY
+            r = c[0] + ex
+            return corner_box(m, np.array([-r, -r, c[1] - ez]), np.array([r, r, c[1] + ez]))
         if f[0] == "ellipse":
             A, c = f[1], f[2]
             ra, rz = abs(A[0, 0]), abs(A[1, 1])
