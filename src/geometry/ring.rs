@@ -13,7 +13,7 @@
 //! each interval between them is classified by the exact test at its
 //! middle, so a root of the mirror image changes nothing.
 
-use super::solid::{Param, Probe, RawSpan, Solid};
+use super::solid::{spans_between_roots, Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::math::poly::{poly, quartic_estimates, roots_in_from, Poly, MAX_DEGREE};
 use glam::{DMat2, DVec2, DVec3};
@@ -121,22 +121,7 @@ impl Solid for Ring {
             let r2 = rho2[0] + s * (rho2[1] + s * rho2[2]);
             self.level(r2.max(0.0).sqrt(), z0 + s * zu) < 0.0
         };
-        let mut prev = 0.0;
-        let mut from = None;
-        for &r in roots[..n].iter().chain(std::iter::once(&span)) {
-            match (inside(0.5 * (prev + r)), from) {
-                (true, None) => from = Some(prev),
-                (false, Some(s0)) => {
-                    emit((lo + s0 / len, 0, lo + prev / len, 0));
-                    from = None;
-                }
-                _ => {}
-            }
-            prev = r;
-        }
-        if let Some(s0) = from {
-            emit((lo + s0 / len, 0, hi, 0));
-        }
+        spans_between_roots(&roots[..n], (span, lo, hi, len), inside, emit);
     }
 
     /// The gradient of wᵀQw, carried from the half-plane to space.

@@ -13,6 +13,35 @@ use glam::{DAffine3, DVec3};
 /// Where the line enters and leaves a solid: `(t_in, part_in, t_out, part_out)`.
 pub type RawSpan = (f64, Part, f64, Part);
 
+/// The spans of a line cut at `roots` (sorted, in a unit-speed parameter s
+/// from 0 to `span` over its clipped part, which starts at t = `lo`, ends at
+/// `hi` and runs `len` per unit of t), each piece between two cuts inside
+/// where `inside` says so at its middle; the ends of the clipped part are
+/// outside. Entries and exits are part 0.
+pub fn spans_between_roots(
+    roots: &[f64],
+    (span, lo, hi, len): (f64, f64, f64, f64),
+    inside: impl Fn(f64) -> bool,
+    emit: &mut impl FnMut(RawSpan),
+) {
+    let mut prev = 0.0;
+    let mut from = None;
+    for &r in roots.iter().chain(std::iter::once(&span)) {
+        match (inside(0.5 * (prev + r)), from) {
+            (true, None) => from = Some(prev),
+            (false, Some(s0)) => {
+                emit((lo + s0 / len, 0, lo + prev / len, 0));
+                from = None;
+            }
+            _ => {}
+        }
+        prev = r;
+    }
+    if let Some(s0) = from {
+        emit((lo + s0 / len, 0, hi, 0));
+    }
+}
+
 /// What a primitive is asked for its spans: the line `o + t·d` in its
 /// object space (d not normalised, so t is the world ray's), the range of t
 /// the caller needs — spans may reach past it, a primitive with many parts

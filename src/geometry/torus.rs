@@ -8,7 +8,7 @@
 //! Newton steps starting from Ferrari's closed form (a guarded start: a root
 //! is still only accepted inside a bracket where the quartic changes sign).
 
-use super::solid::{Param, Probe, RawSpan, Solid};
+use super::solid::{spans_between_roots, Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part};
 use crate::math::poly::{eval, quartic_estimates, roots_in_from, Poly};
 use glam::{DAffine3, DVec3};
@@ -175,23 +175,7 @@ pub fn spans(minor: f64, o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
             eval(&poly, 4, s) < 0.0
         }
     };
-    let mut prev = 0.0;
-    let mut inside_from = None;
-    for &r in roots[..n].iter().chain(std::iter::once(&span)) {
-        let inside = inside_at(0.5 * (prev + r));
-        match (inside, inside_from) {
-            (true, None) => inside_from = Some(prev),
-            (false, Some(s0)) => {
-                emit((lo + s0 / len, 0, lo + prev / len, 0));
-                inside_from = None;
-            }
-            _ => {}
-        }
-        prev = r;
-    }
-    if let Some(s0) = inside_from {
-        emit((lo + s0 / len, 0, hi, 0));
-    }
+    spans_between_roots(&roots[..n], (span, lo, hi, len), inside_at, emit);
 }
 
 pub fn normal(p: DVec3) -> DVec3 {
