@@ -112,6 +112,7 @@ pub const MESH_TARGETS: &[(&str, &str)] = &[
     ("obj", "obj"),
     ("threemf", "3mf"),
     ("amf", "amf"),
+    ("nef3", "nef3"),
 ];
 
 /// Any bytes as a mesh file of format `ext` (`fuzz/fuzz_targets/mesh_*.rs`):

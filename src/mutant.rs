@@ -42,6 +42,7 @@ pub const NAMES: &[&str] = &[
     "spindle_lemon_kept",
     "svg_stroke_chords",
     "ring_unslanted",
+    "nef3_holes_dropped",
 ];
 
 /// Whether the fault `name` is switched on.

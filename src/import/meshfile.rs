@@ -54,7 +54,7 @@ fn err(line: Option<usize>, message: impl Into<String>) -> FileError {
 }
 
 /// The formats by extension (lower case), for messages.
-pub const FORMATS: &[&str] = &["stl", "off", "obj", "3mf", "amf"];
+pub const FORMATS: &[&str] = &["stl", "off", "obj", "3mf", "amf", "nef3"];
 
 /// Reads a mesh file of the format its extension `ext` names.
 pub fn read(ext: &str, bytes: &[u8]) -> Result<MeshFile, FileError> {
@@ -65,6 +65,7 @@ pub fn read(ext: &str, bytes: &[u8]) -> Result<MeshFile, FileError> {
         "obj" => obj(bytes)?,
         "3mf" => three_mf(bytes)?,
         "amf" => amf(bytes)?,
+        "nef3" => super::nef3::read(bytes)?,
         _ => {
             return Err(err(
                 None,

@@ -640,7 +640,7 @@ fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
     );
     assert_eq!(
         common::lenient(&format!("import(\"part.eps\");\n{flat}"), flat),
-        "error: cannot import `part.eps`: not a drawing or mesh file\n --> bad.csg:1:8\n  |\n1 | import(\"part.eps\");\n  |        ^^^^^^^^^^ csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes; this `import` is left out, as OpenSCAD leaves it out (an error under --strict)\n"
+        "error: cannot import `part.eps`: not a drawing or mesh file\n --> bad.csg:1:8\n  |\n1 | import(\"part.eps\");\n  |        ^^^^^^^^^^ csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF, AMF and NEF3 meshes; this `import` is left out, as OpenSCAD leaves it out (an error under --strict)\n"
     );
     // A text that is no string, at the value; a twisted text, at the
     // extrusion.

@@ -78,6 +78,7 @@ MESHES = {
     "dxf_fine_grid": "dxf_gaps",
     "spindle_lemon_kept": "turned_across_axis",
     "ring_unslanted": "turned_slanted_ellipses",
+    "nef3_holes_dropped": "nef3_import",
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own

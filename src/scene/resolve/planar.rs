@@ -431,7 +431,7 @@ impl Resolver<'_> {
                         "cannot import `{}`: not a drawing or mesh file",
                         path.display()
                     ),
-                    "csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF and AMF meshes",
+                    "csgrt imports DXF and SVG drawings and STL, OFF, OBJ, 3MF, AMF and NEF3 meshes",
                 )
             };
             // OpenSCAD: "Unsupported file format" (or a 3-D child of a 2-D

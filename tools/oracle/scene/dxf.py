@@ -3,6 +3,7 @@ by ezdxf; meshes and surface() height maps."""
 
 import math
 import os
+from fractions import Fraction
 import re
 
 import numpy as np
@@ -312,9 +313,78 @@ def import_mesh(rd, s, a):
             for t in mesh.iter("triangle"):
                 faces.append([base + int(t.find(k).text) for k in ("v1", "v2", "v3")])
         pts = np.array(pts, dtype=float)
+    elif ext == "nef3":
+        pts, faces = nef3_triangles(data.decode())
     else:
         raise rd.err(s, f"import of .{ext} is not in the oracle")
     return merged(pts, faces)
+
+
+def nef3_triangles(text):
+    """The boundary of a CGAL Nef complex (its `Selective Nef Complex` text)
+    as triangles: each pair of twin facets whose volumes differ in mark is
+    a face; its cycles, walked along each shalfedge's `next` at the vertex
+    of its source halfedge, are filled even-odd (manifold3d's triangulator,
+    holes turned) in the plane across the facet's largest normal component,
+    the
+    triangles' corners its vertices."""
+    import manifold3d as mf
+
+    lines = [ln.strip() for ln in text.splitlines()]
+    counts = [int(lines[2 + k].split()[1]) for k in range(7)]
+    at, recs = 9, []
+    for c in counts:
+        rows = []
+        for ln in lines[at : at + c]:
+            inner = ln[ln.index("{") + 1 : ln.rindex("}")]
+            head, _, tail = inner.partition("|")
+            rows.append(([f.split() for f in head.split(",")], [float(Fraction(w)) for w in tail.split()], ln[ln.rindex("}") + 1 :].strip() == "1"))
+        recs.append(rows)
+        at += c
+    verts, hedges, facets, volumes, sedges = recs[:5]
+    point = np.array([np.array(t[:3]) / t[3] for _, t, _ in verts])
+    vertex_of = [int(f[1][0]) for f, _, _ in hedges]
+    inside = [m for _, _, m in volumes]
+    tris = []
+    for i, (f, pl, _) in enumerate(facets):
+        twin = int(f[0][0])
+        if twin < i or inside[int(f[-1][0])] == inside[int(facets[twin][0][-1][0])]:
+            continue
+        k = int(np.argmax(np.abs(pl[:3])))
+        keep = [j for j in range(3) if j != k]
+        loops, corner = [], {}
+        for start in f[1]:
+            e, loop = int(start), []
+            while True:
+                p3 = point[vertex_of[int(sedges[e][0][3][0])]]
+                loop.append(p3[keep].tolist())
+                corner[tuple(p3[keep])] = p3
+                e = int(sedges[e][0][6][0])
+                if e == int(start):
+                    break
+            loops.append(loop)
+        # Even-odd: a loop inside an odd number of others is a hole, turned
+        # clockwise, the others counter-clockwise, as manifold3d fills them.
+        arrs = [np.array(l) for l in loops]
+        for j, l in enumerate(arrs):
+            probe = l.mean(axis=0) if len(l) == 3 else l[0]
+            depth = sum(plane.even_odd_inside([o], probe) for m, o in enumerate(arrs) if m != j)
+            area = np.sum(l[:, 0] * np.roll(l[:, 1], -1) - np.roll(l[:, 0], -1) * l[:, 1])
+            if (area > 0) == (depth % 2 == 1):
+                arrs[j] = l[::-1]
+        flat = np.concatenate(arrs)
+        for t in np.asarray(mf.triangulate([a.tolist() for a in arrs])):
+            q = np.zeros((3, 3))
+            for j in range(3):
+                q[j] = corner[tuple(flat[t[j]])]
+            # Facing out: along the plane's normal when this side of the
+            # facet is the outside volume, against it otherwise.
+            out = np.array(pl[:3]) * (1.0 if not inside[int(f[-1][0])] else -1.0)
+            if np.cross(q[1] - q[0], q[2] - q[0]) @ out < 0:
+                q = q[::-1]
+            tris.append(q)
+    pts = np.concatenate(tris) if tris else np.zeros((0, 3))
+    return pts, np.arange(len(pts)).reshape(-1, 3).tolist()
 
 
 def import_2d(rd, s, a):
