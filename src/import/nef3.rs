@@ -309,15 +309,19 @@ fn split_at_repeats(cycle: Vec<usize>, out: &mut Vec<Vec<usize>>) {
 mod tests {
     use super::*;
 
+    /// A file of OpenSCAD's suite (`tests/openscad_suite/testdata/nef3/`).
+    fn suite_file(name: &str) -> Vec<u8> {
+        let dir = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/tests/openscad_suite/testdata/nef3/"
+        );
+        std::fs::read(format!("{dir}{name}")).unwrap()
+    }
+
     /// A unit cube written as CGAL writes it: the 6 faces of [0, 1]³.
     #[test]
     fn the_suite_cube_is_its_six_faces() {
-        let bytes = std::fs::read(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/tests/openscad_suite/testdata/nef3/cube.nef3"
-        ))
-        .unwrap();
-        let m = read(&bytes).unwrap();
+        let m = read(&suite_file("cube.nef3")).unwrap();
         assert_eq!(m.points.len(), 8);
         assert_eq!(m.faces.len(), 12);
         // Each triangle lies in one face of [-1, 1]³ (the file's cube).
@@ -336,12 +340,7 @@ mod tests {
 
     #[test]
     fn a_broken_file_is_an_error_at_its_line() {
-        let bytes = std::fs::read(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/tests/openscad_suite/testdata/nef3/broken.nef3"
-        ))
-        .unwrap();
-        let e = read(&bytes).unwrap_err();
+        let e = read(&suite_file("broken.nef3")).unwrap_err();
         assert_eq!(e.line, Some(20), "{}", e.message);
     }
 }
