@@ -97,12 +97,19 @@ impl Source {
         message: impl Into<String>,
         label: impl Into<String>,
     ) -> Error {
-        Error::Scene(Box::new(self.diagnostic(
-            Severity::Lenient,
-            span,
-            message,
-            label,
-        )))
+        leniently(self.error(span, message, label))
+    }
+}
+
+/// `e`, a problem in a file, made one OpenSCAD only warns about
+/// ([`Source::lenient`]); any other error as it is.
+pub fn leniently(e: Error) -> Error {
+    match e {
+        Error::Scene(mut d) => {
+            d.severity = Severity::Lenient;
+            Error::Scene(d)
+        }
+        e => e,
     }
 }
 

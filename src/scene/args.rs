@@ -180,29 +180,16 @@ impl<'a> Args<'a> {
         )
     }
 
-    /// An error at `span`, or for a statement of OpenSCAD's a problem it
-    /// warns about and renders past ([`Source::lenient`]).
-    fn problem(
-        &self,
-        span: TextRange,
-        message: impl Into<String>,
-        label: impl Into<String>,
-    ) -> Error {
+    /// `e`, for a statement of OpenSCAD's, made a problem it warns about
+    /// and renders past ([`crate::source::leniently`]); for csgrt's own
+    /// statements an error as it is.
+    fn openscads(&self, e: Error) -> Error {
         let name = self.stmt.name.as_str();
         if SCENE.contains(&name) || OWN.contains(&name) {
-            self.src.error(span, message, label)
+            e
         } else {
-            self.src.lenient(span, message, label)
+            crate::source::leniently(e)
         }
-    }
-
-    /// [`Args::wrong_type`] where OpenSCAD warns and leaves the shape out.
-    fn lenient_type(&self, name: &str, v: &Value, want: &str) -> Error {
-        self.problem(
-            v.span,
-            format!("`{name}` of `{}` must be {want}", self.stmt.name),
-            format!("expected {want}, found {}", v.kind.type_name()),
-        )
     }
 
     fn finite(&self, name: &str, v: &Value, x: f64) -> Result<f64> {
@@ -211,11 +198,11 @@ impl<'a> Args<'a> {
         } else {
             // OpenSCAD makes nothing of a non-finite size, and removes
             // what a non-finite transform moves.
-            Err(self.problem(
+            Err(self.openscads(self.src.error(
                 v.span,
                 format!("`{name}` of `{}` must be finite", self.stmt.name),
                 "expected a finite number",
-            ))
+            )))
         }
     }
 
@@ -235,11 +222,11 @@ impl<'a> Args<'a> {
         if let (Some(x), Some(v)) = (x, self.get(name)) {
             if x < 0.0 {
                 // OpenSCAD makes nothing of a negative radius.
-                return Err(self.problem(
+                return Err(self.openscads(self.src.error(
                     v.span,
                     format!("`{name}` of `{}` must not be negative", self.stmt.name),
                     "expected a number ≥ 0",
-                ));
+                )));
             }
         }
         Ok(x)
@@ -383,14 +370,11 @@ impl<'a> Args<'a> {
         for it in items {
             // OpenSCAD's "Unable to convert points[i]": the shape is empty.
             let ValueKind::Vector(xs) = &it.kind else {
-                return Err(self.lenient_type(
-                    name,
-                    it,
-                    &format!("a point of {} numbers", dims[0]),
-                ));
+                let want = format!("a point of {} numbers", dims[0]);
+                return Err(self.openscads(self.wrong_type(name, it, &want)));
             };
             if !dims.contains(&xs.len()) {
-                return Err(self.problem(
+                return Err(self.openscads(self.src.error(
                     it.span,
                     format!("`{name}` of `{}` must be {want}", self.stmt.name),
                     format!(
@@ -398,13 +382,13 @@ impl<'a> Args<'a> {
                         dims[0],
                         xs.len()
                     ),
-                ));
+                )));
             }
             let mut p = [0.0; 3];
             for (k, x) in xs.iter().enumerate() {
                 match x.kind {
                     ValueKind::Number(n) => p[k] = self.finite(name, x, n)?,
-                    _ => return Err(self.lenient_type(name, x, "a number")),
+                    _ => return Err(self.openscads(self.wrong_type(name, x, "a number"))),
                 }
             }
             out.push(DVec3::from(p));
