@@ -41,9 +41,9 @@ impl Ring {
         (q.x_axis.x, q.y_axis.x, q.y_axis.y)
     }
 
-    /// wᵀQw − 1 at a point of the half-plane: negative inside.
-    fn level(&self, rho: f64, z: f64) -> f64 {
-        let (qa, qb, qc) = self.q();
+    /// wᵀQw − 1 at a point of the half-plane, for Q = [`Ring::q`]: negative
+    /// inside.
+    fn level((qa, qb, qc): (f64, f64, f64), rho: f64, z: f64) -> f64 {
         let w = rho - 1.0;
         qa * w * w + 2.0 * qb * w * z + qc * z * z - 1.0
     }
@@ -119,7 +119,7 @@ impl Solid for Ring {
         let n = roots_in_from(&quartic, 4, 0.0, span, &starts[..ns], &mut roots);
         let inside = |s: f64| {
             let r2 = rho2[0] + s * (rho2[1] + s * rho2[2]);
-            self.level(r2.max(0.0).sqrt(), z0 + s * zu) < 0.0
+            Ring::level((qa, qb, qc), r2.max(0.0).sqrt(), z0 + s * zu) < 0.0
         };
         spans_between_roots(&roots[..n], (span, lo, hi, len), inside, emit);
     }
@@ -137,7 +137,7 @@ impl Solid for Ring {
     }
 
     fn contains(&self, p: DVec3) -> bool {
-        self.level(p.truncate().length(), p.z) <= 0.0
+        Ring::level(self.q(), p.truncate().length(), p.z) <= 0.0
     }
 
     fn object_bounds(&self) -> Aabb {

@@ -38,12 +38,14 @@ fn fail(line: usize, message: impl Into<String>) -> FileError {
     }
 }
 
-/// One record: its fields before `|` split at commas, the text after `|`
-/// (up to `}`), and its mark after `}`.
+/// One record: its fields before `|` split at commas, the numbers after
+/// `|` (up to `}`: a point, a direction, a plane, a circle — every one read,
+/// as CGAL's reader reads it, so that a broken one is found), and its mark
+/// after `}`.
 struct Record<'a> {
     line: usize,
     fields: Vec<&'a str>,
-    after: &'a str,
+    numbers: Vec<f64>,
     mark: bool,
 }
 
@@ -64,7 +66,10 @@ fn record(line: usize, text: &str) -> Result<Record<'_>, FileError> {
     Ok(Record {
         line,
         fields: before.split(',').collect(),
-        after,
+        numbers: after
+            .split_whitespace()
+            .map(|w| number(line, w))
+            .collect::<Result<_, _>>()?,
         mark,
     })
 }
@@ -76,9 +81,12 @@ impl Record<'_> {
             .fields
             .get(k)
             .ok_or_else(|| fail(self.line, format!("expected the {what}")))?;
-        let mut words = f.split_whitespace();
-        let first = words.next();
-        index(self.line, first.unwrap_or(""), count, what)
+        index(
+            self.line,
+            f.split_whitespace().next().unwrap_or(""),
+            count,
+            what,
+        )
     }
 
     /// Field `k` as a list of indices below `count` (an isolated
@@ -131,11 +139,11 @@ pub fn read(bytes: &[u8]) -> Result<MeshFile, FileError> {
             .next()
             .ok_or_else(|| fail(last, format!("the file ends before its {what}")))
     };
-    let (n, head) = next("its header")?;
+    let (n, head) = next("header")?;
     if head != "Selective Nef Complex" {
         return Err(fail(n, "expected `Selective Nef Complex`"));
     }
-    let (n, kernel) = next("its kernel")?;
+    let (n, kernel) = next("kernel")?;
     if kernel != "standard" {
         return Err(fail(
             n,
@@ -159,7 +167,7 @@ pub fn read(bytes: &[u8]) -> Result<MeshFile, FileError> {
             }
         };
     }
-    let [nv, nh, nf, nvol, nse, nsl, nsf] = counts;
+    let [nv, nh, nf, nvol, nse, _, _] = counts;
     let mut records = Vec::with_capacity(KINDS.len());
     for (k, &c) in counts.iter().enumerate() {
         let mut rs = Vec::with_capacity(c.min(1 << 16));
@@ -169,24 +177,13 @@ pub fn read(bytes: &[u8]) -> Result<MeshFile, FileError> {
         }
         records.push(rs);
     }
-    let _ = (nsl, nsf);
-    // Every number after `|` is read, as CGAL's reader reads it (a
-    // halfedge's direction, an shalfedge's circle), so that a broken one
-    // is found.
-    for r in records.iter().flatten() {
-        for w in r.after.split_whitespace() {
-            number(r.line, w)?;
-        }
-    }
     let points = records[0]
         .iter()
         .map(|r| {
-            let w: Vec<&str> = r.after.split_whitespace().collect();
-            let [x, y, z, h] = w[..] else {
+            let &[x, y, z, h] = &r.numbers[..] else {
                 return Err(fail(r.line, "expected a point `x y z w` after `|`"));
             };
-            let h = number(r.line, h)?;
-            let p = DVec3::new(number(r.line, x)?, number(r.line, y)?, number(r.line, z)?) / h;
+            let p = DVec3::new(x, y, z) / h;
             if p.is_finite() {
                 Ok(p)
             } else {
@@ -249,15 +246,10 @@ pub fn read(bytes: &[u8]) -> Result<MeshFile, FileError> {
             }
         }
         // The plane's normal: across its largest component.
-        let w: Vec<f64> = r
-            .after
-            .split_whitespace()
-            .map(|w| number(r.line, w))
-            .collect::<Result<_, _>>()?;
-        if w.len() != 4 {
+        let &[a, b, c, _] = &r.numbers[..] else {
             return Err(fail(r.line, "expected a plane `a b c d` after `|`"));
-        }
-        let n = DVec3::new(w[0], w[1], w[2]).abs();
+        };
+        let n = DVec3::new(a, b, c).abs();
         let k = if n.x >= n.y && n.x >= n.z {
             0
         } else if n.y >= n.z {

@@ -86,7 +86,6 @@ impl Figure {
     /// shape covers the first operand's box on that side. `false` is no
     /// proof either way.
     pub fn no_area_beyond_axis(&self, right: bool) -> bool {
-        let sign = if right { 1.0 } else { -1.0 };
         let (lo, hi) = self.x_range();
         if (right && hi <= 0.0) || (!right && lo >= 0.0) {
             return true;
@@ -108,7 +107,6 @@ impl Figure {
                     DVec2::new(far, ylo),
                     DVec2::new(far, yhi),
                 ];
-                debug_assert!(far * sign > 0.0);
                 kids[1..].iter().any(|k| k.covers_convexly(&corners))
             }
             _ => false,

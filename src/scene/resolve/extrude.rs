@@ -19,7 +19,8 @@ use super::transforms::{basis_from_z, sin_cos_deg};
 use super::Resolver;
 use crate::error::Result;
 use crate::geometry::{
-    Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Shape, Sphere, Torus, TwistSection, Twisted,
+    Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Ring, Shape, Sphere, Torus, TwistSection,
+    Twisted,
 };
 use crate::math::boolean::Op;
 use crate::plane::figure::{clip_right, is_circle, Figure};
@@ -376,10 +377,12 @@ impl Resolver<'_> {
         let (mut lo, mut hi) = f.x_range();
         // What a combination leaves may lie on one side though its parts
         // reach across (a circle across the axis, its right half cut away).
-        if lo < 0.0 && hi > 0.0 && f.no_area_beyond_axis(true) {
-            hi = 0.0;
-        } else if lo < 0.0 && hi > 0.0 && f.no_area_beyond_axis(false) {
-            lo = 0.0;
+        if lo < 0.0 && hi > 0.0 {
+            if f.no_area_beyond_axis(true) {
+                hi = 0.0;
+            } else if f.no_area_beyond_axis(false) {
+                lo = 0.0;
+            }
         }
         if lo < 0.0 && hi > 0.0 {
             // OpenSCAD 2021.01 reports this as an error and renders the
@@ -478,16 +481,14 @@ impl Resolver<'_> {
                     // centre's distance c from the axis, scaled by c.
                     let c = e.translation;
                     let reach = m.row(0).length();
-                    if c.x - reach >= 0.0 {
-                        let ring = crate::geometry::Ring::new(m / c.x);
-                        if let Some(ring) = ring {
-                            let local = DAffine3::from_scale_rotation_translation(
-                                DVec3::splat(c.x),
-                                glam::DQuat::IDENTITY,
-                                DVec3::new(0.0, 0.0, c.y),
-                            );
-                            return self.leaf(s, Shape::Ring(ring), xf * local, mat);
-                        }
+                    // (`Ring::new` takes it wholly right of the axis only.)
+                    if let Some(ring) = (c.x > 0.0).then(|| Ring::new(m / c.x)).flatten() {
+                        let local = DAffine3::from_scale_rotation_translation(
+                            DVec3::splat(c.x),
+                            glam::DQuat::IDENTITY,
+                            DVec3::new(0.0, 0.0, c.y),
+                        );
+                        return self.leaf(s, Shape::Ring(ring), xf * local, mat);
                     }
                     if c.x + reach > 0.0 {
                         return Err(self.src.error(
