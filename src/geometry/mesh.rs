@@ -48,6 +48,9 @@ pub struct MeshData {
     /// they name (two loads, the second waiting on the first); the values,
     /// and so every answer, are the same.
     flat: Vec<[f32; 9]>,
+    /// For a convex mesh ([`MeshData::convex`]): each vertex's neighbours,
+    /// so that its support point is found by climbing along edges.
+    neighbours: Option<Vec<Vec<u32>>>,
 }
 
 impl PartialEq for MeshData {
@@ -105,6 +108,55 @@ impl MeshData {
             bvh,
             bounds,
             flat,
+            neighbours: None,
+        }
+    }
+
+    /// A convex closed mesh (a hull): as [`MeshData::new`], with each
+    /// vertex's neighbours kept. On a convex polytope a vertex no
+    /// neighbour of which lies farther along a direction is the farthest
+    /// of all (a linear function has no other local maximum there), so its
+    /// support point is found by climbing, not by reading every vertex.
+    pub fn convex(verts: Vec<DVec3>, tris: Vec<[u32; 3]>) -> MeshData {
+        let mut m = MeshData::new(verts, tris);
+        let mut nb = vec![Vec::new(); m.verts.len()];
+        for t in &m.tris {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if !nb[a as usize].contains(&b) {
+                    nb[a as usize].push(b);
+                    nb[b as usize].push(a);
+                }
+            }
+        }
+        m.neighbours = Some(nb);
+        m
+    }
+
+    /// The vertex farthest along `d` (any of them where several).
+    pub fn farthest(&self, d: DVec3) -> Option<DVec3> {
+        let Some(nb) = &self.neighbours else {
+            return self
+                .verts
+                .iter()
+                .copied()
+                .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)));
+        };
+        let mut at = 0usize;
+        let mut best = self.verts.first()?.dot(d);
+        loop {
+            let next = nb[at]
+                .iter()
+                .map(|&k| (k as usize, self.verts[k as usize].dot(d)))
+                .max_by(|a, b| a.1.total_cmp(&b.1));
+            match next {
+                // The fault: the climb stops after its first step.
+                Some((k, v)) if v > best && !(at != 0 && crate::mutant::active("climb_once")) => {
+                    at = k;
+                    best = v;
+                }
+                _ => return Some(self.verts[at]),
+            }
         }
     }
 
@@ -511,11 +563,7 @@ impl Solid for Mesh {
     }
 
     fn support(&self, d: DVec3) -> Option<DVec3> {
-        self.data
-            .verts
-            .iter()
-            .copied()
-            .max_by(|a, b| a.dot(d).total_cmp(&b.dot(d)))
+        self.data.farthest(d)
     }
 
     fn params(&self) -> Vec<(&'static str, Param)> {
