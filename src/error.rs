@@ -47,6 +47,9 @@ pub enum Severity {
     /// is made, which the statement it belongs to turns into a warning
     /// and an empty statement (`--strict` makes every warning an error).
     Lenient,
+    /// Not a problem: how csgrt made something (an approximation, with
+    /// its error), said once; `--strict` leaves it alone.
+    Note,
 }
 
 /// A message tied to a place in a source file.
@@ -68,6 +71,7 @@ impl fmt::Display for Diagnostic {
         let kind = match self.severity {
             Severity::Error | Severity::Lenient => "error",
             Severity::Warning => "warning",
+            Severity::Note => "note",
         };
         let num = self.line.to_string();
         let pad = " ".repeat(num.len());

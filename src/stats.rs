@@ -27,6 +27,9 @@ pub struct Stats {
     /// Samples whose colour was NaN or infinite (drawn black); always 0
     /// unless something is wrong.
     pub nonfinite_samples: u64,
+    /// Nodes of the scene made by the certified approximation (set from
+    /// the scene, not counted per ray).
+    pub approximated_nodes: u64,
 }
 
 impl Stats {
@@ -45,5 +48,6 @@ impl Stats {
         self.span_allocations += o.span_allocations;
         self.max_spans = self.max_spans.max(o.max_spans);
         self.nonfinite_samples += o.nonfinite_samples;
+        self.approximated_nodes = self.approximated_nodes.max(o.approximated_nodes);
     }
 }

@@ -176,6 +176,23 @@ fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
     for w in &scene.warnings {
         eprintln!("{w}");
     }
+    // Each approximation once, with its error at this view.
+    let (width, height) = cli.imgsize.unwrap_or(cli.size);
+    let cam = scene.view(width, height);
+    for a in &scene.approximations {
+        let mut d = a.note.clone();
+        let px = a.pixels(&cam, width);
+        d.label = format!(
+            "{}; {px:.2} pixels at this view{}",
+            d.label,
+            if px < 0.5 {
+                ""
+            } else {
+                " (over half a pixel: the bound is for views where this part spans fewer than 4096 pixels)"
+            }
+        );
+        eprintln!("{d}");
+    }
     Ok(())
 }
 

@@ -374,6 +374,7 @@ pub fn stats_json(s: &Stats, seconds: f64) -> String {
         "span_allocations": s.span_allocations,
         "max_spans": s.max_spans,
         "nonfinite_samples": s.nonfinite_samples,
+        "approximated_nodes": s.approximated_nodes,
         "render_seconds": seconds,
     });
     serde_json::to_string_pretty(&v).expect("JSON of plain values") + "\n"

@@ -8,6 +8,8 @@
 //! the boundary that wins ([`Csg::surface`]).
 
 mod extent;
+mod polytopes;
+pub use polytopes::MAX_POLYTOPES;
 pub mod spans;
 
 use crate::geometry::aabb::AabbLanes;

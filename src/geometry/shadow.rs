@@ -147,7 +147,9 @@ impl Soup {
     /// Whether `p` is in a triangle (its edges count).
     pub fn contains(&self, p: DVec2) -> bool {
         let mut inside = false;
-        self.tree.visit(DVec3::new(0.0, 1.0, -p.y), &mut |k| {
+        // Only the triangles whose boxes hold the point.
+        let holds = |lo: DVec2, hi: DVec2| lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y;
+        self.tree.visit_boxes(holds, &mut |k| {
             inside = inside
                 || (0..3).all(|j| {
                     let (a, b) = self.edge(k as usize, j);

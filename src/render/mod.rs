@@ -177,6 +177,7 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
             lin = Vec::new();
         }
     }
+    stats.approximated_nodes = scene.approximations.len() as u64;
     Rendered {
         width: s.width,
         height: s.height,

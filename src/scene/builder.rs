@@ -18,6 +18,7 @@ pub struct SceneBuilder {
     pub camera: Option<CameraSpec>,
     pub background: Option<glam::DVec3>,
     pub warnings: Vec<Diagnostic>,
+    pub approximations: Vec<super::Approximation>,
 }
 
 impl SceneBuilder {
@@ -89,6 +90,7 @@ impl SceneBuilder {
             csg: self.csg,
             warnings: self.warnings,
             planar: false,
+            approximations: self.approximations,
         }
     }
 }

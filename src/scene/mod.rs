@@ -120,6 +120,35 @@ pub struct Scene {
     /// The model is 2-D at the top level: each of its shapes is shown as
     /// a slab (see `resolve::extrude`), and OpenSCAD's box of it is flat.
     pub planar: bool,
+    /// The nodes made by the certified approximation (a hull or Minkowski
+    /// sum of an intersection or a difference).
+    pub approximations: Vec<Approximation>,
+}
+
+/// A node csgrt approximates: where it is, its world box and its error (a
+/// distance in world units, the Hausdorff distance's bound).
+#[derive(Clone, Debug)]
+pub struct Approximation {
+    pub note: Diagnostic,
+    pub bounds: Aabb,
+    pub eps: f64,
+}
+
+impl Approximation {
+    /// The error in pixels of a `width`-wide picture taken by `cam`, at
+    /// the box's point nearest the eye (the largest there).
+    pub fn pixels(&self, cam: &CameraSpec, width: u32) -> f64 {
+        let look = cam.lookat - cam.eye;
+        let focal = width as f64 / (2.0 * (0.5 * cam.fov).to_radians().tan());
+        let distance = match cam.projection {
+            Projection::Orthographic => look.length(),
+            Projection::Perspective => {
+                let nearest = cam.eye.clamp(self.bounds.min, self.bounds.max);
+                (nearest - cam.eye).length()
+            }
+        };
+        self.eps * focal / distance
+    }
 }
 
 impl Scene {

@@ -5,10 +5,14 @@
 //! is the largest of theirs, whatever their shape (a torus, a mesh: the
 //! support of a solid is that of its hull). The Minkowski sum of convex
 //! operands adds their supports; an operand that is a union of convex
-//! parts distributes, A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C). Children whose
-//! hull or sum this cannot make exact — an intersection or a difference
-//! inside a hull, a non-convex solid in a sum, an unbounded one — are "not
-//! supported yet" at the statement. The children are read once, to be
+//! parts distributes, A ⊕ (B ∪ C) = (A ⊕ B) ∪ (A ⊕ C). An intersection or a
+//! difference has no such exact form: it is cut into convex polytopes
+//! within `resolve::approximate::APPROXIMATION` of its size (`Csg::convex_pieces`), whose
+//! hull (quickhull) or whose pieces' sums stand for it — the certified
+//! approximation, noted once on stderr with its error in pixels and
+//! counted by `--stats-json`. What is still not supported (an unbounded
+//! solid, a non-convex mesh in a sum, a turn or a torus inside a
+//! difference) is said at the statement. The children are read once, to be
 //! measured, and dropped; the solid takes the statement's colour (OpenSCAD
 //! shows a hull in one colour). A 2-D hull extruded straight or tapered is
 //! the hull of its children's extrusions: a section of the extrusion of a
@@ -18,6 +22,7 @@ use super::Resolver;
 use crate::csg::{Mark, NodeKind};
 use crate::error::Result;
 use crate::geometry::convex::{Convex, ConvexPart};
+use crate::geometry::polytope::Polytope;
 use crate::geometry::solid::Solid;
 use crate::geometry::{Mesh, Rounded, Shape};
 use crate::math::boolean::Op;
@@ -37,28 +42,35 @@ impl Resolver<'_> {
         self.src.error(
             s.name_span,
             format!("`{}` of {what} is not supported yet", s.name),
-            "csgrt takes the hull of bounded solids and their unions, and the Minkowski sum of convex ones or of one mesh with convex ones",
+            "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes",
         )
     }
 
-    /// The primitives under `node`'s unions, or what stands in the way.
-    fn union_leaves(&self, node: u32, out: &mut Vec<u32>) -> std::result::Result<(), String> {
+    /// The primitives under `node`'s unions, and the other nodes there
+    /// (intersections, differences, projections: cut into polytopes).
+    fn union_members(&self, node: u32, leaves: &mut Vec<u32>, cut: &mut Vec<u32>) {
         match &self.b.csg.nodes[node as usize].kind {
-            NodeKind::Op(Op::Union, ch) => ch.iter().try_for_each(|&c| self.union_leaves(c, out)),
-            NodeKind::Leaf(i) => {
-                out.push(*i);
-                Ok(())
+            NodeKind::Op(Op::Union, ch) => {
+                for &c in ch {
+                    self.union_members(c, leaves, cut);
+                }
             }
-            NodeKind::Op(op, _) => Err(format!("a 3-D {}", op.name())),
-            NodeKind::Section(..) => Err("a projection".to_string()),
+            NodeKind::Leaf(i) => leaves.push(*i),
+            _ => cut.push(node),
         }
     }
 
     /// The leaves of `node`'s unions as parts placed in the world (a
-    /// nested hull's own parts), or what stands in the way.
-    fn parts_of(&self, node: u32, out: &mut Vec<ConvexPart>) -> std::result::Result<(), String> {
+    /// nested hull's own parts), and the other nodes there, or what stands
+    /// in the way.
+    fn parts_of(
+        &self,
+        node: u32,
+        out: &mut Vec<ConvexPart>,
+        cut: &mut Vec<u32>,
+    ) -> std::result::Result<(), String> {
         let mut leaves = Vec::new();
-        self.union_leaves(node, &mut leaves)?;
+        self.union_members(node, &mut leaves, cut);
         for i in leaves {
             let prim = &self.b.csg.prims[i as usize];
             if prim.shape.support(DVec3::X).is_none() {
@@ -83,9 +95,24 @@ impl Resolver<'_> {
 
     /// The alternatives (a union of them) a Minkowski operand is: each a
     /// sum of hulls.
-    fn sums_of(&self, node: u32, out: &mut Vec<Sum>) -> std::result::Result<(), String> {
-        let mut leaves = Vec::new();
-        self.union_leaves(node, &mut leaves)?;
+    fn sums_of(
+        &self,
+        node: u32,
+        cuts: &Cuts,
+        out: &mut Vec<Sum>,
+    ) -> std::result::Result<(), String> {
+        let (mut leaves, mut cut) = (Vec::new(), Vec::new());
+        self.union_members(node, &mut leaves, &mut cut);
+        for c in cut {
+            for p in cuts.get(&c).into_iter().flatten() {
+                let mesh = crate::geometry::polytope::hull_mesh(&p.vertices())
+                    .ok_or("a piece with no volume")?;
+                out.push(vec![vec![ConvexPart {
+                    shape: Shape::Mesh(mesh),
+                    to_world: DAffine3::IDENTITY,
+                }]]);
+            }
+        }
         for i in leaves {
             let prim = &self.b.csg.prims[i as usize];
             let m = prim.xf.to_world;
@@ -150,10 +177,27 @@ impl Resolver<'_> {
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let mut parts = Vec::new();
-        let found = self.parts_of(node, &mut parts);
+        let (mut parts, mut cut) = (Vec::new(), Vec::new());
+        let found = self
+            .parts_of(node, &mut parts, &mut cut)
+            .and_then(|()| self.polytopes(s, &cut, frame, false));
         self.b.csg.rewind(mark);
-        found.map_err(|why| self.not_convex(s, &why))?;
+        let polytopes = found.map_err(|why| self.not_convex(s, &why))?;
+        if !cut.is_empty() {
+            // The cut nodes' part: the hull of their polytopes' corners.
+            let pts: Vec<DVec3> = polytopes.iter().flat_map(|p| p.vertices()).collect();
+            match crate::geometry::polytope::hull_mesh(&pts) {
+                Some(mesh) if parts.is_empty() => {
+                    return self.leaf(s, Shape::Mesh(mesh), frame, mat);
+                }
+                Some(mesh) => parts.push(ConvexPart {
+                    shape: Shape::Mesh(mesh),
+                    to_world: DAffine3::IDENTITY,
+                }),
+                None if parts.is_empty() => return Ok(None),
+                None => {}
+            }
+        }
         self.convex_leaf(s, vec![parts], frame, mat)
     }
 
@@ -204,7 +248,9 @@ impl Resolver<'_> {
             };
             nodes.extend(self.statement(c, at, mat, depth + 1)?);
         }
-        let read = self.sum_of(&nodes);
+        let read = self
+            .cut_operands(s, &nodes, xf)
+            .and_then(|cuts| self.sum_of(&nodes, &cuts));
         self.b.csg.rewind(mark);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
@@ -262,12 +308,16 @@ impl Resolver<'_> {
     /// What the operands `nodes` sum to: one mesh that is not convex and
     /// balls (the mesh rounded by their sum), or else every choice of one
     /// convex piece from each operand's union, or what stands in the way.
-    fn sum_of(&self, nodes: &[u32]) -> std::result::Result<Summed, String> {
+    fn sum_of(&self, nodes: &[u32], cuts: &Cuts) -> std::result::Result<Summed, String> {
         let (mut mesh, mut centre, mut r, mut others) = (None, DVec3::ZERO, 0.0, false);
         let mut mesh_node = None;
         for &node in nodes {
-            let mut leaves = Vec::new();
-            self.union_leaves(node, &mut leaves)?;
+            let (mut leaves, mut cut) = (Vec::new(), Vec::new());
+            self.union_members(node, &mut leaves, &mut cut);
+            if !cut.is_empty() || leaves.is_empty() {
+                others = true;
+                continue;
+            }
             let prim = &self.b.csg.prims[leaves[0] as usize];
             let part = ConvexPart {
                 shape: prim.shape.clone(),
@@ -302,17 +352,47 @@ impl Resolver<'_> {
                 .copied()
                 .filter(|&n| Some(n) != mesh_node)
                 .collect();
-            return Ok(Summed::MeshPlus(m.clone(), *to, self.choices(&others)?));
+            return Ok(Summed::MeshPlus(
+                m.clone(),
+                *to,
+                self.choices(&others, cuts)?,
+            ));
         }
-        Ok(Summed::Convex(self.choices(nodes)?))
+        Ok(Summed::Convex(self.choices(nodes, cuts)?))
+    }
+
+    /// The polytopes of the intersections and differences among the
+    /// operands `nodes` (see [`Resolver::polytopes`]), by node.
+    fn cut_operands(
+        &mut self,
+        s: &Statement,
+        nodes: &[u32],
+        frame: DAffine3,
+    ) -> std::result::Result<Cuts, String> {
+        let mut cuts = Cuts::new();
+        for &node in nodes {
+            let (mut leaves, mut cut) = (Vec::new(), Vec::new());
+            self.union_members(node, &mut leaves, &mut cut);
+            for c in cut {
+                let pieces = self.polytopes(s, &[c], frame, false)?;
+                cuts.insert(c, pieces);
+            }
+        }
+        Ok(cuts)
     }
 
     /// Every choice of one convex piece from each operand's union, summed.
-    fn choices(&self, nodes: &[u32]) -> std::result::Result<Vec<Sum>, String> {
+    fn choices(&self, nodes: &[u32], cuts: &Cuts) -> std::result::Result<Vec<Sum>, String> {
         let mut combos: Vec<Sum> = vec![Vec::new()];
         for &node in nodes {
             let mut alts = Vec::new();
-            self.sums_of(node, &mut alts)?;
+            self.sums_of(node, cuts, &mut alts)?;
+            if alts.is_empty() {
+                // An operand that is empty (an intersection of parts that
+                // do not meet): left out, as OpenSCAD leaves out an empty
+                // child of minkowski().
+                continue;
+            }
             let mut next = Vec::new();
             for c in &combos {
                 for a in &alts {
@@ -329,6 +409,10 @@ impl Resolver<'_> {
         Ok(combos)
     }
 }
+
+/// The convex polytopes of the operands' intersections and differences, by
+/// node.
+type Cuts = std::collections::HashMap<u32, Vec<Polytope>>;
 
 /// What a `minkowski()` sums to.
 enum Summed {

@@ -6,6 +6,7 @@
 //! `transforms`, `appearance` and `statements` (camera, lights).
 
 mod appearance;
+mod approximate;
 mod extrude;
 mod facet_mesh;
 mod hull_minkowski;

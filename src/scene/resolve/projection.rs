@@ -9,7 +9,8 @@
 //! children are read once, in the projection's own frame, to be measured,
 //! and dropped. Anything else (an intersection or a difference, whose
 //! shadow is not its operands', or a cylinder's, a convex hull of two
-//! ellipses) is "not supported yet" at the projection.
+//! ellipses) is cut into convex polytopes within a certified distance
+//! (`resolve::approximate`), whose faces cast the shadow.
 
 use super::Resolver;
 use crate::csg::NodeKind;
@@ -54,7 +55,8 @@ impl Resolver<'_> {
         };
         let (mut pts, mut tris, mut ellipses) = (Vec::new(), Vec::new(), Vec::new());
         let mut stack = vec![child];
-        let mut refused = None;
+        // What has no exact shadow here: cut into polytopes.
+        let mut cut = Vec::new();
         while let Some(n) = stack.pop() {
             let csg = &self.b.csg;
             match &csg.nodes[n as usize].kind {
@@ -93,23 +95,33 @@ impl Resolver<'_> {
                                 ellipses.push((e, m.translation.truncate()));
                             }
                         }
-                        other => refused = Some(format!("a `{}`", other.name())),
+                        _ => cut.push(n),
                     }
                 }
-                NodeKind::Op(op, _) => refused = Some(format!("a 3-D {}", op.name())),
-                NodeKind::Section(..) => refused = Some("a projection".to_string()),
-            }
-            if refused.is_some() {
-                break;
+                NodeKind::Op(..) | NodeKind::Section(..) => cut.push(n),
             }
         }
+        // In the projection's own frame: the note's box is placed by frame.
+        let polytopes = self.polytopes(p, &cut, frame, true);
         self.b.csg.rewind(mark);
-        if let Some(what) = refused {
-            return Err(self.src.error(
+        let polytopes = polytopes.map_err(|what| {
+            self.src.error(
                 p.name_span,
                 format!("the shadow (projection(cut = false)) of {what} is not supported yet"),
-                "csgrt casts the shadows of meshes, cubes and spheres and of their unions",
-            ));
+                "csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes",
+            )
+        })?;
+        // A convex polytope's shadow is that of its faces turned up: a
+        // vertical line through it enters it through one of them.
+        for face in polytopes.iter().flat_map(|p| &p.faces) {
+            if face.n.z <= 0.0 {
+                continue;
+            }
+            let base = pts.len() as u32;
+            pts.extend(face.pts.iter().map(|v| v.truncate()));
+            for i in 1..face.pts.len() as u32 - 1 {
+                tris.push([base, base + i, base + i + 1]);
+            }
         }
         let mut parts = Vec::new();
         if let Some(soup) = Soup::new(pts, tris) {

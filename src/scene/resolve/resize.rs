@@ -149,14 +149,27 @@ impl Resolver<'_> {
             return Ok(None);
         };
         let mut size = [0.0; 3];
+        let mut exact = Ok(());
         for (i, e) in [DVec3::X, DVec3::Y, DVec3::Z].into_iter().enumerate() {
             if newsize[i] == 0.0 && !auto[i] {
                 continue;
             }
             let csg = &self.b.csg;
-            let hi = csg.extreme(child, e).map_err(|why| self.not_yet(s, why))?;
-            let lo = csg.extreme(child, -e).map_err(|why| self.not_yet(s, why))?;
-            size[i] = hi.0 + lo.0;
+            match (csg.extreme(child, e), csg.extreme(child, -e)) {
+                (Ok(hi), Ok(lo)) => size[i] = hi.0 + lo.0,
+                (Err(why), _) | (_, Err(why)) => exact = Err(why),
+            }
+        }
+        if let Err(why) = exact {
+            // No exact extent: that of the child cut into polytopes, within
+            // the certified approximation's distance of it.
+            let pieces = self
+                .polytopes(s, &[child], xf, false)
+                .map_err(|e| self.not_yet(s, &format!("{why} ({e})")))?;
+            let b = pieces
+                .iter()
+                .fold(crate::geometry::Aabb::EMPTY, |b, p| b.union(&p.bounds));
+            size = (b.max - b.min).max(DVec3::ZERO).to_array();
         }
         self.b.csg.rewind(mark);
         self.b.warnings.truncate(warned);
@@ -247,7 +260,7 @@ impl Resolver<'_> {
         self.src.error(
             s.name_span,
             "`resize` of these children is not supported yet",
-            format!("csgrt resizes from an exact extent, and cannot show {why}"),
+            format!("csgrt resizes from an exact extent or one of convex polytopes, and cannot find {why}"),
         )
     }
 }
