@@ -247,14 +247,14 @@ fn an_unsupported_openscad_node_is_an_error_not_skipped() {
 
 #[test]
 fn a_hull_or_sum_csgrt_cannot_make_exact_is_refused_at_its_statement() {
-    let help3 = "csgrt takes the hull of bounded solids and their unions, and the Minkowski sum of convex ones or of one mesh with convex ones";
+    let help3 = "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes";
     assert_eq!(
         fails("sphere(1);\nminkowski() {\n  torus(R = 2, r = 0.5);\n  sphere(1);\n}\n"),
         format!("error: `minkowski` of a non-convex `torus` is not supported yet\n --> bad.csg:2:1\n  |\n2 | minkowski() {{\n  | ^^^^^^^^^ {help3}\n")
     );
     assert_eq!(
-        fails("hull() {\n  difference() { cube(2); sphere(1); }\n  sphere(1);\n}\n"),
-        format!("error: `hull` of a 3-D difference is not supported yet\n --> bad.csg:1:1\n  |\n1 | hull() {{\n  | ^^^^ {help3}\n")
+        fails("hull() {\n  difference() { cube(2); torus(R = 1, r = 0.2); }\n  sphere(1);\n}\n"),
+        format!("error: `hull` of a 3-D difference with a `torus` in it is not supported yet\n --> bad.csg:1:1\n  |\n1 | hull() {{\n  | ^^^^ {help3}\n")
     );
     assert_eq!(
         fails("translate([1, 0, 0])\n  minkowski() {\n    polygon([[0, 0], [4, 0], [4, 1], [1, 1], [1, 4], [0, 4]]);\n    polygon([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]);\n  }\n"),

@@ -1,6 +1,7 @@
 //! The integration tests, one crate (one link instead of one per file:
 //! a minute of CI), a module per file.
 
+mod approximation;
 mod batch;
 mod bvh;
 mod camera;

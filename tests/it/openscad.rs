@@ -202,22 +202,41 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
 }
 
 #[test]
-fn the_shadow_of_a_difference_is_refused_at_its_projection() {
+fn the_shadow_of_a_difference_with_a_turn_is_refused_at_its_projection() {
     // OpenSCAD's own export writes `cut = false` for a plain projection().
-    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tdifference() { sphere(r = 5); cube(3); }\n\t}\n}\n";
+    // A difference of cubes, spheres, cylinders and straight extrusions is
+    // cut into polytopes (tests/it/approximation.rs); a turn is not.
+    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tdifference() { rotate_extrude() translate([3, 0]) square(1); cube(3); }\n\t}\n}\n";
     assert_eq!(
         common::fails(text),
-        "error: the shadow (projection(cut = false)) of a 3-D difference is not supported yet\n --> bad.csg:2:2\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t^^^^^^^^^^ csgrt casts the shadows of meshes, cubes and spheres and of their unions\n"
+        "error: the shadow (projection(cut = false)) of a 3-D difference with a `rotate_extrude` in it is not supported yet\n --> bad.csg:2:2\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t^^^^^^^^^^ csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes\n"
     );
 }
 
 #[test]
-fn a_resize_whose_extent_cannot_be_shown_exact_is_refused_at_its_place() {
-    // A cube cut by a ball through its far corner: the extent of what is
-    // left is not the cube's, and csgrt will not guess it.
-    let text = "resize(newsize = [2, 0, 0]) {\n\tdifference() {\n\t\tcube(1);\n\t\tsphere(r = 0.5);\n\t}\n}\n";
-    assert_eq!(
-        common::fails(text),
-        "error: `resize` of these children is not supported yet\n --> bad.csg:1:1\n  |\n1 | resize(newsize = [2, 0, 0]) {\n  | ^^^^^^ csgrt resizes from an exact extent, and cannot show the extent of a difference that cuts its far side\n"
+fn a_resize_without_an_exact_extent_measures_convex_polytopes() {
+    // A cube cut by a ball at a corner: Csg::extreme cannot show the
+    // extent of what is left (the ball cuts the side it looks at), so the
+    // difference is cut into polytopes, whose extent along x is the cube's
+    // own: resize to 2 is scale 2, to the byte.
+    let cut = "difference() {\n\t\tcube(1);\n\t\tsphere(r = 0.5);\n\t}";
+    let (dir, _) = common::scene(
+        "r.csg",
+        &format!("resize(newsize = [2, 0, 0]) {{\n\t{cut}\n}}\n"),
     );
+    std::fs::write(
+        dir.path().join("s.csg"),
+        format!("scale([2, 1, 1]) {{\n\t{cut}\n}}\n"),
+    )
+    .unwrap();
+    let r = common::csgrt(dir.path(), &["r.csg", "s.csg", "--size", "40x30", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .contains("note: `resize` of a 3-D difference is approximated"),
+        "{}",
+        r.stderr
+    );
+    let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+    assert!(read("r.png") == read("s.png"));
 }

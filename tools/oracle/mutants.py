@@ -11,8 +11,10 @@ fault of src/mutant.rs, switched on one at a
 time by CSGRT_MUTANT=NAME. For each fault this runs the oracle on the
 scenes that show it (the oracle's side is computed once a scene and kept),
 and the accuracy tool where it applies, OpenSCAD's own suite (tools/oracle/suite.py),
-OpenSCAD's own meshes (tools/oracle/openscad_meshes.py) and OpenSCAD's own
-offsets (tools/oracle/offset_vs_openscad.py) for the faults they catch,
+OpenSCAD's own meshes (tools/oracle/openscad_meshes.py), OpenSCAD's own
+offsets (tools/oracle/offset_vs_openscad.py) and the certified
+approximation's closed forms (tools/oracle/approximation.py) for the faults
+they catch,
 and requires each to fail. It also
 requires the mutant build with no fault switched on to answer exactly as
 the real build does on those same scenes and primitives (which the real
@@ -79,6 +81,15 @@ MESHES = {
     "spindle_lemon_kept": "turned_across_axis",
     "ring_unslanted": "turned_slanted_ellipses",
     "nef3_holes_dropped": "nef3_import",
+    "pieces_uncut": "approximated",
+    "climb_once": "approximated_hull",
+}
+
+# fault -> arguments of tools/oracle/approximation.py (the certified
+# approximation against closed forms) that must then fail it.
+APPROXIMATION = {
+    "facets_coarse": (),
+    "pieces_uncut": (),
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own
@@ -127,8 +138,9 @@ def pov_fails(binary, scene, fault):
 
 
 def openscad_checks(fault):
-    """The checks by OpenSCAD itself that must fail with `fault` on:
-    (tool, its arguments) from SUITE, MESHES and OFFSETS."""
+    """The checks by OpenSCAD itself (and by closed forms, for the
+    approximation) that must fail with `fault` on: (tool, its arguments)
+    from SUITE, MESHES, OFFSETS and APPROXIMATION."""
     out = []
     if fault in SUITE:
         out.append(("suite", ["--only", SUITE[fault]]))
@@ -136,6 +148,8 @@ def openscad_checks(fault):
         out.append(("openscad_meshes", ["--only", MESHES[fault]]))
     if fault in OFFSETS:
         out.append(("offset_vs_openscad", list(OFFSETS[fault])))
+    if fault in APPROXIMATION:
+        out.append(("approximation", list(APPROXIMATION[fault])))
     return out
 
 
@@ -176,7 +190,7 @@ def main():
     ap.add_argument("--report", default=None, help="write the table (Markdown) here")
     a = ap.parse_args()
     binary = os.path.abspath(a.csgrt)
-    faults = a.only.split(",") if a.only else list(dict.fromkeys([*MUTANTS, *SUITE, *MESHES, *OFFSETS]))
+    faults = a.only.split(",") if a.only else list(dict.fromkeys([*MUTANTS, *SUITE, *MESHES, *OFFSETS, *APPROXIMATION]))
     lines = ["| mutant | scene or tool | caught by |", "|---|---|---|"]
     escaped = []
     # The build itself, no fault on, must answer as the real build does to

@@ -4,8 +4,9 @@
     python -m tools.oracle.openscad_meshes [--csgrt BIN] [--only TEXT]
     python -m tools.oracle.openscad_meshes --regenerate
 
-Every OpenSCAD-language test scene — tests/openscad/*.csg, and the
-tests/scenes/*.csg without csgrt's own statements — has OpenSCAD 2021.01's
+Every OpenSCAD-language test scene — tests/openscad/*.csg, the
+tests/scenes/*.csg without csgrt's own statements, and the certified
+approximations' tests/approximated/*.csg — has OpenSCAD 2021.01's
 own mesh of it in tests/openscad_meshes/NAME.off, made by `openscad -o
 NAME.off SCENE` (`--regenerate` makes them again with the `openscad` on
 PATH, Debian's fonts-liberation2 installed so that its text is in csgrt's
@@ -62,6 +63,9 @@ def scenes():
     for p in sorted(glob.glob(os.path.join(ROOT, "tests", "scenes", "*.csg"))):
         if not CSGRT_STATEMENTS.search(open(p).read()):
             out.append(("scenes_" + os.path.basename(p)[:-4], p))
+    # csgrt's certified approximations (no oracle of its own reads them).
+    for p in sorted(glob.glob(os.path.join(ROOT, "tests", "approximated", "*.csg"))):
+        out.append(("approximated_" + os.path.basename(p)[:-4], p))
     return out
 
 
