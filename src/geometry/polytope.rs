@@ -331,13 +331,18 @@ fn side(n: DVec3, d: f64, tol: f64, p: DVec3) -> f64 {
     }
 }
 
+/// The thickness of a plane when cutting or hulling what lies in box `b`:
+/// 10⁻¹⁰ of its size plus its distance from the origin.
+pub fn plane_tolerance(b: &Aabb) -> f64 {
+    let far = b.min.abs().max(b.max.abs()).max_element();
+    1e-10 * ((b.max - b.min).max_element() + far)
+}
+
 /// The convex hull of `pts` as a closed mesh (planes 10⁻¹⁰ of the points'
 /// size and distance from the origin thick); `None` when it has no volume.
 pub fn hull_mesh(pts: &[DVec3]) -> Option<super::Mesh> {
     let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
-    let far = b.min.abs().max(b.max.abs()).max_element();
-    let tol = 1e-10 * ((b.max - b.min).max_element() + far);
-    let (v, t) = super::quickhull::hull(pts, tol)?;
+    let (v, t) = super::quickhull::hull(pts, plane_tolerance(&b))?;
     let data = std::sync::Arc::new(super::mesh::MeshData::convex(v, t));
     Some(super::Mesh { data })
 }

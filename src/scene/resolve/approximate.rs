@@ -17,10 +17,6 @@ use glam::DAffine3;
 /// a pixel at any view where that node spans fewer than 4096 pixels.
 pub const APPROXIMATION: f64 = 1.0 / 8192.0;
 
-/// The thickness of a plane when cutting polytopes, relative to the size
-/// and distance from the origin of what is cut.
-const PLANE_TOLERANCE: f64 = 1e-10;
-
 impl Resolver<'_> {
     /// Nodes `cut` as convex polytopes within [`APPROXIMATION`] of their
     /// size, each recorded as approximated at statement `s` placed by
@@ -44,8 +40,7 @@ impl Resolver<'_> {
             }
             let size = (b.max - b.min).max_element();
             let eps = size * APPROXIMATION;
-            let far = b.min.abs().max(b.max.abs()).max_element();
-            let tol = PLANE_TOLERANCE * (size + far);
+            let tol = crate::geometry::polytope::plane_tolerance(&b);
             let what = match &self.b.csg.nodes[node as usize].kind {
                 NodeKind::Op(op, _) => format!("a 3-D {}", op.name()),
                 NodeKind::Leaf(i) => format!("a `{}`", self.b.csg.prims[*i as usize].shape.name()),
