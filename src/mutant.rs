@@ -46,6 +46,9 @@ pub const NAMES: &[&str] = &[
     "svg_stroke_chords",
     "ring_unslanted",
     "nef3_holes_dropped",
+    "flat_coarse",
+    "offset_wedge_widest",
+    "sum_edges_skipped",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -176,12 +176,24 @@ fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
     for w in &scene.warnings {
         eprintln!("{w}");
     }
-    // Each approximation once, with its error at this view.
+    // Each approximated statement once, with its largest error at this
+    // view (a statement may approximate several parts).
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let cam = scene.view(width, height);
+    let mut said: Vec<(csgrt::error::Diagnostic, f64)> = Vec::new();
     for a in &scene.approximations {
-        let mut d = a.note.clone();
         let px = a.pixels(&cam, width);
+        let n = &a.note;
+        let same = |d: &csgrt::error::Diagnostic| {
+            (&d.file, d.line, d.col, &d.message) == (&n.file, n.line, n.col, &n.message)
+        };
+        match said.iter_mut().find(|(d, _)| same(d)) {
+            Some(worst) if px > worst.1 => *worst = (n.clone(), px),
+            Some(_) => {}
+            None => said.push((n.clone(), px)),
+        }
+    }
+    for (mut d, px) in said {
         d.label = format!(
             "{}; {px:.2} pixels at this view{}",
             d.label,

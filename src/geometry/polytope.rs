@@ -242,6 +242,32 @@ impl Polytope {
         })
     }
 
+    /// The shadows of its corners on z = 0 (their hull is its shadow).
+    pub fn shadow_z(&self) -> Vec<DVec2> {
+        self.faces
+            .iter()
+            .flat_map(|f| f.pts.iter().map(|p| p.truncate()))
+            .collect()
+    }
+
+    /// Where its edges meet z = 0, and its corners on it (their hull is
+    /// its section by the plane).
+    pub fn slice_z0(&self) -> Vec<DVec2> {
+        let mut out = Vec::new();
+        for f in &self.faces {
+            for (i, &a) in f.pts.iter().enumerate() {
+                let b = f.pts[(i + 1) % f.pts.len()];
+                if a.z == 0.0 {
+                    out.push(a.truncate());
+                } else if (a.z < 0.0) != (b.z < 0.0) && b.z != 0.0 {
+                    let u = a.z / (a.z - b.z);
+                    out.push((a + (b - a) * u).truncate());
+                }
+            }
+        }
+        out
+    }
+
     /// Its volume, by the divergence theorem over its faces' fans.
     pub fn volume(&self) -> f64 {
         let mut v = 0.0;
@@ -265,60 +291,6 @@ impl Polytope {
         }
         (v, t)
     }
-}
-
-/// The loops of `o` with each curved edge replaced by chords within `tol`
-/// of it: a Bézier curve lies in the hull of its control points, so one
-/// whose inner control points are within `tol` of its chord is within
-/// `tol` of that chord; others are halved (de Casteljau) until they are.
-fn flattened(o: &crate::plane::Outlines, tol: f64) -> Vec<Vec<DVec2>> {
-    fn chord(p: &[DVec2], tol: f64, depth: usize, out: &mut Vec<DVec2>) {
-        let (a, b) = (p[0], p[p.len() - 1]);
-        let far = p[1..p.len() - 1]
-            .iter()
-            .map(|&c| {
-                let e = b - a;
-                match e.try_normalize() {
-                    Some(u) => u.perp_dot(c - a).abs(),
-                    None => (c - a).length(),
-                }
-            })
-            .fold(0.0f64, f64::max);
-        if far <= tol || depth >= 24 {
-            out.push(b);
-            return;
-        }
-        // de Casteljau at ½: the two halves' control points.
-        let mut rows = vec![p.to_vec()];
-        while rows.last().map_or(0, Vec::len) > 1 {
-            let r = rows.last().expect("a row");
-            rows.push(r.windows(2).map(|w| (w[0] + w[1]) * 0.5).collect());
-        }
-        let left: Vec<DVec2> = rows.iter().map(|r| r[0]).collect();
-        let right: Vec<DVec2> = rows.iter().rev().map(|r| r[r.len() - 1]).collect();
-        chord(&left, tol, depth + 1, out);
-        chord(&right, tol, depth + 1, out);
-    }
-    o.loops
-        .iter()
-        .zip(&o.ctrl)
-        .map(|(l, c)| {
-            let mut out = Vec::with_capacity(l.len());
-            for i in 0..l.len() {
-                let (a, b) = (l[i], l[(i + 1) % l.len()]);
-                let mut p = vec![a];
-                p.extend(c.get(i).map_or(Vec::new(), |k| k.points().collect()));
-                p.push(b);
-                out.push(a);
-                if p.len() > 2 {
-                    chord(&p, tol, 0, &mut out);
-                    // The loop's next point is pushed by the next edge.
-                    out.pop();
-                }
-            }
-            out
-        })
-        .collect()
 }
 
 /// n·p − d, 0 within `tol`.
@@ -489,7 +461,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             let flat;
             let loops = if q.region.curved() {
                 let sigma = stretch(m) * q.top.abs().max(1.0);
-                flat = flattened(&q.region.outlines, eps / sigma);
+                flat = crate::plane::flat::chords(&q.region.outlines, eps / sigma);
                 &flat
             } else {
                 &q.region.outlines.loops

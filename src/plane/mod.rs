@@ -12,6 +12,7 @@
 //! made of once the slab is clipped.
 
 pub mod figure;
+pub mod flat;
 pub mod hull;
 pub mod offset;
 pub mod pencil;

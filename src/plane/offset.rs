@@ -93,9 +93,11 @@ pub fn offset(f: Figure, join: Join, d: f64) -> Result<Option<Figure>, String> {
         }
         // Any other combination of straight polygons: the loops of its
         // boundary, offset as one polygon.
+        // (Loops that touch each other — holes meeting at a corner — are
+        // offset through the strokes, whose corners are paired by wedge.)
         ref combination @ Figure::Op(op, _) => match super::sites::outline(combination) {
-            Some(o) => polygon(o, join, d),
-            None => match super::sites::strokes(combination) {
+            Some(o) if !self_crossing(&o) => polygon(o, join, d),
+            _ => match super::sites::strokes(combination) {
                 Some((strokes, tol)) if op != Op::Xor => {
                     around(combination.clone(), &strokes, tol, join, d)
                 }
@@ -326,14 +328,37 @@ fn around(
             let one_way = close
                 .clone()
                 .all(|(_, n)| t.is_some_and(|t| (n.tangent(false) - t).length() <= 1e-9));
+            // Where the boundary touches itself (two strokes start at v
+            // along different ways), the stroke that bounds the same wedge
+            // of the offset side as s, whose corners get the joins: grown,
+            // the wedge of the shape (on the strokes' left), the first
+            // stroke met turning clockwise from the way back along s;
+            // shrunk, the wedge of the outside (on their right), the first
+            // met turning counter-clockwise — as Clipper offsets each loop
+            // of holes that meet at a corner with its own join there.
+            let back = -s.tangent(true);
+            let clockwise = |n: &Stroke| {
+                let t = n.tangent(false);
+                let a = side * t.perp_dot(back).atan2(t.dot(back));
+                if a <= 0.0 {
+                    a + TAU
+                } else {
+                    a
+                }
+            };
             let n = match next[..] {
+                [] => continue,
                 [(_, n)] => n,
                 [(_, n), (l, _), ..] if l > tol || one_way => n,
                 _ => {
-                    return Err(
-                        "offsetting an outline that touches itself with sharp corners is not supported yet"
-                            .into(),
-                    )
+                    let wedge = close.map(|(_, n)| *n).min_by(|a, b| {
+                        if crate::mutant::active("offset_wedge_widest") {
+                            clockwise(b).total_cmp(&clockwise(a))
+                        } else {
+                            clockwise(a).total_cmp(&clockwise(b))
+                        }
+                    });
+                    wedge.expect("two strokes start at v")
                 }
             };
             let (t1, t2) = (s.tangent(true), n.tangent(false));

@@ -133,6 +133,130 @@ fn choices(start: Piece2, pieces: &[Vec<Piece2>]) -> Result<Vec<Piece2>, String>
     Ok(combos)
 }
 
+/// The most pieces a 2-D Minkowski sum of shapes that are not convex is
+/// the union of ([`convolved`]: a parallelogram for each pair of edges).
+pub const MAX_CONVOLVED: usize = 250_000;
+
+/// The 2-D `minkowski()` of straight polygons and their combinations,
+/// and of circles (each operand flattened first, but for a circle on its
+/// own), exactly: the circles sum to one, which grows the sum of the rest
+/// by its radius ([`super::offset::offset`]), and two shapes A and B sum
+/// to
+///
+///   A ⊕ B = ⋃ (k₀ + B) ∪ ⋃ (A + l₀) ∪ ⋃ (e ⊕ f),
+///
+/// k₀ a corner of each loop K of A's boundary, l₀ of each loop L of B's,
+/// e and f any edges of the two boundaries (e ⊕ f a parallelogram). For x
+/// = a + b: a path in A from a to the k₀ of its part (every part of A has
+/// a loop of its boundary) moves x − a′ out of B across ∂B, or leaves it
+/// in B, so x ∈ k₀ + B or x ∈ A ⊕ ∂B; and along the loop L through that
+/// point of ∂B, to l₀, x − l′ leaves A across ∂A or stays in it, so x ∈
+/// ∂A ⊕ ∂B or x ∈ A + l₀. Each piece lies in the sum, as the edges lie in
+/// their shapes.
+pub fn convolved(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
+    let (mut c, mut r) = (DVec2::ZERO, 0.0);
+    let mut sum: Option<Figure> = None;
+    for f in ops {
+        match &f {
+            Figure::Ellipse(e) if is_circle(e.matrix2) => {
+                c += e.translation;
+                r += e.matrix2.x_axis.length();
+            }
+            _ => {
+                sum = Some(match sum {
+                    None => f,
+                    Some(a) => match pair(&a, &f)? {
+                        Some(s) => s,
+                        None => return Ok(None),
+                    },
+                })
+            }
+        }
+    }
+    let Some(sum) = sum else {
+        return Ok((r > 0.0).then(|| Figure::disc(c, r)));
+    };
+    let grown = if r > 0.0 {
+        super::offset::offset(sum, Join::Round, r)?
+    } else {
+        Some(sum)
+    };
+    Ok(grown.map(|g| g.moved(DAffine2::from_translation(c))))
+}
+
+/// A ⊕ B for two straight figures (above).
+fn pair(a: &Figure, b: &Figure) -> Result<Option<Figure>, String> {
+    let (Some(ka), Some(kb)) = (boundary(a), boundary(b)) else {
+        return Err(NOT_SUMMED.into());
+    };
+    if ka.is_empty() || kb.is_empty() {
+        // An empty operand: an empty sum.
+        return Ok(None);
+    }
+    let edges = |k: &[Vec<DVec2>]| k.iter().map(|l| l.len()).sum::<usize>();
+    if edges(&ka) * edges(&kb) + ka.len() + kb.len() > MAX_CONVOLVED {
+        return Err(format!(
+            "a 2-D `minkowski` of more than {MAX_CONVOLVED} pieces (a parallelogram for each pair of edges)"
+        ));
+    }
+    let mut parts = Vec::new();
+    for k in &ka {
+        parts.push(Some(b.moved(DAffine2::from_translation(k[0]))));
+    }
+    for l in &kb {
+        parts.push(Some(a.moved(DAffine2::from_translation(l[0]))));
+    }
+    let sides = |k: &[Vec<DVec2>]| -> Vec<(DVec2, DVec2)> {
+        k.iter()
+            .flat_map(|l| (0..l.len()).map(move |i| (l[i], l[(i + 1) % l.len()])))
+            .collect()
+    };
+    let (ea, eb) = (sides(&ka), sides(&kb));
+    for &(p, q) in &ea {
+        for &(u, v) in &eb {
+            let (e, f) = (q - p, v - u);
+            if e.perp_dot(f) == 0.0 || crate::mutant::active("sum_edges_skipped") {
+                // Parallel (or empty): a segment, which adds no area.
+                continue;
+            }
+            // p + u, then along e, then along f, back: counter-clockwise
+            // when e turns left into f.
+            let mut quad = vec![p + u, q + u, q + v, p + v];
+            if e.perp_dot(f) < 0.0 {
+                quad.reverse();
+            }
+            parts.push(Some(Figure::Polygon(Outlines::polygons(vec![quad]))));
+        }
+    }
+    Ok(combine_parts(Op::Union, parts, Figure::Op))
+}
+
+/// Loops whose edges hold the boundary of a straight figure and lie in it,
+/// with a loop in each part of it: a polygon's own loops, a union's
+/// parts' loops, another combination's outline (none when it is empty);
+/// `None` for anything else.
+fn boundary(f: &Figure) -> Option<Vec<Vec<DVec2>>> {
+    match f {
+        Figure::Polygon(o) if !o.curved() => Some(o.loops.clone()),
+        Figure::Op(Op::Union, kids) => {
+            let mut out = Vec::new();
+            for k in kids {
+                out.extend(boundary(k)?);
+            }
+            Some(out)
+        }
+        // A combination with no outline is empty when it has no boundary.
+        Figure::Op(..) => match super::sites::outline(f) {
+            Some(o) => Some(o.loops),
+            None => match super::sites::strokes(f) {
+                Some((s, _)) if s.is_empty() => Some(Vec::new()),
+                _ => None,
+            },
+        },
+        _ => None,
+    }
+}
+
 const NOT_SUMMED: &str =
     "`minkowski` of 2-D shapes that are not convex, other than one shape with circles or one polygon with convex polygons, is not supported yet";
 

@@ -8,8 +8,10 @@ use super::Resolver;
 use crate::csg::NodeKind;
 use crate::error::Severity;
 use crate::geometry::polytope::Polytope;
+use crate::plane::figure::Figure;
+use crate::scene::args::Args;
 use crate::syntax::ast::Statement;
-use glam::DAffine3;
+use glam::{DAffine3, DVec2};
 
 /// The certified approximation's error bound, relative to the longest side
 /// of the box of the node approximated: each polytope stays within this of
@@ -66,5 +68,162 @@ impl Resolver<'_> {
             });
         }
         Ok(out)
+    }
+}
+
+impl Resolver<'_> {
+    /// Figure `f` of statement `s` flattened to straight polygons within
+    /// [`APPROXIMATION`] of its size ([`crate::plane::flat`]; circles kept
+    /// exact when `circles`), its note waiting for the extrusion that
+    /// places it; `what` says what is approximated. `Ok(None)`: nothing
+    /// with area is left.
+    pub(super) fn flat_figure(
+        &mut self,
+        s: &Statement,
+        f: &Figure,
+        circles: bool,
+        what: &str,
+    ) -> std::result::Result<Option<Figure>, String> {
+        if crate::plane::flat::straight(f, circles) {
+            return Ok(Some(f.clone()));
+        }
+        // Projections first: their solids are read now, as polytopes.
+        let mut sections = 0.0f64;
+        let Some(f) = self.unsectioned(f, &mut sections)? else {
+            return Ok(None);
+        };
+        let ((x0, x1), (y0, y1)) = (f.range(DVec2::X), f.range(DVec2::Y));
+        let size = (x1 - x0).max(y1 - y0);
+        if !size.is_finite() {
+            return Err(format!("{what} of an unbounded shape"));
+        }
+        if size <= 0.0 {
+            return Ok(None);
+        }
+        let eps = size * APPROXIMATION;
+        let flat = crate::plane::flat::flattened(&f, eps, circles)
+            .map_err(|e| format!("{what} of {e}"))?;
+        let eps = eps.max(sections);
+        let note = self.src.diagnostic(
+            Severity::Note,
+            s.name_span,
+            format!("{what} is approximated by straight polygons"),
+            format!("within {eps:.3e} of the exact shape (1/8192 of its size)"),
+        );
+        self.plane_notes.push((note, eps));
+        Ok(flat)
+    }
+
+    /// `f` with each projection replaced by straight polygons: its solid
+    /// (read now, in the projection's own frame) cut into convex
+    /// polytopes within [`APPROXIMATION`] of its size, each projected onto
+    /// z = 0 (the hull of its corners' shadows: a shadow moves no farther
+    /// than the solid) or, for `cut = true`, met with it (the polygon of
+    /// its edges' crossings: within the bound where the surface crosses
+    /// the plane steeply, eps / sin θ at angle θ), their union placed in
+    /// the plane. `worst` gets the largest error in the plane.
+    fn unsectioned(
+        &mut self,
+        f: &Figure,
+        worst: &mut f64,
+    ) -> std::result::Result<Option<Figure>, String> {
+        Ok(match f {
+            Figure::Section(id, at) => {
+                let p = self.projections[*id as usize].clone();
+                let cut = Args::bind(self.src, &p, &["cut", "convexity"])
+                    .and_then(|a| a.boolean("cut"))
+                    .map_err(|_| "a projection whose `cut` is not a boolean".to_string())?
+                    .unwrap_or(false);
+                let mark = self.b.csg.mark();
+                let noted = self.b.approximations.len();
+                let found = self
+                    .projected(&p, DAffine3::IDENTITY, crate::scene::defaults::MATERIAL)
+                    .map_err(|e| e.to_string())
+                    .and_then(|ids| match self.union(ids) {
+                        None => Ok(None),
+                        Some(node) => {
+                            let b = self.b.csg.nodes[node as usize].bounds;
+                            if !b.is_bounded() {
+                                return Err(
+                                    "a projection of an unbounded solid (a halfspace)".into()
+                                );
+                            }
+                            let eps = (b.max - b.min).max_element() * APPROXIMATION;
+                            let tol = crate::geometry::polytope::plane_tolerance(&b);
+                            let pieces = self.b.csg.convex_pieces(node, eps, tol, false)?;
+                            Ok(Some((pieces, eps)))
+                        }
+                    });
+                self.b.csg.rewind(mark);
+                self.b.approximations.truncate(noted);
+                let Some((pieces, eps)) = found? else {
+                    return Ok(None);
+                };
+                *worst = worst.max(eps * crate::plane::flat::largest_stretch(at.matrix2));
+                let polys: Vec<Option<Figure>> = pieces
+                    .iter()
+                    .map(|q| {
+                        let pts = if cut { q.slice_z0() } else { q.shadow_z() };
+                        let tol =
+                            1e-12 * pts.iter().fold(1.0f64, |m, p| m.max(p.abs().max_element()));
+                        let hull: Vec<DVec2> = crate::plane::hull::hull_indices_2d(&pts, tol)
+                            .into_iter()
+                            .map(|i| pts[i])
+                            .collect();
+                        (hull.len() >= 3)
+                            .then(|| Figure::Polygon(crate::plane::Outlines::polygons(vec![hull])))
+                    })
+                    .collect();
+                crate::math::boolean::combine_parts(
+                    crate::math::boolean::Op::Union,
+                    polys,
+                    Figure::Op,
+                )
+                .map(|g| g.moved(*at))
+            }
+            Figure::Op(op, kids) => {
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.push(self.unsectioned(k, worst)?);
+                }
+                crate::math::boolean::combine_parts(*op, parts, Figure::Op)
+            }
+            Figure::Hull(kids) => {
+                let mut parts = Vec::new();
+                for k in kids {
+                    parts.extend(self.unsectioned(k, worst)?);
+                }
+                (!parts.is_empty()).then_some(Figure::Hull(parts))
+            }
+            _ => Some(f.clone()),
+        })
+    }
+
+    /// The notes of 2-D approximations made since `mark`, placed with the
+    /// extrusion `node` they became part of: its box, and the error
+    /// stretched by at most `sigma` (none is left when it is empty).
+    pub(super) fn placed_plane_notes(&mut self, mark: usize, node: Option<u32>, sigma: f64) {
+        let notes: Vec<_> = self.plane_notes.drain(mark..).collect();
+        let Some(node) = node else {
+            return;
+        };
+        let bounds = self.b.csg.nodes[node as usize].bounds;
+        for (note, eps) in notes {
+            self.b.approximations.push(crate::scene::Approximation {
+                note,
+                bounds,
+                eps: eps * sigma,
+            });
+        }
+    }
+
+    /// The approximations recorded since `mark` in a statement's own frame
+    /// (the children of a hull or a sum), placed by `frame`.
+    pub(super) fn placed_approximations(&mut self, mark: usize, frame: &DAffine3) {
+        let sigma = crate::geometry::polytope::stretch(frame);
+        for a in &mut self.b.approximations[mark..] {
+            a.bounds = crate::geometry::solid::corner_box(&a.bounds, frame);
+            a.eps *= sigma;
+        }
     }
 }

@@ -18,6 +18,7 @@ use super::planar::file_child;
 use super::transforms::{basis_from_z, sin_cos_deg};
 use super::Resolver;
 use crate::error::Result;
+use crate::geometry::polytope::stretch;
 use crate::geometry::{
     Cone, Cuboid, Halfspace, Lathe, OffsetPrism, Prism, Ring, Shape, Sphere, Torus, TwistSection,
     Twisted,
@@ -30,6 +31,10 @@ use crate::scene::Material;
 use crate::syntax::ast::Statement;
 use glam::{DAffine2, DAffine3, DMat3, DVec2, DVec3};
 use std::sync::Arc;
+/// What the certified approximation in the plane flattens.
+const FLATTENED: &str =
+    "csgrt flattens curves, ellipses, hulls, offsets and projections of bounded solids";
+
 /// How a linear extrusion sweeps its section: the top's scale in x and y,
 /// and the twist (radians, OpenSCAD's clockwise).
 #[derive(Clone, Copy, Debug)]
@@ -49,6 +54,7 @@ impl Resolver<'_> {
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
+        let mark = self.plane_notes.len();
         let Some(f) = self.figure(s, DAffine2::IDENTITY, 0)? else {
             return Ok(None);
         };
@@ -58,7 +64,9 @@ impl Resolver<'_> {
             twist: 0.0,
             centered: true,
         };
-        self.linear(s, &f, xf, mat, h, sweep)
+        let node = self.linear(s, &f, xf, mat, h, sweep)?;
+        self.placed_plane_notes(mark, node, stretch(&xf));
+        Ok(node)
     }
 
     /// The straight, tapered or twisted prism of `f` from z = 0 to h under
@@ -84,11 +92,15 @@ impl Resolver<'_> {
             }
             Figure::Polygon(o) => {
                 if o.curved() {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "twisting or unevenly scaling curved outlines (text) is not supported yet",
-                        "csgrt twists polygons, circles and ellipses",
-                    ));
+                    return self.linear_flat(
+                        s,
+                        f,
+                        xf,
+                        mat,
+                        h,
+                        sweep,
+                        "a twist or uneven scale of curved outlines",
+                    );
                 }
                 let section = TwistSection::Region(Arc::new(Region::new(o.clone())));
                 self.twisted(s, section, xf * local, mat, sweep)
@@ -131,11 +143,15 @@ impl Resolver<'_> {
             Figure::Section(p, at) => {
                 let p = &self.projections[*p as usize].clone();
                 if !even || top != 1.0 || sweep.twist != 0.0 {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "twisting or scaling a projection is not supported yet",
-                        "csgrt extrudes a projection straight",
-                    ));
+                    return self.linear_flat(
+                        s,
+                        f,
+                        xf,
+                        mat,
+                        h,
+                        sweep,
+                        "a twist or scale of a projection",
+                    );
                 }
                 let z0 = if centered { -0.5 } else { 0.0 };
                 let frame = xf
@@ -161,11 +177,15 @@ impl Resolver<'_> {
             }
             Figure::Offset(o, at) => {
                 if !even || top != 1.0 || sweep.twist != 0.0 {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "twisting or scaling an offset of curved outlines is not supported yet",
-                        "csgrt extrudes it straight",
-                    ));
+                    return self.linear_flat(
+                        s,
+                        f,
+                        xf,
+                        mat,
+                        h,
+                        sweep,
+                        "a twist or scale of an offset of curved outlines",
+                    );
                 }
                 let det = at.matrix2.determinant();
                 if det.is_nan() || det == 0.0 {
@@ -186,11 +206,15 @@ impl Resolver<'_> {
             // scaled, so it is the extrusion of their hull.
             Figure::Hull(kids) => {
                 if sweep.twist != 0.0 || !even {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "twisting or unevenly scaling a 2-D hull is not supported yet",
-                        "csgrt extrudes a hull straight or tapered",
-                    ));
+                    return self.linear_flat(
+                        s,
+                        f,
+                        xf,
+                        mat,
+                        h,
+                        sweep,
+                        "a twist or uneven scale of a 2-D hull",
+                    );
                 }
                 let mark = self.b.csg.mark();
                 // Extruded in the statement's own frame; the hull carries xf.
@@ -203,6 +227,56 @@ impl Resolver<'_> {
                 };
                 self.hull_of(s, node, mark, xf, mat)
             }
+        }
+    }
+
+    /// `f` flattened to straight polygons (the certified approximation)
+    /// for `what` it has no exact form of, or the error at `s` of what
+    /// cannot be (`verb`: what the extrusion does).
+    fn flat_for(
+        &mut self,
+        s: &Statement,
+        f: &Figure,
+        circles: bool,
+        what: &str,
+        verb: &str,
+    ) -> Result<Option<Figure>> {
+        self.flat_figure(s, f, circles, what).map_err(|why| {
+            self.src
+                .error(s.name_span, format!("{why} cannot be {verb}"), FLATTENED)
+        })
+    }
+
+    /// [`Resolver::linear`] of `f` flattened to straight polygons.
+    #[allow(clippy::too_many_arguments)]
+    fn linear_flat(
+        &mut self,
+        s: &Statement,
+        f: &Figure,
+        xf: DAffine3,
+        mat: Material,
+        h: f64,
+        sweep: Sweep,
+        what: &str,
+    ) -> Result<Option<u32>> {
+        match self.flat_for(s, f, false, what, "extruded")? {
+            Some(g) => self.linear(s, &g, xf, mat, h, sweep),
+            None => Ok(None),
+        }
+    }
+
+    /// [`Resolver::revolve`] of `f` flattened to straight polygons.
+    fn revolve_flat(
+        &mut self,
+        s: &Statement,
+        f: &Figure,
+        xf: DAffine3,
+        mat: Material,
+        what: &str,
+    ) -> Result<Option<u32>> {
+        match self.flat_for(s, f, false, what, "turned")? {
+            Some(g) => self.revolve(s, &g, xf, mat),
+            None => Ok(None),
         }
     }
 
@@ -244,7 +318,7 @@ impl Resolver<'_> {
             }
         };
         let (prims, sections) = (self.b.csg.prims.len(), self.b.csg.sections.len());
-        let ids = self.children(p, frame, mat, 0)?;
+        let ids = self.projected(p, frame, mat)?;
         let Some(child) = self.union(ids) else {
             return Ok(None);
         };
@@ -311,6 +385,7 @@ impl Resolver<'_> {
                 .map_or(DVec2::ONE, |v| DVec2::new(v[0], v[1]))
         }
         .max(DVec2::ZERO);
+        let mark = self.plane_notes.len();
         let Some(f) = self.extruded(s, legacy, depth)? else {
             return Ok(None);
         };
@@ -332,7 +407,10 @@ impl Resolver<'_> {
             twist,
             centered: center,
         };
-        self.linear(s, &f, xf, mat, h, sweep)
+        let node = self.linear(s, &f, xf, mat, h, sweep)?;
+        // A point of the plane moves by the taper's scale at most.
+        self.placed_plane_notes(mark, node, stretch(&xf) * scale.max_element().max(1.0));
+        Ok(node)
     }
 
     /// `rotate_extrude(angle, convexity)`.
@@ -361,19 +439,21 @@ impl Resolver<'_> {
         if angle <= -360.0 || angle > 360.0 {
             angle = 360.0;
         }
+        let mark = self.plane_notes.len();
         let Some(f) = self.extruded(s, legacy, depth)? else {
             return Ok(None);
         };
         if angle == 0.0 {
             return self.empty(s, "its angle is zero");
         }
-        if let Some(p) = f.section() {
-            return Err(self.src.error(
-                self.projections[p as usize].name_span,
-                "turning a projection is not supported yet",
-                "csgrt extrudes a projection with linear_extrude",
-            ));
-        }
+        let f = if f.section().is_some() {
+            match self.flat_for(s, &f, true, "a turn of a projection", "turned")? {
+                Some(g) => g,
+                None => return Ok(None),
+            }
+        } else {
+            f
+        };
         let (mut lo, mut hi) = f.x_range();
         // What a combination leaves may lie on one side though its parts
         // reach across (a circle across the axis, its right half cut away).
@@ -414,6 +494,8 @@ impl Resolver<'_> {
         let Some(body) = self.revolve(s, &f, xf, mat)? else {
             return Ok(None);
         };
+        // A turn moves no two points of the plane apart.
+        self.placed_plane_notes(mark, Some(body), stretch(&xf));
         if angle == 360.0 {
             return Ok(Some(body));
         }
@@ -491,11 +573,13 @@ impl Resolver<'_> {
                         return self.leaf(s, Shape::Ring(ring), xf * local, mat);
                     }
                     if c.x + reach > 0.0 {
-                        return Err(self.src.error(
-                            s.name_span,
-                            "turning a slanted ellipse that reaches the axis is not supported yet",
-                            "csgrt turns slanted ellipses wholly on one side of x = 0",
-                        ));
+                        return self.revolve_flat(
+                            s,
+                            f,
+                            xf,
+                            mat,
+                            "a turn of a slanted ellipse that reaches the axis",
+                        );
                     }
                     return Ok(None);
                 }
@@ -517,11 +601,13 @@ impl Resolver<'_> {
                 // turn of its part at x ≥ 0. Centred left of the axis and
                 // crossing it, its part at x ≥ 0 turns into the lemon.
                 if c.x < 0.0 {
-                    return Err(self.src.error(
-                        s.name_span,
-                        "turning a circle centred left of the axis that crosses it is not supported yet",
-                        "csgrt turns circles centred on the axis or right of it",
-                    ));
+                    return self.revolve_flat(
+                        s,
+                        f,
+                        xf,
+                        mat,
+                        "a turn of a circle centred left of the axis that crosses it",
+                    );
                 }
                 let local = DAffine3::from_scale_rotation_translation(
                     DVec3::new(c.x, c.x, c.x * rz / ra),
@@ -531,17 +617,11 @@ impl Resolver<'_> {
                 let shape = Shape::Torus(Torus { minor: ra / c.x });
                 self.leaf(s, shape, xf * local, mat)
             }
-            Figure::Section(..) => unreachable!("refused by rotate_extrude"),
-            Figure::Offset(..) => Err(self.src.error(
-                s.name_span,
-                "turning an offset of curved outlines is not supported yet",
-                "csgrt extrudes it straight with linear_extrude",
-            )),
-            Figure::Hull(_) => Err(self.src.error(
-                s.name_span,
-                "turning a 2-D hull is not supported yet",
-                "csgrt extrudes a hull with linear_extrude",
-            )),
+            Figure::Section(..) => unreachable!("flattened by rotate_extrude"),
+            Figure::Offset(..) => {
+                self.revolve_flat(s, f, xf, mat, "a turn of an offset of curved outlines")
+            }
+            Figure::Hull(_) => self.revolve_flat(s, f, xf, mat, "a turn of a 2-D hull"),
             Figure::Op(op, kids) => {
                 let mut parts = Vec::new();
                 for k in kids {

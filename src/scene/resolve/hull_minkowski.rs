@@ -215,7 +215,9 @@ impl Resolver<'_> {
         crate::scene::args::Args::bind(self.src, s, &[])?;
         // The children in the statement's own frame: the leaf carries xf.
         let mark = self.b.csg.mark();
+        let noted = self.b.approximations.len();
         let ids = self.children(s, DAffine3::IDENTITY, mat, depth)?;
+        self.placed_approximations(noted, &xf);
         let Some(node) = self.union(ids) else {
             return Ok(None);
         };
@@ -237,6 +239,7 @@ impl Resolver<'_> {
         // The operands in the statement's own frame (the sum moves once,
         // with the leaf's transform), each a union of primitives.
         let mark = self.b.csg.mark();
+        let noted = self.b.approximations.len();
         let mut nodes = Vec::new();
         for c in s.children.iter().filter(|c| !super::skipped(c)) {
             // The fault: each later operand moved by the statement's
@@ -248,6 +251,7 @@ impl Resolver<'_> {
             };
             nodes.extend(self.statement(c, at, mat, depth + 1)?);
         }
+        self.placed_approximations(noted, &xf);
         let read = self
             .cut_operands(s, &nodes, xf)
             .and_then(|cuts| self.sum_of(&nodes, &cuts));

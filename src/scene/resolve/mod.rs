@@ -51,6 +51,7 @@ pub fn resolve_with(src: &Source, stmts: &[Statement], facets: super::Facets) ->
         subtracted: false,
         facets,
         projections: Vec::new(),
+        plane_notes: Vec::new(),
     };
     // Scene statements are read first, wherever they stand at the top level.
     for s in stmts {
@@ -116,6 +117,10 @@ pub(crate) struct Resolver<'a> {
     /// [`Figure::Section`](crate::plane::figure::Figure::Section) holds:
     /// their children are read only when the tree is extruded.
     projections: Vec<Statement>,
+    /// The notes of 2-D shapes flattened by the certified approximation,
+    /// with their error in the plane, until an extrusion places them
+    /// ([`Resolver::placed_plane_notes`]).
+    plane_notes: Vec<(crate::error::Diagnostic, f64)>,
 }
 
 /// OpenSCAD's smallest radius that is still a circle (`grid.h`).
@@ -210,6 +215,20 @@ impl Resolver<'_> {
             if let Some(id) = self.statement(c, xf, mat, depth + 1)? {
                 ids.push(id);
             }
+        }
+        Ok(ids)
+    }
+
+    /// The children of a `projection`, which takes 3-D children only: a
+    /// 2-D one is left out with OpenSCAD's warning (`applyToChildren3D`).
+    fn projected(&mut self, p: &Statement, xf: DAffine3, mat: Material) -> Result<Vec<u32>> {
+        let mut ids = Vec::new();
+        for c in p.children.iter().filter(|c| !skipped(c)) {
+            if resize::dimension(c) == Some(true) {
+                self.left_out(c, true);
+                continue;
+            }
+            ids.extend(self.statement(c, xf, mat, 1)?);
         }
         Ok(ids)
     }

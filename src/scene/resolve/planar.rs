@@ -135,12 +135,16 @@ impl Resolver<'_> {
             if circles {
                 self.openscad_facets_unsupported(s, "minkowski() with a circle")?;
             }
-            return match sum::minkowski(ops) {
+            let found = match sum::minkowski(ops.clone()) {
+                Err(why) => self.flat_sum(s, ops).map_err(|_| why),
+                exact => exact,
+            };
+            return match found {
                 Ok(f) => Ok(f.map(|f| f.moved(m))),
                 Err(why) => Err(self.src.error(
                     s.name_span,
                     why,
-                    "csgrt sums convex 2-D shapes and their unions, any shape with circles (its offset), and a polygon with convex ones",
+                    "csgrt sums convex 2-D shapes and their unions, any shape with circles (its offset), and a polygon with convex ones exactly, and the rest flattened to straight polygons",
                 )),
             };
         }
@@ -159,6 +163,42 @@ impl Resolver<'_> {
             )
         };
         Err(self.src.error(s.name_span, message, label))
+    }
+
+    /// The 2-D `minkowski()` of `ops` with no exact form here: each
+    /// operand but a circle flattened to straight polygons, then summed
+    /// exactly ([`sum::convolved`]); the notes taken back if it fails.
+    fn flat_sum(
+        &mut self,
+        s: &Statement,
+        ops: Vec<Figure>,
+    ) -> std::result::Result<Option<Figure>, String> {
+        let mark = self.plane_notes.len();
+        let mut flat = Vec::new();
+        for f in ops {
+            if matches!(&f, Figure::Ellipse(e) if is_circle(e.matrix2)) {
+                flat.push(f);
+                continue;
+            }
+            match self.flat_figure(
+                s,
+                &f,
+                false,
+                "a 2-D `minkowski` of shapes that are not convex",
+            ) {
+                Ok(Some(g)) => flat.push(g),
+                Ok(None) => return Ok(None),
+                Err(e) => {
+                    self.plane_notes.truncate(mark);
+                    return Err(e);
+                }
+            }
+        }
+        let summed = sum::convolved(flat);
+        if summed.is_err() {
+            self.plane_notes.truncate(mark);
+        }
+        summed
     }
 
     pub(super) fn figure_children(
@@ -373,12 +413,32 @@ impl Resolver<'_> {
         let Some(f) = self.figure_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
         };
-        match crate::plane::offset::offset(f, join, d) {
+        // What has no exact offset is offset flattened to straight
+        // polygons and circles (the certified approximation).
+        let found = match crate::plane::offset::offset(f.clone(), join, d) {
+            Err(why) => {
+                let mark = self.plane_notes.len();
+                let what = "an `offset` of curves, ellipses, hulls or projections";
+                match self.flat_figure(s, &f, true, what) {
+                    Ok(Some(flat)) => {
+                        let r = crate::plane::offset::offset(flat, join, d);
+                        if r.is_err() {
+                            self.plane_notes.truncate(mark);
+                        }
+                        r.map_err(|_| why)
+                    }
+                    Ok(None) => Ok(None),
+                    Err(_) => Err(why),
+                }
+            }
+            exact => exact,
+        };
+        match found {
             Ok(f) => Ok(f.map(|f| f.moved(m))),
             Err(why) => Err(self.src.error(
                 s.name_span,
                 why,
-                "csgrt offsets simple polygons, circles, curved outlines (text), and combinations of polygons and circles",
+                "csgrt offsets polygons, circles and curved outlines (text) exactly, and the rest flattened to straight polygons",
             )),
         }
     }

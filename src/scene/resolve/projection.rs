@@ -49,7 +49,7 @@ impl Resolver<'_> {
         mat: Material,
     ) -> Result<Option<u32>> {
         let mark = self.b.csg.mark();
-        let ids = self.children(p, DAffine3::IDENTITY, mat, 0)?;
+        let ids = self.projected(p, DAffine3::IDENTITY, mat)?;
         let Some(child) = self.union(ids) else {
             return Ok(None);
         };

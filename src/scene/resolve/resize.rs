@@ -221,9 +221,24 @@ impl Resolver<'_> {
             return Ok(None);
         };
         let mut size = [0.0; 2];
+        let mut measured = None;
+        let noted = self.plane_notes.len();
         for (i, e) in [DVec2::X, DVec2::Y].into_iter().enumerate() {
             if newsize[i] > 0.0 || auto[i] {
-                let (lo, hi) = f.exact_range(e).map_err(|why| self.not_yet(s, why))?;
+                let (lo, hi) = match f.exact_range(e) {
+                    Ok(r) => r,
+                    Err(why) => {
+                        // Measured on the loops of its flattened outline
+                        // (the certified approximation): within eps.
+                        if measured.is_none() {
+                            measured = Some(
+                                self.flat_outline(s, &f)
+                                    .ok_or_else(|| self.not_yet(s, why))?,
+                            );
+                        }
+                        measured.as_ref().expect("measured").extent(e)
+                    }
+                };
                 size[i] = hi - lo;
             }
         }
@@ -253,7 +268,42 @@ impl Resolver<'_> {
             }
         };
         let local = DAffine2::from_scale(DVec2::new(pick(0), pick(1)));
+        // Only the size is approximated: a size off by eps scales the
+        // shape about the origin by a factor off by eps/size of itself,
+        // moving its points by at most that times the scale times their
+        // reach from the origin.
+        if let Some(o) = &measured {
+            let k = pick(0).abs().max(pick(1).abs());
+            let reach = o
+                .loops
+                .iter()
+                .flatten()
+                .fold(0.0f64, |r, p| r.max(p.length()));
+            let least = size
+                .iter()
+                .copied()
+                .filter(|v| *v > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            for n in &mut self.plane_notes[noted..] {
+                n.1 *= k * (reach + n.1) / (least - n.1).max(f64::MIN_POSITIVE);
+            }
+        }
         Ok(Some(f.moved(m * local)))
+    }
+
+    /// The loops of the outline of `f` flattened to straight polygons, or
+    /// `None` (the note taken back).
+    fn flat_outline(&mut self, s: &Statement, f: &Figure) -> Option<crate::plane::Outlines> {
+        let mark = self.plane_notes.len();
+        let found = match self.flat_figure(s, f, false, "the size of a `resize`d shape") {
+            Ok(Some(Figure::Polygon(o))) => Some(o),
+            Ok(Some(g)) => crate::plane::sites::outline(&g),
+            _ => None,
+        };
+        if found.is_none() {
+            self.plane_notes.truncate(mark);
+        }
+        found
     }
 
     fn not_yet(&self, s: &Statement, why: &str) -> crate::error::Error {
