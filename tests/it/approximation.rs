@@ -131,3 +131,135 @@ fn a_ball_minus_a_cylinder_is_within_the_faceting_of_its_volume() {
     );
     assert!((v - exact).abs() > 0.0);
 }
+
+/// The stderr of a scene csgrt renders (exit 0), and its count of
+/// approximated nodes.
+fn rendered(text: &str) -> (String, String) {
+    let (dir, _) = scene("m.csg", text);
+    let r = csgrt(
+        dir.path(),
+        &["m.csg", "--size", "40x30", "-q", "--stats-json", "s.json"],
+    );
+    assert_eq!(r.status, 0, "{text}: {}", r.stderr);
+    let stats = std::fs::read_to_string(dir.path().join("s.json")).unwrap();
+    (r.stderr, stats)
+}
+
+#[test]
+fn the_plane_is_flattened_with_a_note_where_it_has_no_exact_form() {
+    let cases = [
+        (
+            "linear_extrude(1) offset(delta = -1) union() { scale([2, 1]) circle(2); circle(1); }\n",
+            "note: an `offset` of curves, ellipses, hulls or projections is approximated by straight polygons\n --> m.csg:1:19\n",
+        ),
+        (
+            "linear_extrude(1, twist = 10) offset(r = 0.5) text(\"C\");\n",
+            "note: a twist or scale of an offset of curved outlines is approximated by straight polygons\n --> m.csg:1:1\n",
+        ),
+        (
+            "rotate_extrude() translate([20, 0]) offset(r = 0.5) text(\"C\");\n",
+            "note: a turn of an offset of curved outlines is approximated by straight polygons\n --> m.csg:1:1\n",
+        ),
+        (
+            "linear_extrude(1) offset(1) offset(r = 0.5) text(\"C\");\n",
+            "note: an `offset` of curves, ellipses, hulls or projections is approximated by straight polygons\n --> m.csg:1:19\n",
+        ),
+        (
+            "linear_extrude(height = 1, twist = 10) text(\"J\");\n",
+            "note: a twist or uneven scale of curved outlines is approximated by straight polygons\n --> m.csg:1:1\n",
+        ),
+        (
+            "rotate_extrude() projection() translate([5, 0, 0]) sphere(2);\n",
+            "note: a turn of a projection is approximated by straight polygons\n --> m.csg:1:1\n",
+        ),
+        (
+            "translate([1, 0, 0])\n  linear_extrude(1) minkowski() {\n    polygon([[0, 0], [4, 0], [4, 1], [1, 1], [1, 4], [0, 4]]);\n    difference() { square(2); circle(1); }\n  }\n",
+            "note: a 2-D `minkowski` of shapes that are not convex is approximated by straight polygons\n --> m.csg:2:21\n",
+        ),
+    ];
+    for (text, note) in cases {
+        let (stderr, stats) = rendered(text);
+        assert!(stderr.starts_with(note), "{text}: {stderr}");
+        assert_eq!(stderr.matches("note: ").count(), 1, "{stderr}");
+        assert!(
+            stderr.contains("of the exact shape (1/8192 of its size)"),
+            "{stderr}"
+        );
+        assert!(stats.contains("\"approximated_nodes\": 1"), "{stats}");
+    }
+    // Straight shapes summed or offset with touching corners are exact:
+    // nothing is said.
+    for text in [
+        "linear_extrude(1) minkowski() {\n    polygon([[0, 0], [4, 0], [4, 1], [1, 1], [1, 4], [0, 4]]);\n    polygon([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]);\n  }\n",
+        "linear_extrude(1) offset(delta = -0.2) difference() { square(8); square(4); translate([4, 4]) square(2); }\n",
+    ] {
+        let (stderr, stats) = rendered(text);
+        assert_eq!(stderr, "", "{text}");
+        assert!(stats.contains("\"approximated_nodes\": 0"), "{stats}");
+    }
+}
+
+/// The area of the section z = ½ of the scene's root, from the spans of
+/// rays along x at the middles of `n` strips across [y0, y1] (exact for
+/// widths constant on each strip; the midpoint rule's otherwise).
+fn area(text: &str, y0: f64, y1: f64, n: usize) -> f64 {
+    let s = csgrt::load_csg(&Source::new("t.csg", text)).unwrap();
+    let root = s.csg.root.unwrap();
+    let mut st = csgrt::stats::Stats::default();
+    let h = (y1 - y0) / n as f64;
+    (0..n)
+        .map(|i| {
+            let y = y0 + h * (i as f64 + 0.5);
+            let ray = csgrt::geometry::Ray::new(glam::DVec3::new(-1e3, y, 0.5), glam::DVec3::X);
+            s.csg
+                .spans(root, &ray, 0.0, f64::INFINITY, &mut st)
+                .iter()
+                .map(|sp| sp.exit.t - sp.enter.t)
+                .sum::<f64>()
+                * h
+        })
+        .sum()
+}
+
+#[test]
+fn two_ls_sum_to_their_staircase() {
+    // L₁ = [0,4]×[0,1] ∪ [0,1]×[0,4], L₂ = [0,2]×[0,1] ∪ [0,1]×[0,2]:
+    // their sum is the union of the rectangles' sums, [0,6]×[0,2],
+    // [0,5]×[0,3], [0,3]×[0,5] and [0,2]×[0,6] — the staircase of area
+    // 2·6 + 1·5 + 2·3 + 1·2 = 25. Straight: no flattening, exact.
+    let text = "linear_extrude(1) minkowski() {\n    polygon([[0, 0], [4, 0], [4, 1], [1, 1], [1, 4], [0, 4]]);\n    polygon([[0, 0], [2, 0], [2, 1], [1, 1], [1, 2], [0, 2]]);\n  }\n";
+    let a = area(text, -1.0, 7.0, 800);
+    assert!((a - 25.0).abs() < 1e-9, "{a}");
+}
+
+#[test]
+fn an_ellipse_grown_round_has_steiner_s_area() {
+    // A convex region K grown by r has area A + P·r + π r² (Steiner), P
+    // its perimeter: for the ellipse of semi-axes 10 and 5, P by the
+    // midpoint rule on 10⁶ steps of its arc length.
+    let (a, b, r) = (10.0f64, 5.0f64, 1.5f64);
+    let n = 1_000_000;
+    let perimeter: f64 = (0..n)
+        .map(|i| {
+            let t = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+            (a * a * t.sin().powi(2) + b * b * t.cos().powi(2)).sqrt()
+        })
+        .sum::<f64>()
+        * std::f64::consts::TAU
+        / n as f64;
+    let pi = std::f64::consts::PI;
+    let exact = pi * a * b + perimeter * r + pi * r * r;
+    let text = "linear_extrude(1) offset(r = 1.5) scale([2, 1]) circle(r = 5);\n";
+    // Flattened within eps = 20/8192: the area is within the outline's
+    // length times eps, and the midpoint rule on 20,000 strips adds far
+    // less (its error is of the width's curvature times h², but for the
+    // strips at the tips, where it is of h^1.5).
+    let eps = 20.0 / 8192.0;
+    let v = area(text, -7.0, 7.0, 20_000);
+    let slack = (perimeter + 2.0 * pi * r) * eps;
+    assert!(
+        (v - exact).abs() <= slack,
+        "{v} against {exact} (within {slack})"
+    );
+    assert!(v < exact, "flattened inside: {v} against {exact}");
+}

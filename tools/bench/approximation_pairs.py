@@ -5,7 +5,9 @@ Each pair in tests/approximated/pairs/ is one solid written twice: as a
 hull, Minkowski sum or shadow of a combination (NAME_approximated.csg,
 which csgrt cuts into convex polytopes) and as the same solid by an exact
 path (NAME_exact.csg: the cut ball itself, the sum of the plate's four
-boxes, the ring as a 2-D difference). Each file is rendered as a user
+boxes, the ring as a 2-D difference, the offset shadow of a cylinder as
+the circle it is, the turned shadow of a ball as the turned circle). Each
+file is rendered as a user
 renders it (800x600, default settings, every core, the whole process),
 alternating, RUNS times; the table gives the medians and their ratio.
 

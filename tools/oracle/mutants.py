@@ -90,6 +90,7 @@ MESHES = {
 APPROXIMATION = {
     "facets_coarse": (),
     "pieces_uncut": (),
+    "flat_coarse": (),
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own
@@ -97,6 +98,8 @@ APPROXIMATION = {
 OFFSETS = {
     "offset_miter_squared": ("5", "1"),
     "sum_circle_dropped": ("18", "1", "--kind", "sum"),
+    "offset_wedge_widest": ("1", "1", "--kind", "flat"),
+    "sum_edges_skipped": ("9", "1", "--kind", "sum2"),
 }
 
 # fault -> a scene tools/oracle/pov_check.py must then reject (the export is read

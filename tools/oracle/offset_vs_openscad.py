@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Random offsets of random 2-D combinations of circles and squares (or,
 with --kind sum, their Minkowski sums with a circle or a turned rectangle;
-with --kind hull, hulls of circles and squares), each
+with --kind hull, hulls of circles and squares; with --kind flat, offsets
+of combinations with ellipses and hulls of ellipses, and of thin triangles
+that meet at their tips — what csgrt flattens to straight polygons, or
+joins by wedge; with --kind sum2, Minkowski sums of two such combinations,
+neither convex), each
 rendered by csgrt and by OpenSCAD itself: csgrt's prism of the result
 (linear_extrude(1), traced by vertical rays on a 61 x 61 grid) against the
 top faces of OpenSCAD's own mesh (`openscad -o m.off`, $fn = 256), point by
@@ -10,7 +14,7 @@ Clipper's miters on them). A check of `offset` against the reference
 implementation itself, run in CI (it needs the openscad binary and
 takes about 4 s a scene).
 
-Usage: offset_vs_openscad.py FIRST_SEED COUNT [--kind offset|sum|hull] [--dir DIR] [--csgrt BIN]
+Usage: offset_vs_openscad.py FIRST_SEED COUNT [--kind offset|sum|hull|flat|sum2] [--dir DIR] [--csgrt BIN]
 Prints one line a scene and `bad N`; exit status 1 if any scene disagrees.
 """
 import sys, os, subprocess, random, math, tempfile, numpy as np
@@ -45,6 +49,38 @@ def summed(rng):
         return f"minkowski() {{ union() {{ {shape(rng)} {shape(rng)} }} circle(r = {rng.uniform(0.1,1.5):.3f}); }}"
     parts = " ".join(piece(rng) for _ in range(rng.randint(1, 3)))
     return f"minkowski() {{ union() {{ {parts} }} rotate({rng.uniform(0,90):.2f}) square([{rng.uniform(0.2,2):.3f}, {rng.uniform(0.2,2):.3f}], center = true); }}"
+def oval(rng):
+    """An ellipse, turned, somewhere."""
+    return (f"translate([{rng.uniform(-3,3):.3f}, {rng.uniform(-3,3):.3f}]) rotate({rng.uniform(0,180):.2f}) "
+            f"scale([{rng.uniform(0.4,2.5):.3f}, {rng.uniform(0.4,2.5):.3f}]) circle(r = {rng.uniform(0.5,2):.3f});")
+def curvy(rng, depth=0):
+    """A combination of circles, squares, ellipses and hulls of ellipses."""
+    k = rng.random()
+    if depth < 2 and k < 0.4:
+        op = rng.choice(['union', 'difference', 'intersection'])
+        kids = [curvy(rng, depth+1) for _ in range(rng.randint(2, 3))]
+        return f"{op}() {{ {' '.join(kids)} }}"
+    if k < 0.6:
+        return oval(rng)
+    if k < 0.75:
+        return f"hull() {{ {oval(rng)} {oval(rng)} }}"
+    return shape(rng, 2)
+def tips(rng):
+    """Thin triangles whose tips meet at one point, their union cut by a
+    far square (so that the offset takes its outline as one); or holes of
+    that kind in a square."""
+    n = rng.randint(2, 3)
+    base = rng.uniform(0, 360)
+    tri = []
+    for i in range(n):
+        a = math.radians(base + i * 360 / n + rng.uniform(-20, 20))
+        w = math.radians(rng.uniform(8, 25))
+        L = rng.uniform(4, 8)
+        p = [(0, 0), (L * math.cos(a - w), L * math.sin(a - w)), (L * math.cos(a + w), L * math.sin(a + w))]
+        tri.append("polygon([" + ", ".join(f"[{x:.4f}, {y:.4f}]" for x, y in p) + "]);")
+    if rng.random() < 0.5:
+        return f"difference() {{ union() {{ {' '.join(tri)} }} translate([8.5, 8.5]) square(0.1); }}"
+    return f"difference() {{ square(16, center = true); {' '.join(tri)} }}"
 def hulled(rng):
     return "hull() { " + " ".join(piece(rng) for _ in range(rng.randint(2, 4))) + " }"
 KIND = sys.argv[sys.argv.index("--kind") + 1] if "--kind" in sys.argv else "offset"
@@ -59,6 +95,17 @@ for seed in range(seed0, seed0+N):
         o = offs(rng)
         if rng.random() < 0.3: o = o + " " + offs(rng)
         body = f"{o} union() {{ {shape(rng)} {shape(rng)} }}"
+    elif KIND == "flat":
+        if rng.random() < 0.4:
+            # Sharp corners: where the wedges matter.
+            d = rng.choice([-1, 1]) * rng.uniform(0.1, 1.0)
+            chamfer = ", chamfer = true" if rng.random() < 0.3 else ""
+            body = f"offset(delta = {d:.3f}{chamfer}) {tips(rng)}"
+        else:
+            body = f"{offs(rng)} {curvy(rng)}"
+    elif KIND == "sum2":
+        extra = f" circle(r = {rng.uniform(0.1,0.8):.3f});" if rng.random() < 0.3 else ""
+        body = f"minkowski() {{ {curvy(rng)} {shape(rng)}{extra} }}"
     else:
         body = summed(rng) if KIND == "sum" else hulled(rng)
     scad = f"$fn = 256;\nlinear_extrude(1) {body}\n"
