@@ -49,6 +49,8 @@ pub const NAMES: &[&str] = &[
     "flat_coarse",
     "offset_wedge_widest",
     "sum_edges_skipped",
+    "turn_wedges_coarse",
+    "twist_pieces_reversed",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -15,7 +15,7 @@
 //! piece of one operand times every face of the next.
 
 use super::{Csg, NodeKind};
-use crate::geometry::polytope::{pieces_of, Polytope};
+use crate::geometry::polytope::{halfspace_in, pieces_of, Polytope};
 use crate::geometry::Aabb;
 use crate::math::boolean::Op;
 use glam::DVec3;
@@ -63,9 +63,9 @@ impl Csg {
         columns: bool,
     ) -> Result<Vec<Polytope>, String> {
         let mut leaves = Local::new();
-        self.leaf_polytopes(node, eps, tol, &mut leaves)?;
-        let mut out = Vec::new();
         let cell = self.nodes[node as usize].bounds;
+        self.leaf_polytopes(node, eps, tol, &cell, &mut leaves)?;
+        let mut out = Vec::new();
         if cell.is_empty() {
             return Ok(out);
         }
@@ -74,13 +74,29 @@ impl Csg {
         Ok(out)
     }
 
-    /// The polytopes of every leaf under `node`.
-    fn leaf_polytopes(&self, node: u32, eps: f64, tol: f64, out: &mut Local) -> Result<(), String> {
+    /// The polytopes of every leaf under `node` (a halfspace's: its part
+    /// in `within`, the box of the node cut).
+    fn leaf_polytopes(
+        &self,
+        node: u32,
+        eps: f64,
+        tol: f64,
+        within: &Aabb,
+        out: &mut Local,
+    ) -> Result<(), String> {
         match &self.nodes[node as usize].kind {
             NodeKind::Leaf(i) => {
                 let p = &self.prims[*i as usize];
-                let pieces = pieces_of(&p.shape, &p.xf.to_world, eps, tol)
-                    .ok_or_else(|| format!("a `{}`", p.shape.name()))?;
+                let pieces = match p.shape {
+                    // Unbounded: its part in the box of the node cut.
+                    crate::geometry::Shape::Halfspace(_) => {
+                        halfspace_in(&p.xf.to_world, within, tol)
+                            .into_iter()
+                            .collect()
+                    }
+                    _ => pieces_of(&p.shape, &p.xf.to_world, eps, tol)
+                        .ok_or_else(|| format!("a `{}`", p.shape.name()))?,
+                };
                 out.insert(*i, pieces);
                 Ok(())
             }
@@ -88,7 +104,7 @@ impl Csg {
             NodeKind::Op(Op::Xor, _) => Err("an even-odd fill".into()),
             NodeKind::Op(_, ch) => ch
                 .iter()
-                .try_for_each(|&c| self.leaf_polytopes(c, eps, tol, out)),
+                .try_for_each(|&c| self.leaf_polytopes(c, eps, tol, within, out)),
         }
     }
 

@@ -42,20 +42,39 @@ impl Resolver<'_> {
         self.src.error(
             s.name_span,
             format!("`{}` of {what} is not supported yet", s.name),
-            "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes",
+            "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, turns, twists, convex meshes and extrusions of polygons into convex polytopes",
         )
     }
 
     /// The primitives under `node`'s unions, and the other nodes there
-    /// (intersections, differences, projections: cut into polytopes).
-    fn union_members(&self, node: u32, leaves: &mut Vec<u32>, cut: &mut Vec<u32>) {
+    /// (intersections, differences, projections: cut into polytopes); for
+    /// a sum (`summed`), a leaf that is not convex is cut too (a turn, a
+    /// torus, a twist, a prism of a polygon that is not convex), but for a
+    /// mesh, which the sum rounds as a whole or refuses; for a hull, a
+    /// bounded leaf with no support point (a twist).
+    fn union_members(&self, node: u32, summed: bool, leaves: &mut Vec<u32>, cut: &mut Vec<u32>) {
         match &self.b.csg.nodes[node as usize].kind {
             NodeKind::Op(Op::Union, ch) => {
                 for &c in ch {
-                    self.union_members(c, leaves, cut);
+                    self.union_members(c, summed, leaves, cut);
                 }
             }
-            NodeKind::Leaf(i) => leaves.push(*i),
+            NodeKind::Leaf(i) => {
+                let shape = &self.b.csg.prims[*i as usize].shape;
+                let cuttable = if summed {
+                    let whole = hulls_of(shape).is_some() || is_convex(shape);
+                    !whole && !matches!(shape, Shape::Mesh(_))
+                } else {
+                    // A hull takes any bounded leaf by its support point;
+                    // one with none (a twist) is cut.
+                    shape.support(DVec3::X).is_none() && !matches!(shape, Shape::Halfspace(_))
+                };
+                if cuttable {
+                    cut.push(node);
+                } else {
+                    leaves.push(*i);
+                }
+            }
             _ => cut.push(node),
         }
     }
@@ -70,7 +89,7 @@ impl Resolver<'_> {
         cut: &mut Vec<u32>,
     ) -> std::result::Result<(), String> {
         let mut leaves = Vec::new();
-        self.union_members(node, &mut leaves, cut);
+        self.union_members(node, false, &mut leaves, cut);
         for i in leaves {
             let prim = &self.b.csg.prims[i as usize];
             if prim.shape.support(DVec3::X).is_none() {
@@ -102,7 +121,7 @@ impl Resolver<'_> {
         out: &mut Vec<Sum>,
     ) -> std::result::Result<(), String> {
         let (mut leaves, mut cut) = (Vec::new(), Vec::new());
-        self.union_members(node, &mut leaves, &mut cut);
+        self.union_members(node, true, &mut leaves, &mut cut);
         for c in cut {
             for p in cuts.get(&c).into_iter().flatten() {
                 let mesh = crate::geometry::polytope::hull_mesh(&p.vertices())
@@ -317,7 +336,7 @@ impl Resolver<'_> {
         let mut mesh_node = None;
         for &node in nodes {
             let (mut leaves, mut cut) = (Vec::new(), Vec::new());
-            self.union_members(node, &mut leaves, &mut cut);
+            self.union_members(node, false, &mut leaves, &mut cut);
             if !cut.is_empty() || leaves.is_empty() {
                 others = true;
                 continue;
@@ -376,7 +395,7 @@ impl Resolver<'_> {
         let mut cuts = Cuts::new();
         for &node in nodes {
             let (mut leaves, mut cut) = (Vec::new(), Vec::new());
-            self.union_members(node, &mut leaves, &mut cut);
+            self.union_members(node, true, &mut leaves, &mut cut);
             for c in cut {
                 let pieces = self.polytopes(s, &[c], frame, false)?;
                 cuts.insert(c, pieces);

@@ -108,7 +108,7 @@ impl Resolver<'_> {
             self.src.error(
                 p.name_span,
                 format!("the shadow (projection(cut = false)) of {what} is not supported yet"),
-                "csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes",
+                "csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, turns, twists, convex meshes and extrusions of polygons into convex polytopes",
             )
         })?;
         // A convex polytope's shadow is that of its faces turned up: a
