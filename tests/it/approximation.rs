@@ -263,3 +263,28 @@ fn an_ellipse_grown_round_has_steiner_s_area() {
     );
     assert!(v < exact, "flattened inside: {v} against {exact}");
 }
+
+#[test]
+fn turns_and_twists_are_cut_into_polytopes_with_a_note() {
+    // A sum with a turned profile (not convex), a hull of a twist (no
+    // support point), a torus less a box hulled: each renders, said once.
+    for (text, note) in [
+        (
+            "minkowski() { rotate_extrude() polygon([[3, 0], [8, 0], [8, 2], [5, 4], [3, 4]]); sphere(0.5); }\n",
+            "note: `minkowski` of a `rotate_extrude` is approximated by convex polytopes\n --> m.csg:1:1\n",
+        ),
+        (
+            "hull() { linear_extrude(5, twist = 30) square([6, 2], center = true); sphere(1); }\n",
+            "note: `hull` of a `linear_extrude` is approximated by convex polytopes\n --> m.csg:1:1\n",
+        ),
+        (
+            "hull() difference() { torus(R = 10, r = 2); cube(20); }\n",
+            "note: `hull` of a 3-D difference is approximated by convex polytopes\n --> m.csg:1:1\n",
+        ),
+    ] {
+        let (stderr, stats) = rendered(text);
+        assert!(stderr.starts_with(note), "{text}: {stderr}");
+        assert_eq!(stderr.matches("note: ").count(), 1, "{stderr}");
+        assert!(stats.contains("\"approximated_nodes\": 1"), "{stats}");
+    }
+}

@@ -202,14 +202,31 @@ fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
 }
 
 #[test]
-fn the_shadow_of_a_difference_with_a_turn_is_refused_at_its_projection() {
+fn the_shadow_of_a_difference_with_a_turn_is_cut_into_wedges_with_a_note() {
     // OpenSCAD's own export writes `cut = false` for a plain projection().
-    // A difference of cubes, spheres, cylinders and straight extrusions is
-    // cut into polytopes (tests/it/approximation.rs); a turn is not.
-    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tdifference() { rotate_extrude() translate([3, 0]) square(1); cube(3); }\n\t}\n}\n";
-    assert_eq!(
-        common::fails(text),
-        "error: the shadow (projection(cut = false)) of a 3-D difference with a `rotate_extrude` in it is not supported yet\n --> bad.csg:2:2\n  |\n2 | \tprojection(cut = false, convexity = 0) {\n  | \t^^^^^^^^^^ csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, convex meshes and straight extrusions of polygons into convex polytopes\n"
+    // A turn in a difference is cut into wedges of convex polytopes, the
+    // shadow said once as approximated; the shadow of the turned square
+    // less the cube's corner is the ring 3 ≤ ρ ≤ 4 without its quarter
+    // x, y ∈ [0, 3]: rays down through (3.5, 0.2) (in the cube's shadow)
+    // and (−3.5, 0.2) (in the ring) miss and hit.
+    let text = "linear_extrude(height = 1) {\n\tprojection(cut = false, convexity = 0) {\n\t\tdifference() { rotate_extrude() translate([3, 0]) square(1); translate([0, 0, -1]) cube(3); }\n\t}\n}\n";
+    let (dir, _) = common::scene("s.csg", text);
+    std::fs::write(
+        dir.path().join("rays"),
+        "2.5 0.2 5 0 0 -1\n-3.5 0.2 5 0 0 -1\n",
+    )
+    .unwrap();
+    let r = common::csgrt(dir.path(), &["s.csg", "--trace-rays", "rays"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let lines: Vec<&str> = r.stdout.lines().collect();
+    assert_eq!(lines[0], "miss", "{}", r.stdout);
+    assert!(lines[1].starts_with("4 "), "{}", r.stdout);
+    let r = common::csgrt(dir.path(), &["s.csg", "--size", "8x6", "-q"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert!(
+        r.stderr.starts_with("note: `projection` of a 3-D difference is approximated by convex polytopes\n --> s.csg:2:2\n"),
+        "{}",
+        r.stderr
     );
 }
 

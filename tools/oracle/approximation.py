@@ -15,6 +15,9 @@ this file:
   radius 1.5: the points within 1.5 of the plate, the plate being the union
   of four boxes, so the distance is the least of four box distances less
   1.5, exact — the node is 30 wide;
+* hull_torus: the hull of a torus (R 10, r 2) met with a box that leaves
+  it whole: the disc of radius 10 thickened by 2, length(max(rho - 10, 0),
+  z) - 2, exact — its turn cut into wedges, the node 24 wide;
 * shadow_ring: the shadow of a ball (r 12) with a round hole (r 5) through
   it, extruded 2: the ring 5 <= rho <= 12, 0 <= z <= 2; max(rho - 12, 5 - rho,
   -z, z - 2), exact inside it and in the hole — the node is 24 wide.
@@ -86,6 +89,11 @@ def minkowski_plate(p):
     return np.min([box_distance(p, lo, hi) for lo, hi in PLATE], axis=0) - 1.5
 
 
+def hull_torus(p):
+    rho = np.hypot(p[:, 0], p[:, 1])
+    return np.hypot(np.maximum(rho - 10.0, 0.0), p[:, 2]) - 2.0
+
+
 def shadow_ring(p):
     rho = np.hypot(p[:, 0], p[:, 1])
     return np.max([rho - 12.0, 5.0 - rho, -p[:, 2], p[:, 2] - 2.0], axis=0)
@@ -144,6 +152,15 @@ CASES = {
         ((-1.5, -1.5, -1.5), (31.5, 21.5, 5.5)),
         (6.5, 8.0, 4.0),
         (0.3, 0.2, -0.9),
+    ),
+    "hull_torus": (
+        "hull() intersection() { rotate_extrude() translate([10, 0]) circle(r = 2);"
+        " cube(size = [40, 40, 40], center = true); }\n",
+        hull_torus,
+        24.0,
+        ((-12, -12, -2), (12, 12, 2)),
+        (12.0 / math.sqrt(2), 12.0 / math.sqrt(2), 0.0),
+        (-0.6, -0.5, -0.4),
     ),
     "shadow_ring": (
         "linear_extrude(height = 2) projection(cut = false) difference() { sphere(r = 12);"

@@ -83,6 +83,7 @@ MESHES = {
     "nef3_holes_dropped": "nef3_import",
     "pieces_uncut": "approximated",
     "climb_once": "approximated_hull",
+    "twist_pieces_reversed": "approximated_twisted",
 }
 
 # fault -> arguments of tools/oracle/approximation.py (the certified
@@ -91,6 +92,7 @@ APPROXIMATION = {
     "facets_coarse": (),
     "pieces_uncut": (),
     "flat_coarse": (),
+    "turn_wedges_coarse": (),
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own
