@@ -606,11 +606,7 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
         DVec2::new(a.dot(a), a.dot(b)),
         DVec2::new(a.dot(b), b.dot(b)),
     );
-    let (g11, g12, g22) = (gram.x_axis.x, gram.x_axis.y, gram.y_axis.y);
-    let sigma = (0.5 * (g11 + g22 + ((g11 - g22).powi(2) + 4.0 * g12 * g12).sqrt()))
-        .max(0.0)
-        .sqrt()
-        * (1.0 + 1e-9);
+    let sigma = crate::plane::flat::gram_stretch(gram) * (1.0 + 1e-9);
     let big = tw.scale.max_element().max(1.0);
     let loops = match &tw.section {
         super::twist::TwistSection::Region(r) if !r.curved() => r.outlines.loops.clone(),

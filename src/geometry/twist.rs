@@ -32,6 +32,7 @@
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
 use crate::math::trig::{Pol, Trig};
+use crate::plane::flat::largest_stretch;
 use crate::plane::Region;
 use glam::{DAffine2, DMat2, DVec2, DVec3};
 use smallvec::SmallVec;
@@ -116,16 +117,6 @@ impl TwistSection {
             }
         }
     }
-}
-
-/// The largest singular value of a 2×2 matrix, √λmax(MᵀM) (the farthest
-/// point of the ellipse from its centre).
-fn largest_stretch(m: DMat2) -> f64 {
-    let (a, b, c, d) = (m.x_axis.x, m.y_axis.x, m.x_axis.y, m.y_axis.y);
-    let f = a * a + b * b + c * c + d * d;
-    let det = a * d - b * c;
-    let disc = (f * f - 4.0 * det * det).max(0.0);
-    (0.5 * (f + disc.sqrt())).sqrt()
 }
 
 /// The distance from the origin to the segment a–b.

@@ -101,10 +101,17 @@ fn spread(pts: &[DVec2]) -> f64 {
     pts.iter().fold(1.0f64, |m, p| m.max(p.abs().max_element()))
 }
 
-/// The largest singular value of a 2×2 matrix: the square root of MᵀM's
-/// larger eigenvalue, ½(tr + √((a − d)² + 4b²)).
+/// The largest singular value of a 2×2 matrix M (the farthest point of
+/// the ellipse M·(unit disc) from its centre): [`gram_stretch`] of MᵀM.
 pub fn largest_stretch(m: DMat2) -> f64 {
-    let g = m.transpose() * m;
+    gram_stretch(m.transpose() * m)
+}
+
+/// The square root of the larger eigenvalue of a symmetric 2×2 matrix G
+/// [[a, b], [b, d]], ½(a + d + √((a − d)² + 4b²)): the largest stretch of
+/// any map whose columns' dot products G holds (MᵀM for a 2×2 M; the
+/// Gram matrix of two vectors in space).
+pub fn gram_stretch(g: DMat2) -> f64 {
     let (a, b, d) = (g.x_axis.x, g.x_axis.y, g.y_axis.y);
     (0.5 * (a + d + ((a - d).powi(2) + 4.0 * b * b).sqrt()))
         .max(0.0)
