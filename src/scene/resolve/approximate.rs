@@ -114,6 +114,20 @@ impl Resolver<'_> {
         Ok(flat)
     }
 
+    /// `work`, whose notes of flattened shapes are taken back when it
+    /// fails (nothing it flattened is then drawn).
+    pub(super) fn noted_if_done<T>(
+        &mut self,
+        work: impl FnOnce(&mut Self) -> std::result::Result<T, String>,
+    ) -> std::result::Result<T, String> {
+        let mark = self.plane_notes.len();
+        let done = work(self);
+        if done.is_err() {
+            self.plane_notes.truncate(mark);
+        }
+        done
+    }
+
     /// `f` with each projection replaced by straight polygons: its solid
     /// (read now, in the projection's own frame) cut into convex
     /// polytopes within [`APPROXIMATION`] of its size, each projected onto

@@ -173,32 +173,21 @@ impl Resolver<'_> {
         s: &Statement,
         ops: Vec<Figure>,
     ) -> std::result::Result<Option<Figure>, String> {
-        let mark = self.plane_notes.len();
-        let mut flat = Vec::new();
-        for f in ops {
-            if matches!(&f, Figure::Ellipse(e) if is_circle(e.matrix2)) {
-                flat.push(f);
-                continue;
-            }
-            match self.flat_figure(
-                s,
-                &f,
-                false,
-                "a 2-D `minkowski` of shapes that are not convex",
-            ) {
-                Ok(Some(g)) => flat.push(g),
-                Ok(None) => return Ok(None),
-                Err(e) => {
-                    self.plane_notes.truncate(mark);
-                    return Err(e);
+        self.noted_if_done(|r| {
+            let mut flat = Vec::new();
+            for f in ops {
+                if matches!(&f, Figure::Ellipse(e) if is_circle(e.matrix2)) {
+                    flat.push(f);
+                    continue;
+                }
+                let what = "a 2-D `minkowski` of shapes that are not convex";
+                match r.flat_figure(s, &f, false, what)? {
+                    Some(g) => flat.push(g),
+                    None => return Ok(None),
                 }
             }
-        }
-        let summed = sum::convolved(flat);
-        if summed.is_err() {
-            self.plane_notes.truncate(mark);
-        }
-        summed
+            sum::convolved(flat)
+        })
     }
 
     pub(super) fn figure_children(
@@ -417,19 +406,12 @@ impl Resolver<'_> {
         // polygons and circles (the certified approximation).
         let found = match crate::plane::offset::offset(f.clone(), join, d) {
             Err(why) => {
-                let mark = self.plane_notes.len();
                 let what = "an `offset` of curves, ellipses, hulls or projections";
-                match self.flat_figure(s, &f, true, what) {
-                    Ok(Some(flat)) => {
-                        let r = crate::plane::offset::offset(flat, join, d);
-                        if r.is_err() {
-                            self.plane_notes.truncate(mark);
-                        }
-                        r.map_err(|_| why)
-                    }
-                    Ok(None) => Ok(None),
-                    Err(_) => Err(why),
-                }
+                self.noted_if_done(|r| match r.flat_figure(s, &f, true, what)? {
+                    Some(flat) => crate::plane::offset::offset(flat, join, d),
+                    None => Ok(None),
+                })
+                .map_err(|_| why)
             }
             exact => exact,
         };

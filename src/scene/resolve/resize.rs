@@ -294,16 +294,13 @@ impl Resolver<'_> {
     /// The loops of the outline of `f` flattened to straight polygons, or
     /// `None` (the note taken back).
     fn flat_outline(&mut self, s: &Statement, f: &Figure) -> Option<crate::plane::Outlines> {
-        let mark = self.plane_notes.len();
-        let found = match self.flat_figure(s, f, false, "the size of a `resize`d shape") {
-            Ok(Some(Figure::Polygon(o))) => Some(o),
-            Ok(Some(g)) => crate::plane::sites::outline(&g),
-            _ => None,
-        };
-        if found.is_none() {
-            self.plane_notes.truncate(mark);
-        }
-        found
+        let what = "the size of a `resize`d shape";
+        self.noted_if_done(|r| match r.flat_figure(s, f, false, what)? {
+            Some(Figure::Polygon(o)) => Ok(o),
+            Some(g) => crate::plane::sites::outline(&g).ok_or_else(String::new),
+            None => Err(String::new()),
+        })
+        .ok()
     }
 
     fn not_yet(&self, s: &Statement, why: &str) -> crate::error::Error {
