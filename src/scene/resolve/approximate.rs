@@ -40,19 +40,18 @@ impl Resolver<'_> {
             if !b.is_bounded() {
                 return Err("an unbounded solid (a halfspace)".into());
             }
-            let size = (b.max - b.min).max_element();
-            let eps = size * APPROXIMATION;
-            let tol = crate::geometry::polytope::plane_tolerance(&b);
             let what = match &self.b.csg.nodes[node as usize].kind {
                 NodeKind::Op(op, _) => format!("a 3-D {}", op.name()),
                 NodeKind::Leaf(i) => format!("a `{}`", self.b.csg.prims[*i as usize].shape.name()),
                 NodeKind::Section(..) => "a projection".to_string(),
             };
-            let cut = self.b.csg.convex_pieces(node, eps, tol, columns);
-            out.extend(cut.map_err(|e| match self.b.csg.nodes[node as usize].kind {
-                NodeKind::Leaf(_) => e,
-                _ => format!("{what} with {e} in it"),
-            })?);
+            let (pieces, eps) = self.pieces_within(node, columns).map_err(|e| {
+                match self.b.csg.nodes[node as usize].kind {
+                    NodeKind::Leaf(_) => e,
+                    _ => format!("{what} with {e} in it"),
+                }
+            })?;
+            out.extend(pieces);
             let world = crate::geometry::solid::corner_box(&b, &frame);
             let eps = eps * crate::geometry::polytope::stretch(&frame);
             let note = self.src.diagnostic(
@@ -68,6 +67,21 @@ impl Resolver<'_> {
             });
         }
         Ok(out)
+    }
+
+    /// Bounded node `node` cut into convex polytopes within
+    /// [`APPROXIMATION`] of the longest side of its box (planes as thick
+    /// as [`crate::geometry::polytope::plane_tolerance`] says), and that
+    /// distance.
+    fn pieces_within(
+        &self,
+        node: u32,
+        columns: bool,
+    ) -> std::result::Result<(Vec<Polytope>, f64), String> {
+        let b = self.b.csg.nodes[node as usize].bounds;
+        let eps = (b.max - b.min).max_element() * APPROXIMATION;
+        let tol = crate::geometry::polytope::plane_tolerance(&b);
+        Ok((self.b.csg.convex_pieces(node, eps, tol, columns)?, eps))
     }
 }
 
@@ -162,10 +176,7 @@ impl Resolver<'_> {
                                     "a projection of an unbounded solid (a halfspace)".into()
                                 );
                             }
-                            let eps = (b.max - b.min).max_element() * APPROXIMATION;
-                            let tol = crate::geometry::polytope::plane_tolerance(&b);
-                            let pieces = self.b.csg.convex_pieces(node, eps, tol, false)?;
-                            Ok(Some((pieces, eps)))
+                            self.pieces_within(node, false).map(Some)
                         }
                     });
                 self.b.csg.rewind(mark);
