@@ -187,6 +187,22 @@ fn the_plane_is_flattened_with_a_note_where_it_has_no_exact_form() {
         );
         assert!(stats.contains("\"approximated_nodes\": 1"), "{stats}");
     }
+    // A projection flattened for an offset, whose solid holds an
+    // approximation of its own: both are said.
+    let (stderr, stats) = rendered(
+        "linear_extrude(1) offset(r = 1) projection() hull() difference() { sphere(5); cube(5); }\n",
+    );
+    assert!(
+        stderr.contains("note: `hull` of a 3-D difference is approximated by convex polytopes"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains(
+            "note: an `offset` of curves, ellipses, hulls or projections is approximated"
+        ),
+        "{stderr}"
+    );
+    assert!(stats.contains("\"approximated_nodes\": 2"), "{stats}");
     // Straight shapes summed or offset with touching corners are exact:
     // nothing is said.
     for text in [

@@ -180,11 +180,18 @@ impl Resolver<'_> {
                         }
                     });
                 self.b.csg.rewind(mark);
-                self.b.approximations.truncate(noted);
+                // What the solid's own statements approximated (a hull of
+                // a difference in it) is in the shadow too: their notes
+                // wait, in the plane, for the extrusion that places it.
+                let inner: Vec<_> = self.b.approximations.drain(noted..).collect();
                 let Some((pieces, eps)) = found? else {
                     return Ok(None);
                 };
-                *worst = worst.max(eps * crate::plane::flat::largest_stretch(at.matrix2));
+                let sigma = crate::plane::flat::largest_stretch(at.matrix2);
+                for a in inner {
+                    self.plane_notes.push((a.note, a.eps * sigma));
+                }
+                *worst = worst.max(eps * sigma);
                 let polys: Vec<Option<Figure>> = pieces
                     .iter()
                     .map(|q| {
