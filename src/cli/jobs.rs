@@ -224,7 +224,11 @@ fn set_view(cli: &Cli, scene: &mut Scene) {
     if opts.is_openscad() {
         let bounds = scene.result_bounds();
         scene.camera = Some(openscad_view::camera(&opts, &bounds, width, height));
-    } else if let Some(projection) = cli.projection {
+        return;
+    }
+    // Found once: the render, the mask and the dumps each take the view.
+    scene.fix_framing();
+    if let Some(projection) = cli.projection {
         scene.camera = Some(csgrt::scene::CameraSpec {
             projection,
             ..scene.view(width, height)

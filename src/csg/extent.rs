@@ -27,7 +27,15 @@ impl Csg {
                 let mut far = Vec::with_capacity(ch.len());
                 if *op == Op::Difference {
                     let first = self.extreme(ch[0], e)?;
-                    if ch[1..].iter().any(|&c| self.contains(c, first.1)) {
+                    // A cut whose boundary passes through the far point (a
+                    // band along an outline, subtracted) contains the
+                    // points just behind it.
+                    let b = &self.nodes[ch[0] as usize].bounds;
+                    let behind = first.1 - e * (FAR_POINT_NUDGE * (b.max - b.min).max_element());
+                    if ch[1..]
+                        .iter()
+                        .any(|&c| self.contains(c, first.1) || self.contains(c, behind))
+                    {
                         return Err("the extent of a difference that cuts its far side");
                     }
                     return Ok(first);
@@ -53,17 +61,24 @@ impl Csg {
     }
 }
 
+/// How far behind a difference's far point (in its first child's box's
+/// largest side) [`Csg::extreme`] also asks whether a cut reaches.
+const FAR_POINT_NUDGE: f64 = 1e-7;
+
 /// Rays a side of the grid [`Csg::tight_bounds`] casts along each axis.
 pub const FRAMING_GRID: usize = 64;
+
+/// Which sides of a box are asked for: `[low, high]`, per axis.
+type Sides = [[bool; 3]; 2];
 
 impl Csg {
     /// The box of the solid itself rather than of its parts' boxes (a
     /// difference's box is its first child's; a sector cut from a ring by
     /// half-spaces has the ring's): OpenSCAD frames `--viewall` by the box
     /// of the mesh it made, which is the result's. Each side is the exact
-    /// far point where [`Csg::extreme`] shows it; otherwise the tree's box
-    /// found from the leaves up ([`Csg::tight`]). The node box when it is
-    /// unbounded.
+    /// far point where [`Csg::extreme`] shows it; otherwise the box found
+    /// from the leaves up, each node's exact sides kept ([`Csg::tight`]).
+    /// The node box when it is unbounded.
     pub fn tight_bounds(&self) -> Aabb {
         let Some(root) = self.root else {
             return Aabb::EMPTY;
@@ -72,39 +87,58 @@ impl Csg {
         if !loose.is_bounded() || loose.is_empty() {
             return loose;
         }
-        let mut exact = [[None; 3]; 2];
+        self.tight(root, [[true; 3]; 2])
+    }
+
+    /// A node's box on the sides `need` asks for (`[low, high]` per axis;
+    /// the others are its node box's): each the exact far point where
+    /// [`Csg::extreme`] shows it, the rest from its children
+    /// ([`Csg::tight_below`]).
+    fn tight(&self, node: u32, need: Sides) -> Aabb {
+        let mut out = self.nodes[node as usize].bounds;
+        let mut missing = [[false; 3]; 2];
         for (side, sign) in [(0, -1.0), (1, 1.0)] {
-            for (axis, slot) in exact[side].iter_mut().enumerate() {
+            for axis in (0..3).filter(|&a| need[side][a]) {
                 let mut e = DVec3::ZERO;
                 e[axis] = sign;
-                *slot = self.extreme(root, e).ok().map(|(v, _)| sign * v);
+                match self.extreme(node, e) {
+                    Ok((v, _)) if side == 0 => out.min[axis] = -v,
+                    Ok((v, _)) => out.max[axis] = v,
+                    Err(_) => missing[side][axis] = true,
+                }
             }
         }
-        let mut out = Aabb::EMPTY;
-        if exact.iter().flatten().any(Option::is_none) {
-            out = self.tight(root);
-        }
-        for (axis, (lo, hi)) in exact[0].iter().zip(&exact[1]).enumerate() {
-            if let Some(v) = lo {
-                out.min[axis] = *v;
+        if missing.iter().flatten().any(|&m| m) {
+            let below = self.tight_below(node, missing);
+            if below.is_empty() {
+                return below;
             }
-            if let Some(v) = hi {
-                out.max[axis] = *v;
+            for (axis, (lo, hi)) in missing[0].iter().zip(&missing[1]).enumerate() {
+                if *lo {
+                    out.min[axis] = below.min[axis];
+                }
+                if *hi {
+                    out.max[axis] = below.max[axis];
+                }
             }
         }
         out
     }
 
-    /// A node's box from the leaves up: a leaf's own; a union's (or an
-    /// even-odd fill's) the union of its children's, leaving out a child
-    /// whose node box lies inside what the larger ones already cover; an
+    /// [`Csg::tight`] from the node's children, on the sides `need` asks
+    /// for: a leaf's own box, shrunk to the surface that rays cast through
+    /// it find ([`Csg::refined`]); a union's (or an even-odd fill's) the union
+    /// of its children's, leaving out a child whose node box reaches no
+    /// further on those sides than the larger ones already do; an
     /// intersection's or a difference's the meet of its children's (the
     /// first one's), shrunk to the surface that rays cast through it find
-    /// ([`Csg::sampled_bounds`]).
-    fn tight(&self, node: u32) -> Aabb {
+    /// ([`Csg::refined`]).
+    fn tight_below(&self, node: u32, need: Sides) -> Aabb {
         let n = &self.nodes[node as usize];
         match &n.kind {
-            NodeKind::Leaf(_) | NodeKind::Section(..) => n.bounds,
+            // A leaf with no far point (a twist, an offset turned) and a
+            // section: their surface inside their box.
+            NodeKind::Leaf(_) | NodeKind::Section(..) => self.refined(node, n.bounds, need),
             NodeKind::Op(Op::Union | Op::Xor, ch) => {
                 let vol = |c: &u32| {
                     let b = &self.nodes[*c as usize].bounds;
@@ -116,8 +150,12 @@ impl Csg {
                 let mut acc = Aabb::EMPTY;
                 for c in kids {
                     let b = self.nodes[c as usize].bounds;
-                    if acc.union(&b) != acc {
-                        acc = acc.union(&self.tight(c));
+                    let further = (0..3).any(|a| {
+                        (need[0][a] && b.min[a] < acc.min[a])
+                            || (need[1][a] && b.max[a] > acc.max[a])
+                    });
+                    if further {
+                        acc = acc.union(&self.tight(c, need));
                     }
                 }
                 acc
@@ -125,44 +163,47 @@ impl Csg {
             NodeKind::Op(Op::Intersection, ch) => {
                 let b = ch
                     .iter()
-                    .fold(Aabb::EVERYTHING, |a, &c| a.intersect(&self.tight(c)));
+                    .fold(Aabb::EVERYTHING, |a, &c| a.intersect(&self.tight(c, need)));
                 if b.is_empty() {
                     return Aabb::EMPTY;
                 }
-                self.refined(node, b)
+                self.refined(node, b, need)
             }
-            NodeKind::Op(Op::Difference, ch) => self.refined(node, self.tight(ch[0])),
+            NodeKind::Op(Op::Difference, ch) => self.refined(node, self.tight(ch[0], need), need),
         }
     }
 
-    /// The box of node `node`'s surface inside `region`: the points rays
-    /// along each axis through a [`FRAMING_GRID`]² grid over the region
-    /// meet, then again over their box grown by one step of that grid.
-    /// The region itself when it is unbounded, or when the rays meet
-    /// nothing (the solid may be thinner than a step); empty when it is.
-    fn refined(&self, node: u32, region: Aabb) -> Aabb {
+    /// The box of node `node`'s surface inside `region`, on the sides
+    /// `need` asks for: the points that rays along each of those sides'
+    /// axes, through a [`FRAMING_GRID`]² grid over the region, meet; then
+    /// again over their box grown by one step of that grid. The region
+    /// itself when it is unbounded, or when the rays meet nothing (the
+    /// solid may be thinner than a step); empty when it is.
+    fn refined(&self, node: u32, region: Aabb, need: Sides) -> Aabb {
         if region.is_empty() || !region.is_bounded() || crate::mutant::active("framing_loose") {
             return region;
         }
-        let first = self.sampled_bounds(node, &region);
+        let axes: Vec<usize> = (0..3).filter(|&a| need[0][a] || need[1][a]).collect();
+        let first = self.sampled_bounds(node, &region, &axes);
         if first.is_empty() {
             return region;
         }
         let step = (region.max - region.min) / FRAMING_GRID as f64;
         let grown = Aabb::new(first.min - step, first.max + step).intersect(&region);
-        first.union(&self.sampled_bounds(node, &grown))
+        first.union(&self.sampled_bounds(node, &grown, &axes))
     }
 
-    /// The box of the surface points that rays along each axis, through
-    /// the centres of a [`FRAMING_GRID`]² grid over `region`'s sides, meet.
-    fn sampled_bounds(&self, node: u32, region: &Aabb) -> Aabb {
+    /// The box of the surface points that rays along each of `axes`,
+    /// through the centres of a [`FRAMING_GRID`]² grid over `region`'s
+    /// sides, meet.
+    fn sampled_bounds(&self, node: u32, region: &Aabb, axes: &[usize]) -> Aabb {
         use rayon::prelude::*;
         let n = FRAMING_GRID;
         let size = region.max - region.min;
-        (0..3 * n)
+        (0..axes.len() * n)
             .into_par_iter()
             .map(|row| {
-                let (axis, i) = (row / n, row % n);
+                let (axis, i) = (axes[row / n], row % n);
                 let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
                 let mut dir = DVec3::ZERO;
                 dir[axis] = 1.0;

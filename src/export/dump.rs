@@ -1,7 +1,8 @@
 //! `--dump-scene`: the resolved scene as JSON — camera, lights, materials
 //! and the CSG tree with each primitive's world matrix — csgrt's own
-//! reading, for a person to inspect. The oracle in `tools/` does not use
-//! it: it reads the model file itself.
+//! reading, for a person to inspect. The oracle in `tools/` reads the
+//! model file itself; of the dump it takes only the box the default camera
+//! framed (`framed`), which it checks against its own mesh's box.
 
 use crate::csg::{Csg, NodeKind};
 use crate::geometry::Param;
@@ -83,6 +84,14 @@ pub fn scene_json(scene: &Scene, cam: &CameraSpec, width: u32, height: u32) -> V
                        crate::scene::Projection::Perspective => "perspective",
                        crate::scene::Projection::Orthographic => "orthographic",
                    }},
+        "framed": match (scene.framed, &scene.camera) {
+            (Some(b), _) => json!({"min": v3(b.min), "max": v3(b.max)}),
+            (None, None) => {
+                let b = scene.framing_bounds();
+                json!({"min": v3(b.min), "max": v3(b.max)})
+            }
+            _ => Value::Null,
+        },
         "background": v3(scene.background),
         "lights": lights,
         "materials": materials,

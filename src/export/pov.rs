@@ -142,7 +142,11 @@ pub fn scene_sdl(
         }
     }
     let far = {
-        let b = scene.framing_bounds();
+        // The parts' box (a distance far past the scene; no tighter box needed).
+        let mut b = scene.csg.bounds();
+        if !b.is_bounded() {
+            b = scene.framing_bounds();
+        }
         let size = if b.is_bounded() {
             (b.max - b.min).length()
         } else {

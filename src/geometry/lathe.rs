@@ -557,10 +557,13 @@ impl Solid for Lathe {
     }
 
     /// The farthest point of the circles the profile turns on: the
-    /// profile's farthest point along (|d_xy|, d_z), turned to d's azimuth.
+    /// profile's farthest point along (|d_xy|, d_z), turned to d's azimuth
+    /// (to +x when d is along the axis: a point of the solid, not of the
+    /// axis, which [`crate::csg::Csg::extreme`] then tests against what is
+    /// cut away).
     fn support(&self, d: DVec3) -> Option<DVec3> {
         let flat = d.truncate();
-        let u = flat.try_normalize().unwrap_or(DVec2::ZERO);
+        let u = flat.try_normalize().unwrap_or(DVec2::X);
         let q = self.profile.farthest(DVec2::new(flat.length(), d.z));
         Some((u * q.x).extend(q.y))
     }

@@ -91,6 +91,7 @@ impl SceneBuilder {
             warnings: self.warnings,
             planar: false,
             approximations: self.approximations,
+            framed: None,
         }
     }
 }

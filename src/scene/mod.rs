@@ -123,6 +123,9 @@ pub struct Scene {
     /// The nodes made by the certified approximation (a hull or Minkowski
     /// sum of an intersection or a difference).
     pub approximations: Vec<Approximation>,
+    /// The box the default camera frames, once [`Scene::fix_framing`] has
+    /// found it (finding it casts rays); `None`: found at each view.
+    pub framed: Option<Aabb>,
 }
 
 /// A node csgrt approximates: where it is, its world box and its error (a
@@ -169,15 +172,13 @@ impl Scene {
             .unwrap_or_else(|| defaults::framing_camera(&self.framing_bounds(), width, height))
     }
 
-    /// What OpenSCAD's `--viewall` frames: the box of the result itself
-    /// ([`crate::csg::Csg::tight_bounds`], flat for a 2-D model) when the
-    /// tree is bounded, else [`Scene::framing_bounds`].
+    /// What OpenSCAD's `--viewall` frames: [`Scene::framing_bounds`], flat
+    /// for a 2-D model when the tree is bounded.
     pub fn result_bounds(&self) -> Aabb {
-        let b = self.csg.bounds();
-        if !b.is_bounded() || b.is_empty() {
-            return self.framing_bounds();
+        let mut t = self.framing_bounds();
+        if !self.csg.bounds().is_bounded() {
+            return t;
         }
-        let mut t = self.csg.tight_bounds();
         if self.planar && !crate::mutant::active("framing_loose") {
             // In the slabs' middle plane, as OpenSCAD's 2-D box (z = 0).
             let mid = 0.5 * (t.min.z + t.max.z);
@@ -186,13 +187,29 @@ impl Scene {
         t
     }
 
-    /// What the default camera frames: the tree's box if it is bounded,
-    /// else the box of its bounded primitives (a halfspace floor is drawn
-    /// but not framed).
+    /// Finds the box the default camera frames once, for every later view
+    /// of this scene (whose tree must not change after).
+    pub fn fix_framing(&mut self) {
+        if self.camera.is_none() && self.framed.is_none() {
+            self.framed = Some(self.framing_bounds());
+        }
+    }
+
+    /// What the default camera frames: the box of the result itself
+    /// ([`crate::csg::Csg::tight_bounds`]: what is left after differences,
+    /// intersections and partial turns, not their parts' boxes) if the tree
+    /// is bounded, else the box of its bounded primitives (a halfspace
+    /// floor is drawn but not framed).
     pub fn framing_bounds(&self) -> Aabb {
-        let b = self.csg.bounds();
-        if b.is_bounded() || b.is_empty() {
+        if let Some(b) = self.framed {
             return b;
+        }
+        let b = self.csg.bounds();
+        if b.is_empty() {
+            return b;
+        }
+        if b.is_bounded() {
+            return self.csg.tight_bounds();
         }
         self.csg
             .prims

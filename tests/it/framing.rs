@@ -77,3 +77,63 @@ fn a_two_d_model_is_framed_flat() {
     close(lo, DVec3::ZERO, 1e-9, "low corner");
     close(hi, DVec3::new(4.0, 3.0, 0.0), 1e-9, "high corner");
 }
+
+/// The default camera's box and where it looks.
+fn default_framing(path: &str) -> (DVec3, DVec3, DVec3) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let scene = load_csg(&Source::new(path, &text)).unwrap();
+    let b = scene.framing_bounds();
+    (b.min, b.max, scene.view(800, 600).lookat)
+}
+
+#[test]
+fn the_default_camera_frames_the_sector_not_the_ring() {
+    let (lo, hi, at) = default_framing("tests/scenes/ring_sector.csg");
+    let a = 5f64.to_radians();
+    let step = 460.0 / 64.0 / 64.0;
+    let (want_lo, want_hi) = (
+        DVec3::new(220.0 * a.cos(), 0.0, 0.0),
+        DVec3::new(230.0, 230.0 * a.sin(), 10.0),
+    );
+    close(lo, want_lo, 2.0 * step, "low corner");
+    close(hi, want_hi, 2.0 * step, "high corner");
+    close(at, 0.5 * (want_lo + want_hi), 2.0 * step, "where it looks");
+}
+
+#[test]
+fn the_default_camera_frames_what_the_slabs_leave() {
+    // The ball of radius 14 at (10, 10, 10) with x < 4, y < 3, z < 5 reaches
+    // x = 10 - sqrt(196 - 7² - 5²) (nearest at y = 3, z = 5), and so on; the
+    // cube's corner gives the high sides.
+    let (lo, hi, _) = default_framing("tests/scenes/cut_corner.csg");
+    let want_lo = DVec3::new(
+        10.0 - 122f64.sqrt(),
+        10.0 - 135f64.sqrt(),
+        10.0 - 111f64.sqrt(),
+    );
+    let want_hi = DVec3::new(4.0, 3.0, 5.0);
+    // The high sides are exact far points (the cube's corner, in no slab).
+    close(hi, want_hi, 1e-12, "high corner");
+    // The low ones are the ball's tips between two slabs, which the rays
+    // through a 64 x 64 grid over the box find within two steps of it; never
+    // beyond (the rays find points of the surface).
+    let slack = 2.0 * (want_hi - want_lo).max_element() / 64.0;
+    close(lo, want_lo, slack, "low corner");
+    assert!(
+        lo.cmpge(want_lo - 1e-12).all(),
+        "{lo} lies beyond {want_lo}"
+    );
+}
+
+#[test]
+fn a_floor_is_drawn_but_the_default_camera_frames_the_rest() {
+    // A halfspace at the top level is unbounded: the bounded leaves' box.
+    let scene = load_csg(&Source::new(
+        "f.csg",
+        "halfspace();\ntranslate([0, 0, 3]) sphere(2);\n",
+    ))
+    .unwrap();
+    let b = scene.framing_bounds();
+    close(b.min, DVec3::new(-2.0, -2.0, 1.0), 1e-12, "low corner");
+    close(b.max, DVec3::new(2.0, 2.0, 5.0), 1e-12, "high corner");
+}

@@ -121,9 +121,9 @@ def silhouette_mismatch(a, scene):
 
     w, h = a.size.split("x")
     with tempfile.TemporaryDirectory() as work:
-        mask, img, pov, pimg = (os.path.join(work, f) for f in ("m.png", "c.png", "s.pov", "p.png"))
+        mask, img, pov, pimg, dump = (os.path.join(work, f) for f in ("m.png", "c.png", "s.pov", "p.png", "s.json"))
         subprocess.run([a.csgrt, scene, "--size", a.size, "--spp", "1", "--mask", mask,
-                        "-o", img, "--export-pov", pov, "-q"], check=True)
+                        "-o", img, "--export-pov", pov, "--dump-scene", dump, "-q"], check=True)
         subprocess.run(["povray", f"+I{pov}", f"+O{pimg}", f"+W{w}", f"+H{h}", "+FN", "-D", "-A",
                         "File_Gamma=1.0"], check=True, capture_output=True)
         # The oracle's own reading of the file: its camera, background, mesh.
@@ -136,7 +136,7 @@ def silhouette_mismatch(a, scene):
                              "the POV-Ray silhouette rule cannot be used on this scene")
         cw, ch = int(w), int(h)
         caster = oracle.Caster(sc, ORACLE_SEGMENTS)
-        rays = oracle.camera_rays(sc.view(cw, ch), cw, ch)
+        rays = oracle.camera_rays(sc.view(cw, ch, oracle.framed_box(dump)), cw, ch)
         omask = np.array([caster.cast(o, v) is not None for o, v in rays]).reshape(ch, cw)
         edge = oracle.mixed(omask)
         out = {}

@@ -61,6 +61,7 @@ MUTANTS = {
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
     "outline_first_loop_only": (["tests/openscad/offsets.csg"], False),
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
+    "framing_loose": (["tests/scenes/ring_sector.csg"], False),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)

@@ -36,6 +36,7 @@ import tempfile
 import numpy as np
 
 from tools.oracle import scene as reader  # noqa: E402
+from tools.oracle.oracle import ray_sets  # noqa: E402
 
 WIDTH, HEIGHT = 40, 30
 
@@ -754,11 +755,15 @@ def check(path, binary):
     with tempfile.TemporaryDirectory() as work:
         out = os.path.join(work, "s.pov")
         image = os.path.join(work, "s.png")
+        dump = os.path.join(work, "s.json")
         subprocess.run(
-            [binary, path, "--size", f"{WIDTH}x{HEIGHT}", "--export-pov", out, "-o", image, "-q"], check=True
+            [binary, path, "--size", f"{WIDTH}x{HEIGHT}", "--export-pov", out, "-o", image, "--dump-scene", dump, "-q"],
+            check=True,
         )
         with open(out) as f:
             text = f.read()
+        # The box csgrt framed (the oracle checks it against its own mesh).
+        framed = ray_sets.framed_box(dump)
         if TWIST_ERROR in text:
             # POV-Ray has no twisted prism: the export must stop POV-Ray
             # with the reason, and only for a scene that twists.
@@ -788,7 +793,7 @@ def check(path, binary):
         sdl = read_sdl(text)
     bad = []
     # Camera, lights, background.
-    eye, lookat, up, fov = sc.view(WIDTH, HEIGHT)
+    eye, lookat, up, fov = sc.view(WIDTH, HEIGHT, framed)
     cam = sdl["camera"]
     for k, want in (("location", eye), ("look_at", lookat), ("sky", up), ("angle", fov), ("right", WIDTH / HEIGHT)):
         if not close(cam[k], want):

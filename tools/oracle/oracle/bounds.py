@@ -9,7 +9,7 @@ import numpy as np
 from tools.oracle import scene as reader
 from . import mesh
 
-__all__ = ['COLOUR_TOLERANCE', 'CROSS_SECTION_GRID', 'FP_ANGLE', 'GROW_SLACK', 'QUAD_SAMPLES', 'SHADOW_EDGES', 'SHADOW_EXTENT', 'SPHERE_FACTOR', 'bands', 'bezier_eval_rows', 'convex_parts', 'curvature_radius', 'ellipse_singular_values', 'extrusion_curvature', 'extrusion_face', 'extrusion_facets', 'extrusion_facets_of', 'face_class', 'facet_angle', 'facet_distance', 'feature_distance', 'feature_distances', 'features', 'kite_reach', 'largest_radius', 'largest_radius_of', 'object_point', 'quad_facets', 'quad_min_radius', 'quads', 'seed_of', 'seg_arrays', 'svg_slack', 'twist_surface', 'twisted_facets']
+__all__ = ['COLOUR_TOLERANCE', 'CREASE', 'CROSS_SECTION_GRID', 'FP_ANGLE', 'GROW_SLACK', 'QUAD_SAMPLES', 'SHADOW_EDGES', 'SHADOW_EXTENT', 'SPHERE_FACTOR', 'bands', 'bezier_eval_rows', 'convex_parts', 'curvature_radius', 'ellipse_singular_values', 'extrusion_curvature', 'extrusion_face', 'extrusion_facets', 'extrusion_facets_of', 'face_class', 'facet_angle', 'facet_distance', 'feature_distance', 'feature_distances', 'features', 'hull_bridges', 'kite_reach', 'largest_radius', 'largest_radius_of', 'nearest_piece', 'object_point', 'quad_facets', 'quad_min_radius', 'quads', 'seed_of', 'seg_arrays', 'svg_slack', 'twist_surface', 'twisted_facets']
 
 
 SPHERE_FACTOR = 3.0  # measured 2.69, rounded up
@@ -388,8 +388,23 @@ def curvature_radius(leaf, x):
     return math.inf
 
 
-def face_class(leaf, x):
-    """Which smooth piece of the leaf's surface world point x is on."""
+CREASE = 999_999
+
+
+def nearest_piece(cand, slack):
+    """The index of the least of `cand` (distances to smooth pieces), or
+    CREASE when another is within `slack` of it: a point that near two
+    pieces may lie on either in a mesh whose surface moves by up to
+    `slack` (the faceting distance), so the pixel is an edge."""
+    order = np.argsort(cand)
+    if len(cand) > 1 and cand[order[1]] - cand[order[0]] <= slack:
+        return CREASE
+    return int(order[0])
+
+
+def face_class(leaf, x, slack=0.0):
+    """Which smooth piece of the leaf's surface world point x is on (see
+    nearest_piece for `slack`: 0 a mesh's own crease)."""
     p = leaf.params
     if leaf.kind == "cube":
         q = object_point(leaf, x)
@@ -405,9 +420,10 @@ def face_class(leaf, x):
         f = (q[2] - z0) / p["h"]
         rz = p["r1"] + (p["r2"] - p["r1"]) * f
         d = [abs(q[2] - z0), abs(q[2] - z1), abs(math.hypot(q[0], q[1]) - rz)]
-        return int(np.argmin(d))
+        # In object units: the world slack over the smallest stretch.
+        return nearest_piece(d, slack / mesh.svd(leaf)[1])
     if leaf.kind in reader.EXTRUSIONS:
-        return extrusion_face(leaf, object_point(leaf, x))
+        return extrusion_face(leaf, object_point(leaf, x), slack / mesh.svd(leaf)[1])
     if leaf.kind == "polyhedron":
         # The face whose plane (through its first point) is nearest;
         # planes computed once a leaf.
@@ -448,7 +464,33 @@ def features(f):
     if f[0] == "op" and len(f) == 4 and f[3][0] == "bands":
         # A curved outline offset: its edges' faces lie |d| from them.
         return [("band", x, f[3][1]) for x in features(f[2][0])] + [x for k in f[2][1:] for x in features(k)]
-    return [x for k in f[2] for x in features(k)]
+    own = [x for k in f[2] for x in features(k)]
+    if f[0] == "op" and f[1] == "hull":
+        return own + hull_bridges(f, own)
+    return own
+
+
+HULL_BRIDGES = {}
+
+
+def hull_bridges(f, parts):
+    """A 2-D hull's own edges, which lie on none of its parts' boundaries
+    (a bridge from one part to the next): the edges of its fine mesh (4096
+    segments a circle) whose midpoint is farther than 10^-6 of its size
+    from every part's piece (computed once)."""
+    if id(f) not in HULL_BRIDGES:
+        polys = [np.asarray(l) for l in mesh.cross_section(f, 4096).to_polygons()]
+        edges = [(l[i], l[(i + 1) % len(l)]) for l in polys for i in range(len(l))]
+        pts = np.concatenate(polys) if polys else np.zeros((1, 2))
+        tol = 1e-6 * max(1.0, float(np.abs(pts).max()))
+        out = []
+        if parts:
+            arr = seg_arrays(parts)
+            for a, b in edges:
+                if min(feature_distances(arr, (a + b) / 2)) > tol:
+                    out.append(("seg", a, b))
+        HULL_BRIDGES[id(f)] = (f, out)
+    return HULL_BRIDGES[id(f)][1]
 
 
 QUAD_SAMPLES = np.linspace(0.0, 1.0, 257)[:, None]
@@ -474,9 +516,10 @@ def feature_distance(ft, q):
     return abs(r - 1) * float(np.linalg.svd(A, compute_uv=False)[-1])
 
 
-def extrusion_face(leaf, q):
+def extrusion_face(leaf, q, slack=0.0):
     """Caps 0 and 1 (or the cuts of a partial turn), 2 + k the boundary
-    piece k of the 2-D tree that the side over it comes from."""
+    piece k of the 2-D tree that the side over it comes from (CREASE
+    within `slack` of two)."""
     p = leaf.params
     if leaf.kind == "linear_extrude":
         h, z0 = p["h"], p["z0"]
@@ -492,7 +535,7 @@ def extrusion_face(leaf, q):
             w = 1 + (p["scale"] - 1) * (q[2] - z0) / h
             q2 = q[:2] / w if w > 0 else q[:2] * 0
         cand = [abs(q[2] - z0), abs(q[2] - z0 - h)] + feature_distances(fts, q2)
-        return int(np.argmin(cand))
+        return nearest_piece(cand, slack)
     f, flip = reader.revolve_setup(p)
     # Points off the axis are nearest the same piece of a polygon whether
     # or not it was cut to x >= 0 first.
@@ -504,7 +547,7 @@ def extrusion_face(leaf, q):
     if p["angle"] != 360:
         cuts = [abs(float(n @ q)) for n in reader.wedge_normals(p["angle"], flip)]
     cand = cuts + feature_distances(fts, q2)
-    return int(np.argmin(cand))
+    return nearest_piece(cand, slack)
 
 
 def seg_arrays(fts):

@@ -15,7 +15,7 @@ from . import cast
 from . import mesh
 from . import ray_sets
 
-__all__ = ['SIDES', 'Side', 'check_scene', 'colour_check', 'compare', 'judge', 'mixed', 'off_surface', 'same_outputs', 'towards', 'verdict']
+__all__ = ['SIDES', 'Side', 'check_scene', 'colour_check', 'compare', 'framing_problems', 'judge', 'mixed', 'off_surface', 'same_outputs', 'towards', 'verdict']
 
 
 # --------------------------------------------------------------------------
@@ -75,7 +75,11 @@ class Side:
             self.pixels.append(m)
             if m is not None:
                 self.hit[j, i] = True
-                surf[j, i] = (m[2].id * 1_000_000 + bounds.face_class(m[2], o + m[0] * v)) if m[2] else -2
+                if m[2]:
+                    slack = bounds.facet_distance(m[2], n)
+                    surf[j, i] = m[2].id * 1_000_000 + bounds.face_class(m[2], o + m[0] * v, slack)
+                else:
+                    surf[j, i] = -2
         self.edge = mixed(surf)
         self.rays = [self.caster.cast(o, v) for o, v in rays]
 
@@ -269,18 +273,19 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_faul
         sc = reader.read(path)
     except reader.ReadError as e:
         return [], [f"the oracle cannot read it: {e}"]
-    view = sc.view(w, h)
-    pix_rays = ray_sets.camera_rays(view, w, h)
     rays = ray_sets.random_rays(sc, nrays, bounds.seed_of(name))
     with tempfile.TemporaryDirectory() as work:
         try:
-            cmask, img, traced = ray_sets.run_csgrt(cmd, path, work, w, h, pix_rays + rays, env)
-        except (subprocess.CalledProcessError, RuntimeError, ValueError) as e:
+            cmask, img, framed = ray_sets.render_csgrt(cmd, path, work, w, h, env)
+            # The pixels of csgrt's own framing, whose box is checked below.
+            pix_rays = ray_sets.camera_rays(sc.view(w, h, framed), w, h)
+            traced = ray_sets.trace_csgrt(cmd, path, work, pix_rays + rays, env)
+        except (subprocess.CalledProcessError, RuntimeError, ValueError, KeyError) as e:
             return [], [f"csgrt failed: {e}"]
     pix_traced, traced = traced[: len(pix_rays)], traced[len(pix_rays) :]
     rows = []
     for n in segs:
-        key = (os.path.abspath(path), w, h, nrays, n)
+        key = (os.path.abspath(path), w, h, nrays, n, None if framed is None else repr(framed))
         if key not in SIDES:
             SIDES[key] = Side(sc, n, w, h, pix_rays, rays)
         side = SIDES[key]
@@ -289,7 +294,48 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_faul
         )
         if first_fault and rows[-1]["off_edge"]:
             break
-    return rows, verdict(rows)
+    framing = framing_problems(sc, framed, side)
+    if first_fault and framing:
+        return rows, framing
+    return rows, framing + verdict(rows)
+
+
+def framing_problems(sc, framed, side):
+    """What is wrong with the box csgrt's default camera framed (none when
+    the file gives a camera): it must be the box of the result itself.
+    With a halfspace at the top level, the union of the bounded leaves'
+    exact boxes. Otherwise each side within the faceting distance of the
+    side of the oracle's own mesh of the result at side.n (the largest of
+    its leaves': the mesh stands off the exact solid by no more, and so
+    does its box), less on the inside by up to 2/64 of the box's extent
+    along that axis: csgrt finds a side no exact far point shows with
+    rays through a 64×64 grid over the box grown by one step
+    (src/csg/extent.rs), which meets the surface within a step of its far
+    point where no feature is thinner than a step."""
+    if framed is None:
+        return []
+    lo, hi = framed
+    size = float(np.linalg.norm(hi - lo)) if np.all(np.isfinite(hi - lo)) else 1.0
+    tiny = 1e-9 * max(size, float(np.abs(np.concatenate([lo, hi])).max(initial=0.0)), 1.0)
+    if side.caster.outside is not None:
+        want_lo, want_hi = reader.bounded_box(sc)
+        ok = np.allclose(lo, want_lo, rtol=0, atol=tiny) and np.allclose(hi, want_hi, rtol=0, atol=tiny)
+        return [] if ok else [f"the default camera framed {lo}..{hi}, the bounded leaves' box is {want_lo}..{want_hi}"]
+    if side.caster.solid.is_empty():
+        return [] if np.any(lo > hi) else [f"the default camera framed {lo}..{hi}, the result is empty"]
+    b = side.caster.solid.bounding_box()
+    mlo, mhi = np.array(b[:3], dtype=float), np.array(b[3:], dtype=float)
+    fd = max((bounds.facet_distance(x, side.n) for x in sc.leaves), default=0.0)
+    inside = 2.0 * (hi - lo) / 64
+    bad = (
+        np.any(lo < mlo - fd - tiny)
+        or np.any(lo > mlo + fd + inside + tiny)
+        or np.any(hi > mhi + fd + tiny)
+        or np.any(hi < mhi - fd - inside - tiny)
+    )
+    if bad:
+        return [f"the default camera framed {lo}..{hi}, the result's mesh box at n = {side.n} is {mlo}..{mhi} (within {fd:.3g}, less {inside} inside)"]
+    return []
 
 
 def same_outputs(path, cmd, other, w, h, nrays, env=None):
@@ -300,15 +346,17 @@ def same_outputs(path, cmd, other, w, h, nrays, env=None):
     meshing the scene again."""
     name = os.path.splitext(os.path.basename(path))[0]
     sc = reader.read(path)
-    view = sc.view(w, h)
-    rays = ray_sets.camera_rays(view, w, h) + ray_sets.random_rays(sc, nrays, bounds.seed_of(name))
     outs = []
     for c, e in ((cmd, env), (other, None)):
         with tempfile.TemporaryDirectory() as work:
-            cmask, img, traced = ray_sets.run_csgrt(c, path, work, w, h, rays, e)
-        outs.append((np.asarray(cmask), np.asarray(img), traced))
-    (m0, i0, t0), (m1, i1, t1) = outs
+            cmask, img, framed = ray_sets.render_csgrt(c, path, work, w, h, e)
+            rays = ray_sets.camera_rays(sc.view(w, h, framed), w, h) + ray_sets.random_rays(sc, nrays, bounds.seed_of(name))
+            traced = ray_sets.trace_csgrt(c, path, work, rays, e)
+        outs.append((np.asarray(cmask), np.asarray(img), traced, framed))
+    (m0, i0, t0, f0), (m1, i1, t1, f1) = outs
     bad = []
+    if repr(f0) != repr(f1):
+        bad.append("the framed boxes differ")
     if not np.array_equal(m0, m1):
         bad.append("the masks differ")
     if not np.array_equal(i0, i1):

@@ -1,6 +1,7 @@
 """The rays compared: the camera's through every pixel centre, random rays
 from all around, and csgrt's answers for them (--trace-rays)."""
 
+import json
 import math
 import os
 import subprocess
@@ -10,7 +11,7 @@ from PIL import Image
 
 from tools.oracle import scene as reader
 
-__all__ = ['camera_rays', 'random_rays', 'run_csgrt']
+__all__ = ['camera_rays', 'framed_box', 'random_rays', 'render_csgrt', 'trace_csgrt']
 
 
 # --------------------------------------------------------------------------
@@ -52,14 +53,33 @@ def random_rays(sc, count, seed):
     return out
 
 
-def run_csgrt(cmd, scene, work, w, h, rays, env=None):
-    """csgrt's image, mask and traced rays."""
+def render_csgrt(cmd, scene, work, w, h, env=None):
+    """csgrt's mask, image, and the box its default camera framed (its
+    `--dump-scene`'s `framed`: None when the file gives a camera)."""
     mask, image = os.path.join(work, "mask.png"), os.path.join(work, "image.png")
+    dump = os.path.join(work, "scene.json")
     subprocess.run(
-        [*cmd, scene, "--size", f"{w}x{h}", "--spp", "1", "--mask", mask, "-o", image, "-q"], check=True, env=env
+        [*cmd, scene, "--size", f"{w}x{h}", "--spp", "1", "--mask", mask, "-o", image, "--dump-scene", dump, "-q"],
+        check=True,
+        env=env,
     )
     m = np.asarray(Image.open(mask).convert("L")) == 255
     img = np.asarray(Image.open(image).convert("RGB")).astype(int)
+    return m, img, framed_box(dump)
+
+
+def framed_box(dump):
+    """(min, max) of the box a `--dump-scene` file says the default camera
+    framed, or None."""
+    with open(dump) as f:
+        framed = json.load(f).get("framed")
+    if framed is None:
+        return None
+    return np.array(framed["min"], dtype=float), np.array(framed["max"], dtype=float)
+
+
+def trace_csgrt(cmd, scene, work, rays, env=None):
+    """csgrt's answers for rays: None for a miss, else (t, normal)."""
     ray_file = os.path.join(work, "rays.txt")
     with open(ray_file, "w") as f:
         for o, v in rays:
@@ -76,4 +96,4 @@ def run_csgrt(cmd, scene, work, w, h, rays, env=None):
         else:
             t, nx, ny, nz = map(float, line.split())
             traced.append((t, np.array([nx, ny, nz])))
-    return m, img, traced
+    return traced

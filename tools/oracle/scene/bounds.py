@@ -242,8 +242,8 @@ def framing_box(scene):
     return bounded_box(scene)
 
 
-def framing(scene, width, height, fov=30.0, fill=0.9):
-    lo, hi = framing_box(scene)
+def framing(scene, width, height, framed=None, fov=30.0, fill=0.9):
+    lo, hi = framing_box(scene) if framed is None else framed
     if np.any(lo > hi) or not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):
         lo, hi = -np.ones(3), np.ones(3)
     center = (lo + hi) / 2

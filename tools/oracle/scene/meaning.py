@@ -120,9 +120,12 @@ class Scene:
         self.lights = []
         self.leaves = []
 
-    def view(self, width, height):
-        """(eye, lookat, up, fov) to render at width x height."""
-        return self.camera if self.camera else bounds.framing(self, width, height)
+    def view(self, width, height, framed=None):
+        """(eye, lookat, up, fov) to render at width x height: the file's
+        camera, else the framing of `framed` (the box csgrt says its
+        default camera framed, checked by the oracle against its own mesh)
+        or, without it, of the tree's box."""
+        return self.camera if self.camera else bounds.framing(self, width, height, framed)
 
 
 def bind(path, s):
