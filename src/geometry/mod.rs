@@ -15,6 +15,7 @@ pub mod halfspace;
 pub mod lathe;
 pub mod mesh;
 pub mod mesh_bvh;
+pub mod mesh_cells;
 pub mod offset_prism;
 pub mod polytope;
 pub mod prism;

@@ -294,7 +294,7 @@ impl Polytope {
 }
 
 /// n·p − d, 0 within `tol`.
-fn side(n: DVec3, d: f64, tol: f64, p: DVec3) -> f64 {
+pub(super) fn side(n: DVec3, d: f64, tol: f64, p: DVec3) -> f64 {
     let s = n.dot(p) - d;
     if s.abs() <= tol {
         0.0
@@ -359,8 +359,8 @@ pub fn stretch(m: &DAffine3) -> f64 {
 
 /// Leaf `shape` placed by `m` as convex polytopes within `eps` of it
 /// (absolute planes' thickness `tol`); `None` for a solid this cannot cut
-/// into polytopes (curved outlines, turns, tori, twists, non-convex
-/// meshes, unbounded solids).
+/// into polytopes (a mesh that is not closed, or needs too many cells;
+/// unbounded solids).
 pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<Polytope>> {
     match shape {
         Shape::Cuboid(c) => {
@@ -454,7 +454,11 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                 / 6.0;
             let full = hull.volume();
             let size = (hull.bounds.max - hull.bounds.min).max_element();
-            ((full - own).abs() <= tol * size * size).then(|| vec![hull])
+            if (full - own).abs() <= tol * size * size {
+                return Some(vec![hull]);
+            }
+            // Not convex: its cells, exactly.
+            super::mesh_cells::mesh_cells(&w, &d.tris, tol)
         }
         Shape::Prism(q) => {
             // Curved edges (text, SVG) as chords within eps of them.

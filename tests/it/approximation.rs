@@ -304,3 +304,36 @@ fn turns_and_twists_are_cut_into_polytopes_with_a_note() {
         assert!(stats.contains("\"approximated_nodes\": 1"), "{stats}");
     }
 }
+
+/// An L of area 3 (the square [0, 2]² less [1, 2]²), 1 high, as a
+/// polyhedron: not convex.
+const ELL: &str = "polyhedron(points = [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0], [0, 0, 1], [2, 0, 1], [2, 1, 1], [1, 1, 1], [1, 2, 1], [0, 2, 1]], faces = [[0, 1, 2, 3, 4, 5], [11, 10, 9, 8, 7, 6], [0, 6, 7, 1], [1, 7, 8, 2], [2, 8, 9, 3], [3, 9, 10, 4], [4, 10, 11, 5], [5, 11, 6, 0]]);";
+
+#[test]
+fn a_polyhedron_that_is_not_convex_is_cut_into_cells_of_its_volume() {
+    // Exact: the cells of its faces' planes, whatever eps.
+    let p = pieces(&format!("{ELL}\n"), 1.0, false);
+    assert!(p.len() >= 2, "{} cells", p.len());
+    assert!((volume(&p) - 3.0).abs() < 1e-9, "{}", volume(&p));
+}
+
+#[test]
+fn two_polyhedra_that_are_not_convex_sum_to_their_staircase() {
+    // L ⊕ L with L = [0,2]×[0,1] ∪ [0,1]×[0,2] (× [0, 1]): the union of the
+    // rectangles' sums, [0,4]×[0,2], [0,3]×[0,3] and [0,2]×[0,4] (× [0, 2]):
+    // a section of area 4·2 + 3·1 + 2·1 = 13, exactly (no faceting).
+    let text = format!("minkowski() {{\n  {ELL}\n  {ELL}\n}}\n");
+    let a = area(&text, -1.0, 5.0, 600);
+    assert!((a - 13.0).abs() < 1e-9, "{a}");
+}
+
+#[test]
+fn the_hull_of_a_difference_with_such_a_polyhedron_is_the_hull_of_what_is_left() {
+    // The L less x ≥ 1.5, y ≤ 0.5: its hull's section is the polygon
+    // (0,0), (1.5,0), (2,0.5), (2,1), (1,2), (0,2), of area 3.375.
+    let text = format!(
+        "hull() difference() {{\n  {ELL}\n  translate([1.5, -1, -1]) cube([1, 1.5, 3]);\n}}\n"
+    );
+    let a = area(&text, -0.5, 2.5, 3000);
+    assert!((a - 3.375).abs() < 1e-5, "{a}");
+}

@@ -10,9 +10,10 @@
 //! within `resolve::approximate::APPROXIMATION` of its size (`Csg::convex_pieces`), whose
 //! hull (quickhull) or whose pieces' sums stand for it — the certified
 //! approximation, noted once on stderr with its error in pixels and
-//! counted by `--stats-json`. What is still not supported (an unbounded
-//! solid, a non-convex mesh in a sum, a turn or a torus inside a
-//! difference) is said at the statement. The children are read once, to be
+//! counted by `--stats-json`. A mesh that is not convex is cut exactly
+//! into the cells of its faces' planes (`geometry::mesh_cells`). What is
+//! still not supported (an unbounded solid, a mesh that is not closed in a
+//! sum or a combination) is said at the statement. The children are read once, to be
 //! measured, and dropped; the solid takes the statement's colour (OpenSCAD
 //! shows a hull in one colour). A 2-D hull extruded straight or tapered is
 //! the hull of its children's extrusions: a section of the extrusion of a
@@ -62,8 +63,8 @@ impl Resolver<'_> {
             NodeKind::Leaf(i) => {
                 let shape = &self.b.csg.prims[*i as usize].shape;
                 let cuttable = if summed {
-                    let whole = hulls_of(shape).is_some() || is_convex(shape);
-                    !whole && !matches!(shape, Shape::Mesh(_))
+                    // (A mesh that is not convex: its cells, exactly.)
+                    !(hulls_of(shape).is_some() || is_convex(shape))
                 } else {
                     // A hull takes any bounded leaf by its support point;
                     // one with none (a twist) is cut.
