@@ -51,6 +51,7 @@ pub const NAMES: &[&str] = &[
     "sum_edges_skipped",
     "turn_wedges_coarse",
     "twist_pieces_reversed",
+    "mesh_hulled",
 ];
 
 /// Whether the fault `name` is switched on.

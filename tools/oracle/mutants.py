@@ -85,6 +85,7 @@ MESHES = {
     "pieces_uncut": "approximated",
     "climb_once": "approximated_hull",
     "twist_pieces_reversed": "approximated_twisted",
+    "mesh_hulled": "approximated_polyhedra",
 }
 
 # fault -> arguments of tools/oracle/approximation.py (the certified
