@@ -28,8 +28,8 @@ What is compared, everything in the verdict:
 A pixel can only disagree where the picture has an edge: the oracle's 3x3
 neighbourhood holds a hit and a miss, or two surfaces (two leaves, or two
 faces of one leaf: a cube's sides, a cylinder's caps and side; a hit
-within the leaf's faceting distance of two such faces is a crease of its
-own, since the mesh may put it on either). Every
+within the leaf's faceting distance of both a cap and a side is a crease
+of its own, since the mesh may put it on either). Every
 disagreeing pixel must be such an edge pixel, at every n; and the number of
 disagreeing pixels and rays must not grow as n doubles (within 2 of grid
 noise) and must shrink overall from the coarsest n to the finest, unless

@@ -392,12 +392,14 @@ CREASE = 999_999
 
 
 def nearest_piece(cand, slack):
-    """The index of the least of `cand` (distances to smooth pieces), or
-    CREASE when another is within `slack` of it: a point that near two
-    pieces may lie on either in a mesh whose surface moves by up to
-    `slack` (the faceting distance), so the pixel is an edge."""
+    """The index of the least of `cand` (distances to smooth pieces: the
+    two caps first, then the sides), or CREASE when it is a cap and the
+    next a side or the other way round, within `slack` of each other: a
+    point that near the rim may lie on either in a mesh whose surface
+    moves by up to `slack` (the faceting distance), so the pixel is an
+    edge. (Two sides meet at an angle the mesh keeps, or smoothly.)"""
     order = np.argsort(cand)
-    if len(cand) > 1 and cand[order[1]] - cand[order[0]] <= slack:
+    if len(cand) > 2 and (order[0] < 2) != (order[1] < 2) and cand[order[1]] - cand[order[0]] <= slack:
         return CREASE
     return int(order[0])
 
