@@ -561,8 +561,57 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             }
             Some(out)
         }
+        // A hull or a sum nested in what is cut: its parts' polytopes
+        // hulled, summed corner by corner.
+        Shape::Convex(c) => summed_hulls(&c.hulls, m, eps, tol).map(|p| vec![p]),
+        // An exact union of primitives (a rounded box): theirs.
+        Shape::Rounded(r) => {
+            let mut out = Vec::new();
+            for q in &r.pieces {
+                out.extend(pieces_of(&q.shape, &(*m * q.xf.to_world), eps, tol)?);
+            }
+            Some(out)
+        }
         _ => None,
     }
+}
+
+/// The most corner sums a nested Minkowski sum's polytope is hulled from.
+pub const MAX_SUM_CORNERS: usize = 2_000_000;
+
+/// The sum of the hulls of `hulls`' parts (placed by `m`) as one polytope
+/// within `eps`: each part's polytopes within eps/k (k hulls summed: a
+/// hull moves no more than its parts, a sum by the sum of its operands'),
+/// their corners hulled, each hull's corners added to every corner of the
+/// sum so far and hulled again. `None` when a part cannot be cut, the sum
+/// is flat or needs more than [`MAX_SUM_CORNERS`] corner sums.
+fn summed_hulls(
+    hulls: &[Vec<super::convex::ConvexPart>],
+    m: &DAffine3,
+    eps: f64,
+    tol: f64,
+) -> Option<Polytope> {
+    let e = eps / hulls.len().max(1) as f64;
+    let mut sum = vec![DVec3::ZERO];
+    for h in hulls {
+        let mut pts = Vec::new();
+        for part in h {
+            for p in pieces_of(&part.shape, &(*m * part.to_world), e, tol)? {
+                pts.extend(p.vertices());
+            }
+        }
+        // A flat part (a disc) has no hull of its own: its corners serve.
+        let corners = Polytope::hull(&pts, tol).map_or(pts, |p| p.vertices());
+        if sum.len() * corners.len() > MAX_SUM_CORNERS {
+            return None;
+        }
+        let all: Vec<DVec3> = sum
+            .iter()
+            .flat_map(|&a| corners.iter().map(move |&b| a + b))
+            .collect();
+        sum = Polytope::hull(&all, tol).map_or(all, |p| p.vertices());
+    }
+    Polytope::hull(&sum, tol)
 }
 
 /// Convex polygons whose union is a straight figure: a convex loop

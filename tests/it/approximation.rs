@@ -337,3 +337,17 @@ fn the_hull_of_a_difference_with_such_a_polyhedron_is_the_hull_of_what_is_left()
     let a = area(&text, -0.5, 2.5, 3000);
     assert!((a - 3.375).abs() < 1e-5, "{a}");
 }
+
+#[test]
+fn hulls_and_sums_nested_in_what_is_cut_are_their_parts_polytopes() {
+    // The inner hull of two 2-cubes 4 apart is the box [0,6]×[0,2]×[0,2];
+    // less z ≥ 1.5 it is [0,6]×[0,2]×[0,1.5], its own hull: the section
+    // z = ½ has area 12. The inner sum of two cubes, [0,3]³, less x ≥ 2:
+    // [0,2]×[0,3], area 6. Boxes only: exact.
+    let hulled = "hull() difference() {\n  hull() { cube(2); translate([4, 0, 0]) cube(2); }\n  translate([-1, -1, 1.5]) cube(10);\n}\n";
+    let a = area(hulled, -1.0, 3.0, 400);
+    assert!((a - 12.0).abs() < 1e-9, "{a}");
+    let summed = "hull() difference() {\n  minkowski() { cube(2); cube(1); }\n  translate([2, -1, -1]) cube(10);\n}\n";
+    let a = area(summed, -1.0, 4.0, 500);
+    assert!((a - 6.0).abs() < 1e-9, "{a}");
+}
