@@ -84,14 +84,10 @@ pub fn scene_json(scene: &Scene, cam: &CameraSpec, width: u32, height: u32) -> V
                        crate::scene::Projection::Perspective => "perspective",
                        crate::scene::Projection::Orthographic => "orthographic",
                    }},
-        "framed": match (scene.framed, &scene.camera) {
-            (Some(b), _) => json!({"min": v3(b.min), "max": v3(b.max)}),
-            (None, None) => {
-                let b = scene.framing_bounds();
-                json!({"min": v3(b.min), "max": v3(b.max)})
-            }
-            _ => Value::Null,
-        },
+        "framed": scene
+            .framed
+            .or_else(|| scene.camera.is_none().then(|| scene.framing_bounds()))
+            .map_or(Value::Null, |b| json!({"min": v3(b.min), "max": v3(b.max)})),
         "background": v3(scene.background),
         "lights": lights,
         "materials": materials,

@@ -8,7 +8,7 @@
 //! moved: a hull, a Minkowski sum or a shadow of a non-convex polyhedron
 //! then takes them as it takes any convex pieces.
 
-use super::polytope::{side, Polytope};
+use super::polytope::{box_polytope, side, signed_volume, Polytope};
 use super::Aabb;
 use glam::DVec3;
 
@@ -28,14 +28,7 @@ struct Step {
 pub fn mesh_cells(w: &[DVec3], tris: &[[u32; 3]], tol: f64) -> Option<Vec<Polytope>> {
     // Its signed volume: below 0, its triangles are turned inward
     // (OpenSCAD's own order), and are taken the other way round.
-    let own = tris
-        .iter()
-        .map(|t| {
-            let [a, b, c] = t.map(|i| w[i as usize]);
-            a.dot(b.cross(c))
-        })
-        .sum::<f64>()
-        / 6.0;
+    let own = signed_volume(w, tris);
     let faces: Vec<Vec<DVec3>> = tris
         .iter()
         .map(|t| {
@@ -54,22 +47,15 @@ pub fn mesh_cells(w: &[DVec3], tris: &[[u32; 3]], tol: f64) -> Option<Vec<Polyto
     if faces.is_empty() || !bounds.is_bounded() {
         return None;
     }
-    // Its own box: each side a plane of its faces, which then leave it
-    // whole (within tol) rather than cut a sliver off.
-    let (lo, hi) = (bounds.min, bounds.max);
-    let corners: Vec<DVec3> = (0..8)
-        .map(|i| {
-            let pick = |k: usize| if i & k != 0 { hi } else { lo };
-            DVec3::new(pick(1).x, pick(2).y, pick(4).z)
-        })
-        .collect();
     // Faces taken in a scattered order: neighbours in the file are often
     // neighbours in space, and one plane after another of a strip cuts few
     // faces but balances nothing.
     let mut faces = scattered(faces);
     faces.reverse();
     let mut todo = vec![Step {
-        cell: Polytope::hull(&corners, tol)?,
+        // Its own box: each side a plane of its faces, which then leave
+        // it whole (within tol) rather than cut a sliver off.
+        cell: box_polytope(bounds.min, bounds.max, tol)?,
         faces,
     }];
     let mut inside = Vec::new();

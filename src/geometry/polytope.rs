@@ -442,16 +442,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             let w: Vec<DVec3> = d.verts.iter().map(|&p| m.transform_point3(p)).collect();
             let hull = Polytope::hull(&w, tol)?;
             // Convex when it fills its hull: the same volume.
-            let own = d
-                .tris
-                .iter()
-                .map(|t| {
-                    let [a, b, c] = t.map(|i| w[i as usize]);
-                    a.dot(b.cross(c))
-                })
-                .sum::<f64>()
-                .abs()
-                / 6.0;
+            let own = signed_volume(&w, &d.tris).abs();
             let full = hull.volume();
             let size = (hull.bounds.max - hull.bounds.min).max_element();
             // The fault: a mesh taken as its hull, convex or not.
@@ -732,14 +723,8 @@ fn convex_loops(loops: &[Vec<DVec2>]) -> Vec<Vec<DVec2>> {
     }
 }
 
-/// The part in box `b` (grown by `tol`) of the halfspace z ≤ 0 placed by
-/// `m`: the box's polytope clipped by the plane; `None` when nothing of
-/// the box is in it, or `m` flattens it.
-pub fn halfspace_in(m: &DAffine3, b: &Aabb, tol: f64) -> Option<Polytope> {
-    if b.is_empty() || !b.is_bounded() {
-        return None;
-    }
-    let (lo, hi) = (b.min - DVec3::splat(tol), b.max + DVec3::splat(tol));
+/// The box from `lo` to `hi` as a polytope.
+pub(super) fn box_polytope(lo: DVec3, hi: DVec3, tol: f64) -> Option<Polytope> {
     let corners: Vec<DVec3> = (0..8)
         .map(|i| {
             let pick = |k: usize, a: f64, z: f64| if i & k != 0 { z } else { a };
@@ -750,7 +735,29 @@ pub fn halfspace_in(m: &DAffine3, b: &Aabb, tol: f64) -> Option<Polytope> {
             )
         })
         .collect();
-    let boxed = Polytope::hull(&corners, tol)?;
+    Polytope::hull(&corners, tol)
+}
+
+/// The signed volume of triangles `tris` on corners `w` (positive when
+/// they are turned outward).
+pub(super) fn signed_volume(w: &[DVec3], tris: &[[u32; 3]]) -> f64 {
+    tris.iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|i| w[i as usize]);
+            a.dot(b.cross(c))
+        })
+        .sum::<f64>()
+        / 6.0
+}
+
+/// The part in box `b` (grown by `tol`) of the halfspace z ≤ 0 placed by
+/// `m`: the box's polytope clipped by the plane; `None` when nothing of
+/// the box is in it, or `m` flattens it.
+pub fn halfspace_in(m: &DAffine3, b: &Aabb, tol: f64) -> Option<Polytope> {
+    if b.is_empty() || !b.is_bounded() {
+        return None;
+    }
+    let boxed = box_polytope(b.min - DVec3::splat(tol), b.max + DVec3::splat(tol), tol)?;
     // The plane z = 0 placed: normal M⁻ᵀ·z, through m's origin.
     let n = m.matrix3.inverse().transpose() * DVec3::Z;
     let n = n.try_normalize()?;
