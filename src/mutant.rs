@@ -52,6 +52,10 @@ pub const NAMES: &[&str] = &[
     "turn_wedges_coarse",
     "twist_pieces_reversed",
     "mesh_hulled",
+    "svg_nested_popped",
+    "section_uncut",
+    "crossing_half_stroked",
+    "off_w_ignored",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -3,8 +3,9 @@
 //!
 //! What OpenSCAD reads: the `path`, `rect` (round corners as arcs),
 //! `circle`, `ellipse`, `line`, `polyline` and `polygon` elements outside
-//! `defs`, each under its own `transform` and its groups' (not the root
-//! `svg`'s). Fill and stroke colours are not looked at: every closed
+//! `defs`, each under its own `transform` and its groups' (not an
+//! `svg`'s; an `svg` inside the drawing as libsvg's stack leaves it, see
+//! [`read`]). Fill and stroke colours are not looked at: every closed
 //! outline is filled, and an open one — a `line`, a `polyline`, or a
 //! path's subpath whose ends lie more than 0.1 apart (when the path never
 //! closes with `z`, only those ended by a later `M`) — is stroked instead,
@@ -16,7 +17,8 @@
 //! the elements by union. `text`, `use`, `image` and the rest draw nothing.
 //! The page: `width` and `height` in mm (`px` at 96 per inch, a bare number
 //! at `dpi`, default 72), the `viewBox` mapped onto them under
-//! `preserveAspectRatio`; without a `viewBox` a user unit is a millimetre.
+//! `preserveAspectRatio`; without a `viewBox` a user unit is a millimetre
+//! (the last `svg` element's page places the drawing).
 //! y points down in the file and up in OpenSCAD: a point v of the file
 //! lands at (sx·(v.x − vx), sy·(−vy − v.y) + h) less the alignment, or
 //! about the centre of the drawing's box with `center`.
@@ -648,6 +650,105 @@ fn libsvg_steps(a: DVec2, seg: Seg, b: DVec2, out: &mut Vec<DVec2>) {
     }
 }
 
+/// The elements under (and with) `root` as the tags a stream reader meets:
+/// each opened (`true`) in document order and closed (`false`) after its
+/// children.
+fn tags<'a, 'i>(root: roxmltree::Node<'a, 'i>) -> Vec<(roxmltree::Node<'a, 'i>, bool)> {
+    let mut out = Vec::new();
+    let mut open: Vec<roxmltree::Node> = Vec::new();
+    for n in root.descendants().filter(|n| n.is_element()) {
+        while let Some(&top) = open.last() {
+            if n.parent() == Some(top) {
+                break;
+            }
+            out.push((top, false));
+            open.pop();
+        }
+        out.push((n, true));
+        open.push(n);
+    }
+    out.extend(open.into_iter().rev().map(|n| (n, false)));
+    out
+}
+
+/// The page an `svg` element sets in libsvg's reading: its height in mm,
+/// and — only where it has a `viewBox`, else those of the one before
+/// stay — the scale and origin of the box's units (and the alignment,
+/// where `preserveAspectRatio` aligns).
+#[derive(Clone, Copy, Debug)]
+struct Page {
+    height: f64,
+    scale: DVec2,
+    align: DVec2,
+    origin: DVec2,
+}
+
+impl Default for Page {
+    fn default() -> Self {
+        Page {
+            height: 0.0,
+            scale: DVec2::ONE,
+            align: DVec2::ZERO,
+            origin: DVec2::ZERO,
+        }
+    }
+}
+
+impl Page {
+    /// `import_svg.cc`'s reading of one `svg` element `n` at `dpi`.
+    fn set(&mut self, n: &roxmltree::Node, dpi: f64, line: usize) -> Result<(), SvgError> {
+        let length = |k: &str| {
+            n.attribute(k)
+                .and_then(|v| v.parse::<svgtypes::Length>().ok())
+        };
+        let vb = match n.attribute("viewBox") {
+            Some(v) => Some(
+                v.parse::<svgtypes::ViewBox>()
+                    .map_err(|e| fail(line, format!("`viewBox`: {e}")))?,
+            ),
+            None => None,
+        };
+        let width = to_mm(length("width"), vb.map(|v| v.w), dpi);
+        let height = to_mm(length("height"), vb.map(|v| v.h), dpi);
+        self.height = height;
+        let Some(v) = vb else {
+            return Ok(());
+        };
+        self.origin = DVec2::new(v.x, v.y);
+        self.scale = DVec2::new(width / v.w, height / v.h);
+        let ar: svgtypes::AspectRatio = n
+            .attribute("preserveAspectRatio")
+            .and_then(|a| a.parse().ok())
+            .unwrap_or_default();
+        use svgtypes::Align as A;
+        let (ax, ay) = match ar.align {
+            A::None => return Ok(()),
+            A::XMinYMin => (0, 0),
+            A::XMidYMin => (1, 0),
+            A::XMaxYMin => (2, 0),
+            A::XMinYMid => (0, 1),
+            A::XMidYMid => (1, 1),
+            A::XMaxYMid => (2, 1),
+            A::XMinYMax => (0, 2),
+            A::XMidYMax => (1, 2),
+            A::XMaxYMax => (2, 2),
+        };
+        let k = if ar.slice {
+            self.scale.x.max(self.scale.y)
+        } else {
+            self.scale.x.min(self.scale.y)
+        };
+        self.scale = DVec2::splat(k);
+        let at = |a: u8, page: f64, vbs: f64| match a {
+            1 => page / 2.0 - k * vbs / 2.0,
+            2 => page - k * vbs,
+            _ => 0.0,
+        };
+        self.align = DVec2::new(at(ax, width, v.w), at(ay, height, v.h));
+        Ok(())
+    }
+}
+
 /// Reads `bytes` (an SVG file) at `dpi`, centred on its box with `center`.
 pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
     let text = std::str::from_utf8(bytes).map_err(|e| {
@@ -671,71 +772,62 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
     if root.tag_name().name() != "svg" {
         return Err(fail(line_of(root), "the root element is not `svg`"));
     }
-    // The page.
-    let length = |k: &str| {
-        root.attribute(k)
-            .and_then(|v| v.parse::<svgtypes::Length>().ok())
-    };
-    let vb = match root.attribute("viewBox") {
-        Some(v) => Some(
-            v.parse::<svgtypes::ViewBox>()
-                .map_err(|e| fail(line_of(root), format!("`viewBox`: {e}")))?,
-        ),
-        None => None,
-    };
-    let width = to_mm(length("width"), vb.map(|v| v.w), dpi);
-    let height = to_mm(length("height"), vb.map(|v| v.h), dpi);
-    let (mut scale, mut align, mut origin) = (DVec2::ONE, DVec2::ZERO, DVec2::ZERO);
-    if let Some(v) = vb {
-        origin = DVec2::new(v.x, v.y);
-        scale = DVec2::new(width / v.w, height / v.h);
-        let ar: svgtypes::AspectRatio = root
-            .attribute("preserveAspectRatio")
-            .and_then(|a| a.parse().ok())
-            .unwrap_or_default();
-        use svgtypes::Align as A;
-        let (ax, ay) = match ar.align {
-            A::None => (None, None),
-            A::XMinYMin => (Some(0), Some(0)),
-            A::XMidYMin => (Some(1), Some(0)),
-            A::XMaxYMin => (Some(2), Some(0)),
-            A::XMinYMid => (Some(0), Some(1)),
-            A::XMidYMid => (Some(1), Some(1)),
-            A::XMaxYMid => (Some(2), Some(1)),
-            A::XMinYMax => (Some(0), Some(2)),
-            A::XMidYMax => (Some(1), Some(2)),
-            A::XMaxYMax => (Some(2), Some(2)),
-        };
-        if let (Some(ax), Some(ay)) = (ax, ay) {
-            let k = if ar.slice {
-                scale.x.max(scale.y)
-            } else {
-                scale.x.min(scale.y)
-            };
-            scale = DVec2::splat(k);
-            let at = |a: u8, page: f64, vbs: f64| match a {
-                1 => page / 2.0 - k * vbs / 2.0,
-                2 => page - k * vbs,
-                _ => 0.0,
-            };
-            align = DVec2::new(at(ax, width, v.w), at(ay, height, v.h));
-        }
-    }
-    // The shapes, in document order.
+    // libsvg reads the drawing as a stream of tags, with a stack of
+    // containers (`svg`, `g`, `text`, `tspan`) whose transforms a shape
+    // takes (an `svg`'s own is none); the end of a `g`, `text` or `tspan`
+    // pops the stack's top, whatever it is, and the end of an `svg`
+    // nothing — so an `svg` inside the drawing stays on it, and its
+    // parent `g`'s end pops it instead. Each `svg`, in document order,
+    // sets the page afresh ([`Page::set`]): the last one places the
+    // whole drawing (its box for `center` scales each shape by the
+    // page set before it).
+    let mut page = Page::default();
+    let mut stack: Vec<DAffine2> = Vec::new();
+    let mut scales: Vec<DVec2> = Vec::new();
     let mut shapes = Vec::new();
     let mut skipped: Vec<(String, usize)> = Vec::new();
     let mut segments = 0usize;
-    for n in root.descendants().filter(|n| n.is_element()) {
-        if n == root {
+    let mut defs = 0usize;
+    for (n, open) in tags(root) {
+        let name = n.tag_name().name();
+        if name == "defs" {
+            if open {
+                defs += 1;
+            } else {
+                defs = defs.saturating_sub(1);
+            }
             continue;
         }
-        if n.ancestors().any(|a| a.tag_name().name() == "defs") {
+        if defs > 0 {
+            continue;
+        }
+        if !open {
+            // The fault: a balanced reader's stack.
+            if matches!(name, "g" | "text" | "tspan")
+                || name == "svg" && crate::mutant::active("svg_nested_popped")
+            {
+                stack.pop();
+            }
             continue;
         }
         let line = line_of(n);
-        let name = n.tag_name().name();
         if shapes.len() >= MAX_ELEMENTS {
             return Err(fail(line, format!("more than {MAX_ELEMENTS} elements")));
+        }
+        let top = stack.last().copied().unwrap_or(DAffine2::IDENTITY);
+        match name {
+            "svg" => {
+                page.set(&n, dpi, line)?;
+                stack.push(top);
+                continue;
+            }
+            "g" | "text" | "tspan" => {
+                stack.push(top * transform_of(&n, line)?);
+                if name == "g" {
+                    continue;
+                }
+            }
+            _ => {}
         }
         let g = |k: &str| number(n.attribute(k).unwrap_or(""));
         let parts = match name {
@@ -772,12 +864,6 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
                     pts,
                 })]
             }
-            "svg" => {
-                return Err(fail(
-                    line,
-                    "an `svg` inside the drawing is not supported yet",
-                ))
-            }
             // What draws in an SVG viewer but not in OpenSCAD.
             other @ ("text" | "use" | "image" | "foreignObject") => {
                 match skipped.iter_mut().find(|(k, _)| k == other) {
@@ -788,33 +874,29 @@ pub fn read(bytes: &[u8], dpi: f64, center: bool) -> Result<Svg, SvgError> {
             }
             _ => continue,
         };
-        // Its transform and its containers' (libsvg's parents: `g`,
-        // `text`, `tspan`), up to (not with) the root.
-        let mut transform = transform_of(&n, line)?;
-        for a in n.ancestors().skip(1).filter(|a| a.is_element()) {
-            if a == root {
-                break;
-            }
-            if matches!(a.tag_name().name(), "g" | "text" | "tspan") {
-                transform = transform_of(&a, line_of(a))? * transform;
-            }
-        }
         shapes.push(SvgShape {
             element: name.to_string(),
             line,
             parts,
-            transform,
+            transform: top * transform_of(&n, line)?,
         });
+        scales.push(page.scale);
     }
+    let Page {
+        height,
+        scale,
+        align,
+        origin,
+    } = page;
     // OpenSCAD's placement: its box is of the cut-up points, scaled.
     let (cx, cy) = if center {
         let mut pts = Vec::new();
-        for s in &shapes {
+        for (s, &k) in shapes.iter().zip(&scales) {
             let start = pts.len();
             s.parts.iter().for_each(|p| openscad_points(p, &mut pts));
             pts[start..]
                 .iter_mut()
-                .for_each(|q| *q = s.transform.transform_point2(*q) * scale);
+                .for_each(|q| *q = s.transform.transform_point2(*q) * k);
         }
         let lo = pts.iter().fold(DVec2::INFINITY, |a, &b| a.min(b));
         let hi = pts.iter().fold(DVec2::NEG_INFINITY, |a, &b| a.max(b));

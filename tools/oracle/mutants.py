@@ -86,6 +86,10 @@ MESHES = {
     "climb_once": "approximated_hull",
     "twist_pieces_reversed": "approximated_twisted",
     "mesh_hulled": "approximated_polyhedra",
+    "svg_nested_popped": "nested_svg",
+    "section_uncut": "approximated_sections",
+    "crossing_half_stroked": "offset_self_touching",
+    "off_w_ignored": "off_headers",
 }
 
 # fault -> arguments of tools/oracle/approximation.py (the certified
