@@ -297,18 +297,46 @@ fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
         Ok::<_, FileError>(l)
     };
     let (mut line, mut head) = next("`OFF`")?;
-    if head[0].ends_with("OFF") {
-        if head[0] != "OFF" && head[0] != "COFF" {
+    // CGAL's header, as OpenSCAD reads it: [ST][C][N][4][n]OFF — texture
+    // coordinates, colours and normals after a point's coordinates (left
+    // unread), a fourth, homogeneous coordinate, and a dimension (3).
+    let mut homogeneous = false;
+    if let Some(prefix) = head[0].strip_suffix("OFF") {
+        let mut rest = prefix;
+        for flag in ["ST", "C", "N", "4", "n"] {
+            if let Some(r) = rest.strip_prefix(flag) {
+                homogeneous |= flag == "4";
+                rest = r;
+            }
+        }
+        if !rest.is_empty() {
             return Err(err(
                 Some(line),
-                format!("`{}` files are not supported yet", head[0]),
+                format!(
+                    "`{}` is not an OFF header: expected [ST][C][N][4][n]OFF",
+                    head[0]
+                ),
             ));
         }
+        let dimension = prefix.ends_with('n');
         head.remove(0);
         if head.is_empty() {
             (line, head) = next("the numbers of points, faces and edges")?;
         }
+        if dimension {
+            if head[0] != "3" {
+                return Err(err(
+                    Some(line),
+                    format!("an nOFF file of dimension `{}`: expected 3", head[0]),
+                ));
+            }
+            head.remove(0);
+            if head.is_empty() {
+                (line, head) = next("the numbers of points, faces and edges")?;
+            }
+        }
     }
+    let coordinates = if homogeneous { 4 } else { 3 };
     let count = |line: usize, w: Option<&&str>, what: &str| -> Result<usize, FileError> {
         let w = w.ok_or_else(|| err(Some(line), format!("expected {what}")))?;
         w.parse::<usize>()
@@ -325,18 +353,24 @@ fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
     let mut m = MeshFile::default();
     for _ in 0..nv {
         let (l, w) = next("a point")?;
-        if w.len() < 3 {
-            return Err(err(Some(l), "expected a point's three coordinates"));
+        if w.len() < coordinates {
+            return Err(err(
+                Some(l),
+                format!("expected a point's {coordinates} coordinates"),
+            ));
         }
-        let mut xyz = [0.0; 3];
-        for (c, word) in xyz.iter_mut().zip(&w) {
+        let mut xyzw = [1.0; 4];
+        for (c, word) in xyzw.iter_mut().zip(&w[..coordinates]) {
             *c = word
                 .parse::<f64>()
                 .ok()
                 .filter(|x| x.is_finite())
                 .ok_or_else(|| err(Some(l), format!("expected a coordinate, found `{word}`")))?;
         }
-        m.points.push(DVec3::from_array(xyz));
+        let [x, y, z, w] = xyzw;
+        // The fault: the homogeneous coordinate not divided by.
+        let w = if crate::mutant::active("off_w_ignored") { 1.0 } else { w };
+        m.points.push(DVec3::new(x, y, z) / w);
     }
     for _ in 0..nf {
         // A face's size and indices; a colour may follow on its line.
