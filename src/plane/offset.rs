@@ -203,9 +203,22 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
         ));
     }
     if self_crossing(&o) {
-        return Err(
-            "offsetting an outline that crosses or touches itself is not supported yet".into(),
-        );
+        // Its region's boundary (cut where it crosses or touches itself),
+        // stroked, as a combination's.
+        let f = Figure::Polygon(o);
+        return match super::sites::strokes(&f) {
+            Some((mut strokes, tol)) => {
+                // The fault: half the boundary stroked.
+                if crate::mutant::active("crossing_half_stroked") {
+                    strokes.truncate(strokes.len() / 2);
+                }
+                around(f, &strokes, tol, join, d)
+            }
+            None => Err(format!(
+                "offsetting an outline of more than {} edges that crosses or touches itself",
+                super::sites::MAX_PIECES
+            )),
+        };
     }
     let region = Region::new(o);
     // Outward (d > 0) or inward (d < 0) by |d|.

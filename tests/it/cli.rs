@@ -238,26 +238,6 @@ fn a_degenerate_camera_is_an_error() {
 }
 
 #[test]
-fn an_unsupported_openscad_node_is_an_error_not_skipped() {
-    assert_eq!(
-        fails("group() {\n\tlinear_extrude(height = 10) roof() square(1);\n}\n"),
-        "error: `roof` is not supported yet\n --> bad.csg:2:30\n  |\n2 | \tlinear_extrude(height = 10) roof() square(1);\n  | \t                            ^^^^ csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, hull, minkowski, resize and polyhedron\n"
-    );
-}
-
-#[test]
-fn a_hull_or_sum_csgrt_cannot_make_exact_is_refused_at_its_statement() {
-    let help3 = "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, turns, twists, convex meshes and extrusions of polygons into convex polytopes";
-    // A polyhedron that is not closed (a box with no lid) has no pieces:
-    // in a difference hulled, or summed with one that is not convex.
-    let open = "polyhedron(points = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], faces = [[0, 1, 2, 3], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]);";
-    assert_eq!(
-        fails(&format!("hull() {{\n  difference() {{ {open} cube(0.5); }}\n  sphere(1);\n}}\n")),
-        format!("error: `hull` of a 3-D difference with a `polyhedron` in it is not supported yet\n --> bad.csg:1:1\n  |\n1 | hull() {{\n  | ^^^^ {help3}\n")
-    );
-}
-
-#[test]
 fn a_bad_size_is_a_usage_error() {
     let (dir, _) = scene("s.csg", SPHERE);
     let r = csgrt(dir.path(), &["s.csg", "--size", "800by600"]);
@@ -597,14 +577,9 @@ fn a_child_of_the_other_dimension_is_left_out_as_openscad_renders_it() {
 
 #[test]
 fn bad_2d_shapes_and_extrusions_are_errors_at_their_place() {
-    // A polygon that crosses itself, offset: OpenSCAD's Clipper offsets
-    // its loops by the positive rule, which csgrt's even-odd reading does
-    // not give; refused at the offset. (What csgrt approximates instead
-    // of refusing: tests/it/approximation.rs.)
-    assert_eq!(
-        fails("linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n"),
-        "error: offsetting an outline that crosses or touches itself is not supported yet\n --> bad.csg:1:19\n  |\n1 | linear_extrude(1) offset(delta = 1) polygon([[0, 0], [1, 1], [1, 0], [0, 1]]);\n  |                   ^^^^^^ csgrt offsets polygons, circles and curved outlines (text) exactly, and the rest flattened to straight polygons\n"
-    );
+    // (A polygon that crosses itself, offset, renders: OpenSCAD reads it
+    // by parity first, as csgrt does — tests/openscad/offset_self_touching
+    // against OpenSCAD's own mesh.)
     // A drawing that is not there, or a format no one imports: OpenSCAD
     // warns and renders the rest, so csgrt does, the warning at the file
     // argument.
