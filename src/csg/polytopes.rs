@@ -47,7 +47,7 @@ struct Split {
     columns: bool,
 }
 
-/// Each leaf's polytopes in a cell, by primitive.
+/// Each leaf's polytopes in a cell, by node (a section is a leaf here).
 type Local = HashMap<u32, Vec<Polytope>>;
 
 impl Csg {
@@ -75,7 +75,8 @@ impl Csg {
     }
 
     /// The polytopes of every leaf under `node` (a halfspace's: its part
-    /// in `within`, the box of the node cut).
+    /// in `within`, the box of the node cut; a section's: the prisms over
+    /// its solid's pieces' slices, as long as `within` along the prisms).
     fn leaf_polytopes(
         &self,
         node: u32,
@@ -95,17 +96,80 @@ impl Csg {
                             .collect()
                     }
                     _ => pieces_of(&p.shape, &p.xf.to_world, eps, tol)
-                        .ok_or_else(|| format!("a `{}`", p.shape.name()))?,
+                        .map_err(|why| format!("a `{}`: {why}", p.shape.name()))?,
                 };
-                out.insert(*i, pieces);
+                out.insert(node, pieces);
                 Ok(())
             }
-            NodeKind::Section(..) => Err("a projection".into()),
-            NodeKind::Op(Op::Xor, _) => Err("an even-odd fill".into()),
+            &NodeKind::Section(c, k) => {
+                let pieces = self.section_prisms(c, k, eps, tol, within)?;
+                out.insert(node, pieces);
+                Ok(())
+            }
             NodeKind::Op(_, ch) => ch
                 .iter()
                 .try_for_each(|&c| self.leaf_polytopes(c, eps, tol, within, out)),
         }
+    }
+
+    /// Section `k` of node `c` (its frame's plane z = 0 through the solid,
+    /// swept along the frame's z) where it meets `within`: each of the
+    /// solid's convex pieces (within `eps` of it) sliced exactly, the
+    /// slice swept across `within`'s range of frame z.
+    fn section_prisms(
+        &self,
+        c: u32,
+        k: u32,
+        eps: f64,
+        tol: f64,
+        within: &Aabb,
+    ) -> Result<Vec<Polytope>, String> {
+        let solid = self.nodes[c as usize].bounds;
+        if !solid.is_bounded() {
+            return Err("a projection of an unbounded solid (a halfspace)".into());
+        }
+        if !within.is_bounded() {
+            return Err("an unbounded section (a projection not extruded)".into());
+        }
+        let xf = &self.sections[k as usize].xf;
+        let to_object = xf.to_world.inverse();
+        let level = |p: DVec3| to_object.transform_point3(p).z;
+        // Frame z across `within`: f(p + z·w) = f(p) + z.
+        let w = xf.to_world.matrix3 * DVec3::Z;
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for i in 0..8 {
+            let corner = DVec3::new(
+                if i & 1 == 0 {
+                    within.min.x
+                } else {
+                    within.max.x
+                },
+                if i & 2 == 0 {
+                    within.min.y
+                } else {
+                    within.max.y
+                },
+                if i & 4 == 0 {
+                    within.min.z
+                } else {
+                    within.max.z
+                },
+            );
+            let z = level(corner);
+            (lo, hi) = (lo.min(z), hi.max(z));
+        }
+        let mut out = Vec::new();
+        for q in self.convex_pieces(c, eps, tol, false)? {
+            // The fault: the solid's pieces, not their slices.
+            if crate::mutant::active("section_uncut") {
+                out.push(q);
+                continue;
+            }
+            let cut = q.slice(level);
+            let swept: Vec<DVec3> = cut.iter().flat_map(|&p| [p + lo * w, p + hi * w]).collect();
+            out.extend(Polytope::hull(&swept, tol));
+        }
+        Ok(out)
     }
 
     /// The pieces of `node` in `cell`, whose leaves' polytopes are `local`
@@ -176,7 +240,9 @@ impl Csg {
     /// Node `node` of the leaves' polytopes in `local`, exactly.
     fn combine(&self, node: u32, local: &Local, tol: f64) -> Result<Vec<Polytope>, String> {
         Ok(match &self.nodes[node as usize].kind {
-            NodeKind::Leaf(i) => local.get(i).cloned().unwrap_or_default(),
+            NodeKind::Leaf(_) | NodeKind::Section(..) => {
+                local.get(&node).cloned().unwrap_or_default()
+            }
             NodeKind::Op(Op::Union, ch) => {
                 let mut all = Vec::new();
                 for &c in ch {
@@ -213,21 +279,35 @@ impl Csg {
                     return Ok(acc);
                 }
                 for &c in &ch[1..] {
-                    for b in self.combine(c, local, tol)? {
-                        let mut next = Vec::new();
-                        for a in &acc {
-                            next.extend(a.minus(&b, tol));
-                        }
-                        limit(next.len())?;
-                        acc = next;
-                    }
+                    acc = minus_all(&acc, &self.combine(c, local, tol)?, tol)?;
                 }
                 acc
             }
-            NodeKind::Section(..) => return Err("a projection".into()),
-            NodeKind::Op(Op::Xor, _) => return Err("an even-odd fill".into()),
+            // A ⊕ B = (A ∖ B) ∪ (B ∖ A), from the left.
+            NodeKind::Op(Op::Xor, ch) => {
+                let mut acc = self.combine(ch[0], local, tol)?;
+                for &c in &ch[1..] {
+                    let other = self.combine(c, local, tol)?;
+                    let mut next = minus_all(&acc, &other, tol)?;
+                    next.extend(minus_all(&other, &acc, tol)?);
+                    limit(next.len())?;
+                    acc = next;
+                }
+                acc
+            }
         })
     }
+}
+
+/// The union of `a` less the union of `b`: each piece of `a` cut by each
+/// of `b` in turn.
+fn minus_all(a: &[Polytope], b: &[Polytope], tol: f64) -> Result<Vec<Polytope>, String> {
+    let mut acc = a.to_vec();
+    for q in b {
+        acc = acc.iter().flat_map(|p| p.minus(q, tol)).collect();
+        limit(acc.len())?;
+    }
+    Ok(acc)
 }
 
 fn limit(n: usize) -> Result<(), String> {

@@ -253,15 +253,24 @@ impl Polytope {
     /// Where its edges meet z = 0, and its corners on it (their hull is
     /// its section by the plane).
     pub fn slice_z0(&self) -> Vec<DVec2> {
+        self.slice(|p| p.z)
+            .into_iter()
+            .map(|p| p.truncate())
+            .collect()
+    }
+
+    /// Where its edges meet the level set `level = 0` of an affine
+    /// function, and its corners on it (their hull is its section there).
+    pub fn slice(&self, level: impl Fn(DVec3) -> f64) -> Vec<DVec3> {
         let mut out = Vec::new();
         for f in &self.faces {
             for (i, &a) in f.pts.iter().enumerate() {
                 let b = f.pts[(i + 1) % f.pts.len()];
-                if a.z == 0.0 {
-                    out.push(a.truncate());
-                } else if (a.z < 0.0) != (b.z < 0.0) && b.z != 0.0 {
-                    let u = a.z / (a.z - b.z);
-                    out.push((a + (b - a) * u).truncate());
+                let (la, lb) = (level(a), level(b));
+                if la == 0.0 {
+                    out.push(a);
+                } else if (la < 0.0) != (lb < 0.0) && lb != 0.0 {
+                    out.push(a + (b - a) * (la / (la - lb)));
                 }
             }
         }
@@ -358,10 +367,12 @@ pub fn stretch(m: &DAffine3) -> f64 {
 }
 
 /// Leaf `shape` placed by `m` as convex polytopes within `eps` of it
-/// (absolute planes' thickness `tol`); `None` for a solid this cannot cut
-/// into polytopes (a mesh that is not closed, or needs too many cells;
-/// unbounded solids).
-pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<Polytope>> {
+/// (absolute planes' thickness `tol`; none for a flat one); or why not:
+/// an unbounded solid, or one past a limit ([`MAX_MESH_CELLS`],
+/// [`MAX_TWIST_POINTS`], [`MAX_SUM_CORNERS`]).
+///
+/// [`MAX_MESH_CELLS`]: super::mesh_cells::MAX_MESH_CELLS
+pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<Polytope>, String> {
     match shape {
         Shape::Cuboid(c) => {
             let lo = super::cuboid::low(c.centered);
@@ -379,7 +390,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                 vec![0, 1, 3, 2],
                 vec![4, 6, 7, 5],
             ];
-            Polytope::from_loops(&pts, &loops, m).map(|p| vec![p])
+            Ok(Polytope::from_loops(&pts, &loops, m).into_iter().collect())
         }
         Shape::Cone(c) => {
             let n = segments(stretch(m), eps, 1.0);
@@ -413,7 +424,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                 l.dedup();
                 loops.push(l);
             }
-            Polytope::from_loops(&pts, &loops, m).map(|p| vec![p])
+            Ok(Polytope::from_loops(&pts, &loops, m).into_iter().collect())
         }
         Shape::Sphere(_) => {
             let n = segments(stretch(m), eps, std::f64::consts::SQRT_2);
@@ -435,22 +446,35 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                     loops.push(vec![at(k, i), at(k + 1, i), at(k + 1, i + 1), at(k, i + 1)]);
                 }
             }
-            Polytope::from_loops(&pts, &loops, m).map(|p| vec![p])
+            Ok(Polytope::from_loops(&pts, &loops, m).into_iter().collect())
         }
         Shape::Mesh(mesh) => {
             let d = &mesh.data;
+            // Not closed: no inside to cut. OpenSCAD's render cannot make
+            // it a Nef polyhedron and leaves it out ("The given mesh is
+            // not closed!"), so its pieces are none.
+            if super::mesh::edge_use(&d.tris).0 > 0 {
+                return Ok(Vec::new());
+            }
             let w: Vec<DVec3> = d.verts.iter().map(|&p| m.transform_point3(p)).collect();
-            let hull = Polytope::hull(&w, tol)?;
+            let Some(hull) = Polytope::hull(&w, tol) else {
+                return Ok(Vec::new());
+            };
             // Convex when it fills its hull: the same volume.
             let own = signed_volume(&w, &d.tris).abs();
             let full = hull.volume();
             let size = (hull.bounds.max - hull.bounds.min).max_element();
             // The fault: a mesh taken as its hull, convex or not.
             if (full - own).abs() <= tol * size * size || crate::mutant::active("mesh_hulled") {
-                return Some(vec![hull]);
+                return Ok(vec![hull]);
             }
             // Not convex: its cells, exactly.
-            super::mesh_cells::mesh_cells(&w, &d.tris, tol)
+            super::mesh_cells::mesh_cells(&w, &d.tris, tol).ok_or_else(|| {
+                format!(
+                    "a mesh that crosses itself or is cut into more than {} convex cells",
+                    super::mesh_cells::MAX_MESH_CELLS
+                )
+            })
         }
         Shape::Prism(q) => {
             // Curved edges (text, SVG) as chords within eps of them.
@@ -476,7 +500,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                             ]
                         })
                         .collect();
-                    return Some(Polytope::hull(&pts, tol).into_iter().collect());
+                    return Ok(Polytope::hull(&pts, tol).into_iter().collect());
                 }
             }
             for t in super::triangulate::cap(loops) {
@@ -491,7 +515,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                     out.push(p);
                 }
             }
-            Some(out)
+            Ok(out)
         }
         Shape::Lathe(l) => {
             let sigma = stretch(m);
@@ -500,7 +524,7 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             } else {
                 l.profile.outlines.loops.clone()
             };
-            Some(turned(&loops, m, eps, tol))
+            Ok(turned(&loops, m, eps, tol))
         }
         Shape::Torus(t) => {
             // The tube's circle about (1, 0), radius `minor`: its chords
@@ -516,14 +540,16 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                 .collect();
             let o =
                 crate::plane::figure::clip_right(&crate::plane::Outlines::polygons(vec![circle]));
-            Some(turned(&o.loops, m, eps, tol))
+            Ok(turned(&o.loops, m, eps, tol))
         }
         Shape::Ring(r) => {
             // The ellipse (1, 0) + M·u turned: its polygon within eps/2
             // (stretched by the transform too).
             let e = glam::DAffine2::from_mat2_translation(r.m, DVec2::X);
-            let l = crate::plane::flat::ellipse(e, 0.5 * eps / stretch(m))?;
-            Some(turned(&[l], m, eps, tol))
+            let Some(l) = crate::plane::flat::ellipse(e, 0.5 * eps / stretch(m)) else {
+                return Ok(Vec::new());
+            };
+            Ok(turned(&[l], m, eps, tol))
         }
         Shape::Twisted(tw) => twisted(tw, m, eps, tol),
         Shape::OffsetPrism(q) => {
@@ -534,8 +560,12 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             use crate::plane::figure::Figure;
             let sigma = stretch(m);
             let leaf = Figure::Offset(q.region.clone(), glam::DAffine2::IDENTITY);
-            let flat = crate::plane::flat::flattened(&leaf, eps / sigma, false).ok()??;
-            let parts = convex_parts(&flat)?;
+            let Some(flat) = crate::plane::flat::flattened(&leaf, eps / sigma, false)? else {
+                return Ok(Vec::new());
+            };
+            let parts = convex_parts(&flat).ok_or_else(|| {
+                "an offset whose outline csgrt cannot read (more than 2048 edges)".to_string()
+            })?;
             let z = if q.centered { -0.5 } else { 0.0 };
             let mut out = Vec::new();
             for part in parts {
@@ -550,20 +580,38 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
                     .collect();
                 out.extend(Polytope::hull(&pts, tol));
             }
-            Some(out)
+            Ok(out)
         }
         // A hull or a sum nested in what is cut: its parts' polytopes
         // hulled, summed corner by corner.
-        Shape::Convex(c) => summed_hulls(&c.hulls, m, eps, tol).map(|p| vec![p]),
+        Shape::Convex(c) => Ok(summed_hulls(&c.hulls, m, eps, tol)?.into_iter().collect()),
         // An exact union of primitives (a rounded box): theirs.
         Shape::Rounded(r) => {
             let mut out = Vec::new();
             for q in &r.pieces {
                 out.extend(pieces_of(&q.shape, &(*m * q.xf.to_world), eps, tol)?);
             }
-            Some(out)
+            Ok(out)
         }
-        _ => None,
+        // A shadow: the union of its triangles' prisms, z from 0 to 1.
+        Shape::Shadow(sh) => {
+            let soup = &sh.soup;
+            let prisms = soup.tris.iter().filter_map(|t| {
+                let pts: Vec<DVec3> = t
+                    .iter()
+                    .flat_map(|&i| {
+                        let v = soup.pts[i as usize];
+                        [
+                            m.transform_point3(v.extend(0.0)),
+                            m.transform_point3(v.extend(1.0)),
+                        ]
+                    })
+                    .collect();
+                Polytope::hull(&pts, tol)
+            });
+            Ok(prisms.collect())
+        }
+        Shape::Halfspace(_) => Err("an unbounded solid (a halfspace)".into()),
     }
 }
 
@@ -574,14 +622,15 @@ pub const MAX_SUM_CORNERS: usize = 2_000_000;
 /// within `eps`: each part's polytopes within eps/k (k hulls summed: a
 /// hull moves no more than its parts, a sum by the sum of its operands'),
 /// their corners hulled, each hull's corners added to every corner of the
-/// sum so far and hulled again. `None` when a part cannot be cut, the sum
-/// is flat or needs more than [`MAX_SUM_CORNERS`] corner sums.
+/// sum so far and hulled again (`None` when the sum is flat); or why a
+/// part cannot be cut, or that the sum needs more than
+/// [`MAX_SUM_CORNERS`] corner sums.
 fn summed_hulls(
     hulls: &[Vec<super::convex::ConvexPart>],
     m: &DAffine3,
     eps: f64,
     tol: f64,
-) -> Option<Polytope> {
+) -> Result<Option<Polytope>, String> {
     let e = eps / hulls.len().max(1) as f64;
     let mut sum = vec![DVec3::ZERO];
     for h in hulls {
@@ -594,7 +643,9 @@ fn summed_hulls(
         // A flat part (a disc) has no hull of its own: its corners serve.
         let corners = Polytope::hull(&pts, tol).map_or(pts, |p| p.vertices());
         if sum.len() * corners.len() > MAX_SUM_CORNERS {
-            return None;
+            return Err(format!(
+                "a nested sum of more than {MAX_SUM_CORNERS} corner sums"
+            ));
         }
         let all: Vec<DVec3> = sum
             .iter()
@@ -602,7 +653,7 @@ fn summed_hulls(
             .collect();
         sum = Polytope::hull(&all, tol).map_or(all, |p| p.vertices());
     }
-    Polytope::hull(&sum, tol)
+    Ok(Polytope::hull(&sum, tol))
 }
 
 /// Convex polygons whose union is a straight figure: a convex loop
@@ -644,7 +695,7 @@ pub const MAX_TWIST_POINTS: usize = 200_000;
 /// scale), n makes each term at most eps/4, stretched by σ, m's largest
 /// stretch in the section's plane (where those errors lie; its height is
 /// mapped linearly, exactly).
-fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<Polytope>> {
+fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<Polytope>, String> {
     // The errors above lie in the section's plane: m's stretch there.
     let (a, b) = (m.matrix3.x_axis, m.matrix3.y_axis);
     let gram = glam::DMat2::from_cols(
@@ -655,9 +706,16 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
     let big = tw.scale.max_element().max(1.0);
     let loops = match &tw.section {
         super::twist::TwistSection::Region(r) if !r.curved() => r.outlines.loops.clone(),
-        super::twist::TwistSection::Region(_) => return None,
+        // Curved edges (text, SVG) as chords within eps/2 of them, as an
+        // ellipse's polygon.
+        super::twist::TwistSection::Region(r) => {
+            crate::plane::flat::chords(&r.outlines, 0.5 * eps / (sigma * big))
+        }
         super::twist::TwistSection::Ellipse(e) => {
-            vec![crate::plane::flat::ellipse(*e, 0.5 * eps / (sigma * big))?]
+            match crate::plane::flat::ellipse(*e, 0.5 * eps / (sigma * big)) {
+                Some(l) => vec![l],
+                None => return Ok(Vec::new()),
+            }
         }
     };
     let pieces = convex_loops(&loops);
@@ -685,7 +743,9 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
         .max(1.0);
     let corners: usize = pieces.iter().map(Vec::len).sum();
     if !n.is_finite() || n * corners as f64 > MAX_TWIST_POINTS as f64 {
-        return None;
+        return Err(format!(
+            "a twist whose slabs within {eps:.1e} have more than {MAX_TWIST_POINTS} corners"
+        ));
     }
     let n = n as usize;
     let z0 = super::cone::bottom(tw.centered);
@@ -708,7 +768,7 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Option<Vec<
             out.extend(Polytope::hull(&pts, tol));
         }
     }
-    Some(out)
+    Ok(out)
 }
 
 /// A region's loops as convex polygons covering it: the loop itself when

@@ -9,7 +9,7 @@ pub mod openscad_view;
 mod resolve;
 
 pub use display_list::resolve_ray;
-pub use resolve::{resolve, resolve_with, unsupported};
+pub use resolve::{later_statements, resolve, resolve_with};
 
 /// How `$fn`, `$fa` and `$fs` are read (`--facets`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

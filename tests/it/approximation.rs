@@ -351,3 +351,33 @@ fn hulls_and_sums_nested_in_what_is_cut_are_their_parts_polytopes() {
     let a = area(summed, -1.0, 4.0, 500);
     assert!((a - 6.0).abs() < 1e-9, "{a}");
 }
+
+#[test]
+fn a_mesh_that_is_not_closed_is_left_out_where_it_is_cut_as_openscad_leaves_it_out() {
+    // A box with no lid has no inside: OpenSCAD 2021.01's render cannot
+    // make it a Nef polyhedron ("The given mesh is not closed!") and
+    // leaves it out, so a hull of its difference with a ball apart is the
+    // ball, and a sum of that difference with a ball is the ball alone
+    // (OpenSCAD's Minkowski sum of an empty part and a ball).
+    let open = "polyhedron(points = [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], faces = [[0, 1, 2, 3], [0, 4, 5, 1], [1, 5, 6, 2], [2, 6, 7, 3], [3, 7, 4, 0]]);";
+    for (text, lo, hi) in [
+        (
+            format!("hull() {{ difference() {{ {open} cube(0.5); }} translate([3, 0, 0]) sphere(1); }}\n"),
+            [2.0, -1.0, -1.0],
+            [4.0, 1.0, 1.0],
+        ),
+        (
+            format!("minkowski() {{ difference() {{ {open} cube(0.5); }} sphere(0.2); }}\n"),
+            [-0.2; 3],
+            [0.2; 3],
+        ),
+    ] {
+        let scene = csgrt::load_csg(&Source::new("o.csg", &text)).unwrap();
+        let b = scene.result_bounds();
+        let far = (b.min - glam::DVec3::from(lo))
+            .abs()
+            .max((b.max - glam::DVec3::from(hi)).abs())
+            .max_element();
+        assert!(far < 1e-3, "{text}: {:?} {:?}", b.min, b.max);
+    }
+}

@@ -7,7 +7,7 @@
 //! OpenSCAD's node text, which Debian does not package.
 
 use crate::common;
-use crate::common::{csgrt, files, stats};
+use crate::common::{csgrt, stats};
 use std::path::{Path, PathBuf};
 
 fn fixtures() -> PathBuf {
@@ -117,88 +117,30 @@ fn colours_become_materials_and_no_colour_inherits() {
     assert_eq!(green["kt"], 0.5);
 }
 
-/// Runs an unsupported node (its OpenSCAD export) and returns its whole
-/// message.
-fn unsupported(node: &str, text: &str) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("x.csg"), text).unwrap();
-    let r = csgrt(dir.path(), &["x.csg", "--size", "8x6", "-q"]);
-    assert_eq!(r.status, 2, "{node}: {}", r.stderr);
-    assert_eq!(files(dir.path()), ["x.csg"], "{node}: nothing written");
-    r.stderr
-}
-
-fn message(node: &str, line: usize, col: usize, source: &str) -> String {
-    // A line longer than the window is shown cut after it, with `…` (the
-    // caret here is near the start, so the window starts at column 1).
-    let window = csgrt::error::WINDOW;
-    let shown = if source.chars().count() > window {
-        source.chars().take(window).collect::<String>() + "…"
-    } else {
-        source.to_string()
-    };
-    let caret = " ".repeat(col - 1) + &"^".repeat(node.len());
-    let lead: String = source
-        .chars()
-        .take(col - 1)
-        .filter(|c| *c == '\t')
-        .collect();
-    let caret = if lead.is_empty() {
-        caret
-    } else {
-        lead + &caret[col - 1..]
-    };
-    format!(
-        "error: `{node}` is not supported yet\n --> x.csg:{line}:{col}\n  |\n{line} | {shown}\n  | {caret} csgrt renders cube, sphere, cylinder, torus, halfspace, linear_extrude, rotate_extrude, square, circle, polygon, text, import, surface, projection, offset, hull, minkowski, resize and polyhedron\n"
-    )
-}
-
 #[test]
-fn each_unsupported_node_stops_the_run_with_its_place() {
-    // The list is the resolver's own table; every node in it with an
-    // OpenSCAD 2021 export (all but `roof` and `fill`, newer than that
-    // release) is run from the export, the others from a bare statement.
-    let listed: Vec<&str> = csgrt::scene::unsupported().collect();
-    for node in &listed {
-        let fixture = fixtures().join(format!("unsupported/{node}.csg"));
-        let text = match std::fs::read_to_string(&fixture) {
-            Ok(text) => text,
-            Err(_) if ["roof", "fill"].contains(node) => format!("{node}();\n"),
-            Err(e) => panic!("{node}: no export at {}: {e}", fixture.display()),
-        };
-        let first = text.lines().next().unwrap();
-        assert_eq!(
-            unsupported(node, &text),
-            message(node, 1, 1, first),
-            "{node}"
+fn a_statement_newer_than_openscad_2021_is_left_out_with_its_warning() {
+    // OpenSCAD 2021.01 answers `roof` and `fill` (later versions'
+    // statements), in a solid's place or a 2-D shape's, with "WARNING:
+    // Ignoring unknown module 'roof'" and renders the rest: csgrt says
+    // the same at each place and renders the picture of the file without
+    // them; under --strict it stops at the first and writes nothing.
+    let listed: Vec<&str> = csgrt::scene::later_statements().collect();
+    assert_eq!(listed, ["roof", "fill"]);
+    for node in listed {
+        let text = format!(
+            "group() {{\n\tcube(1);\n\tlinear_extrude(height = 10) {node}() square(1);\n\t{node}() square(2);\n}}\n"
         );
-    }
-    // And no export stands for a node the table no longer lists.
-    // (None is left since hull and minkowski.)
-    let dir = std::fs::read_dir(fixtures().join("unsupported"));
-    for entry in dir.into_iter().flatten() {
-        let path = entry.unwrap().path();
-        if path.extension().is_some_and(|e| e == "csg") {
-            let node = path.file_stem().unwrap().to_str().unwrap().to_string();
-            assert!(
-                listed.contains(&node.as_str()),
-                "{node} is supported now: move its export"
-            );
+        let strict = common::lenient(&text, "group() {\n\tcube(1);\n}\n");
+        let first = format!("error: Ignoring unknown module '{node}'\n --> bad.csg:3:30\n");
+        assert!(strict.starts_with(&first), "{node}: {strict}");
+        let (dir, _) = common::scene("bad.csg", &text);
+        let r = csgrt(dir.path(), &["bad.csg", "--size", "8x6", "-q"]);
+        for (line, col) in [(3, 30), (4, 2)] {
+            let at =
+                format!("warning: Ignoring unknown module '{node}'\n --> bad.csg:{line}:{col}\n");
+            assert!(r.stderr.contains(&at), "{node}: {}", r.stderr);
         }
     }
-}
-
-#[test]
-fn an_unsupported_node_inside_a_tree_is_reported_where_it_stands() {
-    // A node inside a group, after a tab on line 2, is reported first,
-    // before the shape it holds.
-    let wrapped = "group() {\n\troof(method = \"straight\") square(2);\n}\n";
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("x.csg"), wrapped).unwrap();
-    let r = csgrt(dir.path(), &["x.csg", "-q"]);
-    assert_eq!(r.status, 2);
-    let line2 = wrapped.lines().nth(1).unwrap();
-    assert_eq!(r.stderr, message("roof", 2, 2, line2));
 }
 
 #[test]

@@ -19,6 +19,9 @@ use glam::{DAffine3, DVec2};
 /// a pixel at any view where that node spans fewer than 4096 pixels.
 pub const APPROXIMATION: f64 = 1.0 / 8192.0;
 
+/// What the certified approximation takes, said where it cannot.
+pub const LIMITS: &str = "csgrt cuts bounded solids into at most 250000 convex pieces within 1/8192 of their size (every limit is listed in docs/LANGUAGE.md)";
+
 impl Resolver<'_> {
     /// Nodes `cut` as convex polytopes within [`APPROXIMATION`] of their
     /// size, each recorded as approximated at statement `s` placed by
@@ -48,7 +51,7 @@ impl Resolver<'_> {
             let (pieces, eps) = self.pieces_within(node, columns).map_err(|e| {
                 match self.b.csg.nodes[node as usize].kind {
                     NodeKind::Leaf(_) => e,
-                    _ => format!("{what} with {e} in it"),
+                    _ => format!("{what} (in it {e})"),
                 }
             })?;
             out.extend(pieces);

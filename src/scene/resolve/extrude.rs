@@ -331,8 +331,8 @@ impl Resolver<'_> {
         if !b.is_bounded() {
             return Err(self.src.error(
                 p.name_span,
-                "the projection of an unbounded solid (a halfspace) is not supported yet",
-                "expected bounded children",
+                "the section of an unbounded solid (a halfspace) is unbounded",
+                "csgrt extrudes bounded shapes: expected bounded children (a halfspace met with a box)",
             ));
         }
         if b.min.z > 0.0 || b.max.z < 0.0 || b.min.x > b.max.x || b.min.y > b.max.y {

@@ -11,9 +11,10 @@
 //! hull (quickhull) or whose pieces' sums stand for it — the certified
 //! approximation, noted once on stderr with its error in pixels and
 //! counted by `--stats-json`. A mesh that is not convex is cut exactly
-//! into the cells of its faces' planes (`geometry::mesh_cells`). What is
-//! still not supported (an unbounded solid, a mesh that is not closed in a
-//! sum or a combination) is said at the statement. The children are read once, to be
+//! into the cells of its faces' planes (`geometry::mesh_cells`); one that
+//! is not closed is left out there, as OpenSCAD's render leaves it out.
+//! An unbounded solid (a halfspace) or one past a limit is said at the
+//! statement. The children are read once, to be
 //! measured, and dropped; the solid takes the statement's colour (OpenSCAD
 //! shows a hull in one colour). A 2-D hull extruded straight or tapered is
 //! the hull of its children's extrusions: a section of the extrusion of a
@@ -38,12 +39,13 @@ pub const MAX_PARTS: usize = 10_000;
 type Sum = Vec<Vec<ConvexPart>>;
 
 impl Resolver<'_> {
-    /// The error for what a hull or sum cannot be made of.
+    /// The error for what a hull or sum cannot be made of: an unbounded
+    /// solid, or one past a limit.
     fn not_convex(&self, s: &Statement, what: &str) -> crate::error::Error {
         self.src.error(
             s.name_span,
-            format!("`{}` of {what} is not supported yet", s.name),
-            "csgrt takes hulls and Minkowski sums of bounded solids, cutting combinations of cubes, spheres, cylinders, turns, twists, convex meshes and extrusions of polygons into convex polytopes",
+            format!("csgrt cannot make the `{}` of {what}", s.name),
+            super::approximate::LIMITS,
         )
     }
 

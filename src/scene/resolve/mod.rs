@@ -17,7 +17,7 @@ mod solids;
 mod statements;
 mod transforms;
 
-pub use solids::unsupported;
+pub use solids::later_statements;
 
 use super::args::{Args, SCENE};
 use super::builder::SceneBuilder;
@@ -326,7 +326,7 @@ impl Resolver<'_> {
                 }
                 return bind(self, s, xf, mat, depth);
             }
-            Some(None) => return Err(self.not_supported_yet(s)),
+            Some(None) => return Err(self.unknown_to_openscad(s)),
             None => {}
         }
         if TRANSFORMS.contains(&name) {
@@ -397,16 +397,16 @@ impl Resolver<'_> {
         crate::math::boolean::combine_parts(op, parts, |op, ids| csg.add_op(op, ids))
     }
 
-    /// The error for a statement of [`solids::SOLIDS`] without a binder.
-    fn not_supported_yet(&self, s: &Statement) -> crate::error::Error {
-        let known: Vec<&str> = solids::supported().collect();
-        self.src.error(
+    /// OpenSCAD 2021.01's warning for a statement of [`solids::SOLIDS`]
+    /// without a binder (newer than that release, unknown to it): left
+    /// out, as it leaves it out.
+    fn unknown_to_openscad(&self, s: &Statement) -> crate::error::Error {
+        self.src.lenient(
             s.name_span,
-            format!("`{}` is not supported yet", s.name),
+            format!("Ignoring unknown module '{}'", s.name),
             format!(
-                "csgrt renders {} and {}",
-                known[..known.len() - 1].join(", "),
-                known[known.len() - 1]
+                "`{}` is newer than OpenSCAD 2021.01, which csgrt renders as",
+                s.name
             ),
         )
     }

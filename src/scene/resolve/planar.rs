@@ -149,7 +149,7 @@ impl Resolver<'_> {
             };
         }
         if super::solids::binder(name) == Some(None) {
-            return Err(self.not_supported_yet(s));
+            return Err(self.unknown_to_openscad(s));
         }
         let (message, label) = if super::solids::binder(name).is_some() {
             (

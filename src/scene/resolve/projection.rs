@@ -107,8 +107,8 @@ impl Resolver<'_> {
         let polytopes = polytopes.map_err(|what| {
             self.src.error(
                 p.name_span,
-                format!("the shadow (projection(cut = false)) of {what} is not supported yet"),
-                "csgrt casts the shadows of bounded solids, cutting combinations of cubes, spheres, cylinders, turns, twists, convex meshes and extrusions of polygons into convex polytopes",
+                format!("csgrt cannot cast the shadow (projection(cut = false)) of {what}"),
+                super::approximate::LIMITS,
             )
         })?;
         // A convex polytope's shadow is that of its faces turned up: a

@@ -165,7 +165,7 @@ impl Resolver<'_> {
             // the certified approximation's distance of it.
             let pieces = self
                 .polytopes(s, &[child], xf, false)
-                .map_err(|e| self.not_yet(s, &format!("{why} ({e})")))?;
+                .map_err(|e| self.unmeasured(s, &format!("{why} ({e})")))?;
             let b = pieces
                 .iter()
                 .fold(crate::geometry::Aabb::EMPTY, |b, p| b.union(&p.bounds));
@@ -233,7 +233,7 @@ impl Resolver<'_> {
                         if measured.is_none() {
                             measured = Some(
                                 self.flat_outline(s, &f)
-                                    .ok_or_else(|| self.not_yet(s, why))?,
+                                    .ok_or_else(|| self.unmeasured(s, why))?,
                             );
                         }
                         measured.as_ref().expect("measured").extent(e)
@@ -303,11 +303,11 @@ impl Resolver<'_> {
         .ok()
     }
 
-    fn not_yet(&self, s: &Statement, why: &str) -> crate::error::Error {
+    fn unmeasured(&self, s: &Statement, why: &str) -> crate::error::Error {
         self.src.error(
             s.name_span,
-            "`resize` of these children is not supported yet",
-            format!("csgrt resizes from an exact extent or one of convex polytopes, and cannot find {why}"),
+            format!("csgrt cannot measure these children to `resize` them: {why}"),
+            "csgrt resizes from an exact extent, or one of convex polytopes or straight polygons within 1/8192 of the children's size (every limit is listed in docs/LANGUAGE.md)",
         )
     }
 }

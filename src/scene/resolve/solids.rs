@@ -36,9 +36,9 @@ pub(super) const IMPORT_PARAMS: &[&str] = &[
 ];
 
 /// Every OpenSCAD solid statement csgrt knows: its binder (arguments →
-/// a leaf, or empty), or `None` while it is not supported yet — an error at
-/// its place, never skipped. The resolver, the "not supported yet" list
-/// and its tests all read this table; a new solid is one module in
+/// a leaf, or empty), or `None` for one newer than OpenSCAD 2021.01, which
+/// ignores it with a warning, as csgrt does. The resolver, the list of
+/// those and its tests all read this table; a new solid is one module in
 /// `geometry/` and one line here.
 pub(crate) const SOLIDS: &[(&str, Option<Binder>)] = &[
     ("cube", Some(cube)),
@@ -75,18 +75,14 @@ pub(crate) const WITH_CHILDREN: &[&str] = &[
     "minkowski",
 ];
 
-/// The OpenSCAD solids csgrt does not render yet.
-pub fn unsupported() -> impl Iterator<Item = &'static str> {
+/// The solids of later OpenSCAD versions, left out with OpenSCAD
+/// 2021.01's warning.
+pub fn later_statements() -> impl Iterator<Item = &'static str> {
     SOLIDS.iter().filter(|(_, b)| b.is_none()).map(|(n, _)| *n)
 }
 
-/// The OpenSCAD solids csgrt renders, in the table's order.
-pub fn supported() -> impl Iterator<Item = &'static str> {
-    SOLIDS.iter().filter(|(_, b)| b.is_some()).map(|(n, _)| *n)
-}
-
 /// The binder of a solid statement, if `name` is one (`Some(None)`: known,
-/// not supported yet).
+/// newer than OpenSCAD 2021.01).
 pub(crate) fn binder(name: &str) -> Option<Option<Binder>> {
     SOLIDS.iter().find(|(n, _)| *n == name).map(|(_, b)| *b)
 }
@@ -518,7 +514,7 @@ impl Resolver<'_> {
                 &format!(
                     "this mesh is not closed: {open} edge(s) border one face only, {many} edge(s) three faces or more"
                 ),
-                "inside is decided by parity: even-odd crossings along each ray",
+                "inside is decided by parity: even-odd crossings along each ray; where it is cut into pieces (a hull's, a sum's or a shadow's combination) it is left out, as OpenSCAD's render leaves it out",
             );
         }
         let data = std::sync::Arc::new(MeshData::new(pts, tris));
