@@ -56,6 +56,7 @@ pub const NAMES: &[&str] = &[
     "section_uncut",
     "crossing_half_stroked",
     "off_w_ignored",
+    "sites_xor_united",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -98,37 +98,37 @@ pub fn offset(f: Figure, join: Join, d: f64) -> Result<Option<Figure>, String> {
         ref combination @ Figure::Op(op, _) => match super::sites::outline(combination) {
             Some(o) if !self_crossing(&o) => polygon(o, join, d),
             _ => match super::sites::strokes(combination) {
-                Some((strokes, tol)) if op != Op::Xor => {
-                    around(combination.clone(), &strokes, tol, join, d)
-                }
+                Some((strokes, tol)) => around(combination.clone(), &strokes, tol, join, d),
                 _ if super::sites::too_many_pieces(combination) => Err(format!(
-                    "offsetting a combination of more than {} edges and circles is not supported yet",
+                    "offsetting a combination of more than {} edges and circles (csgrt's limit)",
                     super::sites::MAX_PIECES
                 )),
+                // (Its curves, ellipses, hulls or projections are flattened
+                // by the resolver and offset again: this is not said.)
                 _ => Err(format!(
-                    "{} a 2-D {} is not supported yet",
+                    "{} a 2-D {} of curves, ellipses, hulls or projections has no exact form",
                     if d > 0.0 { "growing" } else { "shrinking" },
                     match op {
-                        Op::Union => "union whose parts' boxes meet",
+                        Op::Union => "union",
                         Op::Intersection => "intersection",
                         Op::Difference => "difference",
-                        Op::Xor => "drawing's even-odd paths",
+                        Op::Xor => "drawing",
                     }
                 )),
             },
         },
         Figure::Ellipse(e) => {
             if !is_circle(e.matrix2) {
-                return Err("offsetting an ellipse is not supported yet".into());
+                return Err("an ellipse's offset has no exact form".into());
             }
             let r2 = e.matrix2.x_axis.length() + d;
             Ok((r2 > 0.0).then(|| Figure::disc(e.translation, r2)))
         }
         Figure::Polygon(o) => polygon(o, join, d),
-        Figure::Section(..) => Err("offsetting a projection is not supported yet".into()),
-        Figure::Hull(_) => Err("offsetting a 2-D hull is not supported yet".into()),
+        Figure::Section(..) => Err("a projection's offset has no exact form".into()),
+        Figure::Hull(_) => Err("a 2-D hull's offset has no exact form".into()),
         Figure::Offset(..) => {
-            Err("offsetting an offset of curved outlines is not supported yet".into())
+            Err("an offset of an offset of curved outlines has no exact form".into())
         }
     }
 }
@@ -199,7 +199,7 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
     let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
     if edges > MAX_OFFSET_EDGES {
         return Err(format!(
-            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges is not supported yet"
+            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges (csgrt's limit)"
         ));
     }
     if self_crossing(&o) {
@@ -495,14 +495,12 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
 /// kite would lie in the disc about it.
 fn curved(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
     if !o.ctrl.iter().flatten().all(|c| offsettable(*c)) {
-        return Err(
-            "offsetting cubic curves (SVG drawings, CFF fonts) is not supported yet".into(),
-        );
+        return Err("cubic curves (SVG drawings, CFF fonts) have no exact offset here".into());
     }
     let edges = o.loops.iter().map(|l| l.len()).sum::<usize>();
     if edges > MAX_OFFSET_EDGES {
         return Err(format!(
-            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges is not supported yet"
+            "offsetting an outline of more than {MAX_OFFSET_EDGES} edges (csgrt's limit)"
         ));
     }
     let region = Region::new(o);

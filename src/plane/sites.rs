@@ -188,7 +188,6 @@ fn pieces(f: &Figure, out: &mut Vec<SitePiece>) -> bool {
             }
             true
         }
-        Figure::Op(Op::Xor, _) => false,
         Figure::Op(_, kids) => kids.iter().all(|k| pieces(k, out)),
         _ => false,
     }
@@ -203,6 +202,15 @@ pub fn inside(f: &Figure, p: DVec2) -> bool {
         Figure::Op(Op::Intersection, kids) => kids.iter().all(|k| inside(k, p)),
         Figure::Op(Op::Difference, kids) => {
             kids.first().is_some_and(|k| inside(k, p)) && !kids[1..].iter().any(|k| inside(k, p))
+        }
+        // A drawing's even-odd paths: in an odd number of them.
+        Figure::Op(Op::Xor, kids) => {
+            let n = kids.iter().filter(|k| inside(k, p)).count();
+            // The fault: read as their union.
+            if crate::mutant::active("sites_xor_united") {
+                return n > 0;
+            }
+            n % 2 == 1
         }
         _ => false,
     }
@@ -527,8 +535,21 @@ fn read(f: &Figure) -> Option<(Vec<SitePiece>, f64)> {
 /// chained end to start (ends within 10⁻⁹ of the shape's size are one
 /// point), and runs along one line merged. `None` for a combination with a
 /// circle or another leaf, past [`MAX_PIECES`] edges, or whose pieces do
-/// not close into loops.
+/// not close into loops — or touch, where a corner could be chained two
+/// ways (see [`touching_outline`]).
 pub fn outline(f: &Figure) -> Option<crate::plane::Outlines> {
+    chained(f, false)
+}
+
+/// [`outline`], but where the boundary touches itself the loops through
+/// that point are chained the first way found: each is closed, and they
+/// still make the whole boundary, each edge once (what a sum takes of it),
+/// though not necessarily as simple loops.
+pub fn touching_outline(f: &Figure) -> Option<crate::plane::Outlines> {
+    chained(f, true)
+}
+
+fn chained(f: &Figure, touching: bool) -> Option<crate::plane::Outlines> {
     let (all, tol) = read(f)?;
     if all.iter().any(|p| matches!(p, SitePiece::Circle(..))) {
         return None;
@@ -559,7 +580,11 @@ pub fn outline(f: &Figure) -> Option<crate::plane::Outlines> {
             let next: Vec<usize> = (0..segs.len())
                 .filter(|&k| !used[k] && (segs[k].0 - end).length() <= tol)
                 .collect();
-            let [k] = next[..] else { return None };
+            let k = match next[..] {
+                [k] => k,
+                [k, ..] if touching => k,
+                _ => return None,
+            };
             used[k] = true;
             pts.push(segs[k].0);
             end = segs[k].1;

@@ -246,7 +246,7 @@ fn boundary(f: &Figure) -> Option<Vec<Vec<DVec2>>> {
             Some(out)
         }
         // A combination with no outline is empty when it has no boundary.
-        Figure::Op(..) => match super::sites::outline(f) {
+        Figure::Op(..) => match super::sites::touching_outline(f) {
             Some(o) => Some(o.loops),
             None => match super::sites::strokes(f) {
                 Some((s, _)) if s.is_empty() => Some(Vec::new()),
@@ -258,7 +258,7 @@ fn boundary(f: &Figure) -> Option<Vec<Vec<DVec2>>> {
 }
 
 const NOT_SUMMED: &str =
-    "`minkowski` of 2-D shapes that are not convex, other than one shape with circles or one polygon with convex polygons, is not supported yet";
+    "a 2-D `minkowski` of shapes that are not convex, whose outline csgrt cannot read (curves, ellipses, or more than 20000 edges)";
 
 /// The convex pieces of a union of convex polygons and circles; false for
 /// anything else.

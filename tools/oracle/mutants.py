@@ -90,6 +90,7 @@ MESHES = {
     "section_uncut": "approximated_sections",
     "crossing_half_stroked": "offset_self_touching",
     "off_w_ignored": "off_headers",
+    "sites_xor_united": "drawing_touching",
 }
 
 # fault -> arguments of tools/oracle/approximation.py (the certified

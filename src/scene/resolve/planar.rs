@@ -136,7 +136,10 @@ impl Resolver<'_> {
                 self.openscad_facets_unsupported(s, "minkowski() with a circle")?;
             }
             let found = match sum::minkowski(ops.clone()) {
-                Err(why) => self.flat_sum(s, ops).map_err(|_| why),
+                // Where the flat sum fails too, its reason is the one left.
+                Err(why) => self
+                    .flat_sum(s, ops)
+                    .map_err(|e| if e.is_empty() { why } else { e }),
                 exact => exact,
             };
             return match found {
@@ -411,7 +414,7 @@ impl Resolver<'_> {
                     Some(flat) => crate::plane::offset::offset(flat, join, d),
                     None => Ok(None),
                 })
-                .map_err(|_| why)
+                .map_err(|e| if e.is_empty() { why } else { e })
             }
             exact => exact,
         };
