@@ -369,7 +369,11 @@ fn off(bytes: &[u8]) -> Result<MeshFile, FileError> {
         }
         let [x, y, z, w] = xyzw;
         // The fault: the homogeneous coordinate not divided by.
-        let w = if crate::mutant::active("off_w_ignored") { 1.0 } else { w };
+        let w = if crate::mutant::active("off_w_ignored") {
+            1.0
+        } else {
+            w
+        };
         m.points.push(DVec3::new(x, y, z) / w);
     }
     for _ in 0..nf {

@@ -290,10 +290,19 @@ def import_mesh(rd, s, a):
         words = [ln.split("#")[0].split() for ln in data.decode().splitlines()]
         words = [w for w in words if w]
         head = words.pop(0)
-        if head[0] == "OFF":
+        # CGAL's header: [ST][C][N][4][n]OFF; a point's coordinates first
+        # (a homogeneous fourth with 4), then what is not read.
+        kind = re.fullmatch(r"(ST)?(C)?(N)?(4)?(n)?OFF", head[0])
+        four = bool(kind and kind.group(4))
+        if kind:
             head = head[1:] or words.pop(0)
+            if kind.group(5):
+                if head[0] != "3":
+                    raise rd.err(s, "an nOFF file of another dimension than 3")
+                head = head[1:] or words.pop(0)
         nv, nf = int(head[0]), int(head[1])
-        pts = np.array([w[:3] for w in words[:nv]], dtype=float)
+        xyzw = np.array([w[:4] if four else w[:3] + ["1"] for w in words[:nv]], dtype=float)
+        pts = xyzw[:, :3] / xyzw[:, 3:]
         faces = [[int(x) for x in w[1 : 1 + int(w[0])]] for w in words[nv : nv + nf]]
     elif ext == "amf":
         import io

@@ -138,6 +138,10 @@ def offset_pieces(f, join, d):
     kept = [np.asarray([l[i] for i in range(len(l)) if np.any(l[i] != l[(i + 1) % len(l)])], float) for l in f[1]]
     kept = [l for l in kept if len(l) >= 3]
     loops = kept if kept else f[1]
+    if meets_itself(loops):
+        # Read by parity (as OpenSCAD sanitizes a polygon): swept along
+        # its boundary's strokes, cut where it meets itself.
+        return swept_pieces(("poly", loops), join, d, straight=True)
     k, side = abs(d), (1.0 if d > 0 else -1.0)
     pieces = []
     for l in loops:
@@ -155,10 +159,36 @@ def offset_pieces(f, join, d):
     return ("op", "union" if d > 0 else "difference", [body] + pieces)
 
 
+def meets_itself(loops, most=2000):
+    """Whether two edges of `loops` that are not neighbours in one loop
+    meet (cross, touch or overlap); outlines of more than `most` edges are
+    taken as simple (the test is quadratic)."""
+    ends = [(np.asarray(l[i], float), np.asarray(l[(i + 1) % len(l)], float)) for l in loops for i in range(len(l))]
+    n = len(ends)
+    if n > most:
+        return False
+    A = np.array([e[0] for e in ends])
+    B = np.array([e[1] for e in ends])
+    a, b, c, e = A[:, None], B[:, None], A[None], B[None]
+    turn = lambda p, q, r: (q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1]) - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0])
+    hit = (turn(a, b, c) * turn(a, b, e) <= 0) & (turn(c, e, a) * turn(c, e, b) <= 0)
+    for k in (0, 1):
+        hit &= (np.minimum(a[..., k], b[..., k]) <= np.maximum(c[..., k], e[..., k])) & (np.minimum(c[..., k], e[..., k]) <= np.maximum(a[..., k], b[..., k]))
+    start = 0
+    for l in loops:
+        m = len(l)
+        for i in range(m):
+            j = start + (i + 1) % m
+            hit[start + i, j] = hit[j, start + i] = False
+        start += m
+    np.fill_diagonal(hit, False)
+    return bool(hit.any())
+
+
 def plain_op(g):
-    """Whether g is a union, intersection or difference of 2-D trees (an
-    offset's pieces are one too)."""
-    return g[0] == "op" and g[1] in ("union", "intersection", "difference") and (len(g) == 3 or len(g) == 4 and g[3][0] in ("round", "miter", "square", "kites"))
+    """Whether g is a union, intersection, difference or parity (a
+    drawing's) of 2-D trees (an offset's pieces are one too)."""
+    return g[0] == "op" and g[1] in ("union", "intersection", "difference", "xor") and (len(g) == 3 or len(g) == 4 and g[3][0] in ("round", "miter", "square", "kites", "drawing"))
 
 
 def edges_and_circles(f, combines):
@@ -180,7 +210,7 @@ def edges_and_circles(f, combines):
     return (segs, circles) if leaves(f) else None
 
 
-def boundary_strokes(f):
+def boundary_strokes(f, straight=False):
     """The boundary of a 2-D tree of straight polygons and circles as
     strokes with the region on their left — ("line", p, q) and ("arc", c,
     r, a0, span, convex): the circle's angles a0 to a0 + span, the region
@@ -190,7 +220,7 @@ def boundary_strokes(f):
     crosses it, and a piece kept where the region is on exactly one of its
     sides, 1e-9 of the tree's size off the piece's middle."""
     got = edges_and_circles(f, plain_op)
-    if got is None or not got[1]:
+    if got is None or not (got[1] or straight):
         return None
     segs, circles = got
     size = max([float(np.abs(q).max()) for sg in segs for q in sg] + [float(np.abs(c).max()) + r for c, r in circles])
@@ -259,7 +289,7 @@ def boundary_strokes(f):
     return out, eps
 
 
-def swept_pieces(f, join, d):
+def swept_pieces(f, join, d, straight=False):
     """Any other offset of a 2-D tree of polygons and circles, from its
     boundary's strokes: R grown is R with every point within |d| of its
     boundary, R shrunk is R without them; the points within |d| of a line
@@ -267,7 +297,7 @@ def swept_pieces(f, join, d):
     annular sector over its angles (radii r -+ |d|) and the same discs.
     Miter and square joins add (take away) the kite at each corner the
     offset side sees as convex. None for other leaves."""
-    got = boundary_strokes(f)
+    got = boundary_strokes(f, straight)
     if got is None:
         return None
     strokes, tol = got
@@ -324,9 +354,25 @@ def swept_pieces(f, join, d):
             nxt = [x for x in nxt if x[0] <= slack]
             # Those within tol along one direction overlap: any one serves.
             one_way = nxt and all(np.linalg.norm(tangent(chain[i], False) - tangent(chain[nxt[0][1]], False)) <= 1e-9 for l, i in nxt if l <= tol)
-            if not nxt or len(nxt) > 1 and nxt[1][0] <= tol and not one_way:
-                raise ValueError("a sharp offset of an outline that touches itself is not in the oracle")
-            t1, t2 = tangent(st, True), tangent(chain[nxt[0][1]], False)
+            if not nxt:
+                raise ValueError("a sharp offset of an outline that does not close is not in the oracle")
+            pick = nxt[0][1]
+            if len(nxt) > 1 and nxt[1][0] <= tol and not one_way:
+                # The boundary meets itself at v: the corner is the one of
+                # the loop st runs on (Clipper joins each loop's own), the
+                # stroke out of v that bounds the same wedge of the offset
+                # side — the least turn from the way back along st,
+                # clockwise when grown (the shape's wedge), counter-
+                # clockwise when shrunk (the outside's).
+                back = -tangent(st, True)
+
+                def turn(i):
+                    t = tangent(chain[i], False)
+                    a = (math.atan2(back[1], back[0]) - math.atan2(t[1], t[0])) * side
+                    return a % (2 * math.pi) or 2 * math.pi
+
+                pick = min((i for l, i in nxt if l <= tol), key=turn)
+            t1, t2 = tangent(st, True), tangent(chain[pick], False)
             n1, n2 = np.array([t1[1], -t1[0]]) * side, np.array([t2[1], -t2[0]]) * side
             if t2 @ n1 >= 0 or 1 - n1 @ n2 <= 1e-12:
                 continue
@@ -803,6 +849,8 @@ def flat_inside(f, p):
         return all(ins)
     if f[1] == "difference":
         return ins[0] and not any(ins[1:])
+    if f[1] == "xor":
+        return sum(map(bool, ins)) % 2 == 1
     return None
 
 

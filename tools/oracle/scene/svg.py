@@ -306,59 +306,88 @@ def svg_mm(length, vb, dpi):
     return v * k[u] if u in k else (0.0 if vb is None else vb)
 
 
-def svg_read(path, dpi, center):
-    """(shapes, place): each shape (its transform, its parts) in user
-    space, and the map from user space to OpenSCAD's plane."""
-    import xml.etree.ElementTree as ET
-
-    root = ET.parse(path).getroot()
-    local = lambda el: el.tag.split("}")[-1]
-    if local(root) != "svg":
-        raise ValueError("the root element is not svg")
+def svg_page(el, dpi, page):
+    """The page after libsvg reads svg element `el` (import_svg.cc): its
+    height always; its scale, origin and alignment only where it has a
+    viewBox (the alignment only where it aligns), else those of `page`."""
+    height, scale, align, origin = page
     vb = None
-    if root.get("viewBox") is not None:
-        vb = [float(x) for x in re.split(r"[\s,]+", root.get("viewBox").strip())]
+    if el.get("viewBox") is not None:
+        vb = [float(x) for x in re.split(r"[\s,]+", el.get("viewBox").strip())]
         if len(vb) != 4 or vb[2] <= 0 or vb[3] <= 0:
             raise ValueError("a viewBox of no size")
-    width = svg_mm(svg_length(root.get("width")), vb[2] if vb else None, dpi)
-    height = svg_mm(svg_length(root.get("height")), vb[3] if vb else None, dpi)
-    scale, align, origin = np.ones(2), np.zeros(2), np.zeros(2)
+    width = svg_mm(svg_length(el.get("width")), vb[2] if vb else None, dpi)
+    height = svg_mm(svg_length(el.get("height")), vb[3] if vb else None, dpi)
     if vb:
         origin = np.array(vb[:2])
         scale = np.array([width / vb[2], height / vb[3]])
-        words = (root.get("preserveAspectRatio") or "xMidYMid meet").split()
+        words = (el.get("preserveAspectRatio") or "xMidYMid meet").split()
         if words and words[0] == "defer":
             words = words[1:]
         al = words[0] if words else "xMidYMid"
         if al != "none":
             k = scale.max() if len(words) > 1 and words[1] == "slice" else scale.min()
             scale = np.array([k, k])
-            pos = lambda code, page, v: {"Mid": page / 2 - k * v / 2, "Max": page - k * v}.get(code, 0.0)
+            pos = lambda code, pg, v: {"Mid": pg / 2 - k * v / 2, "Max": pg - k * v}.get(code, 0.0)
             align = np.array([pos(al[1:4], width, vb[2]), pos(al[5:8], height, vb[3])])
-    shapes = []
+    return height, scale, align, origin
 
-    def walk(el, m):
+
+def svg_read(path, dpi, center):
+    """(shapes, place): each shape (its transform, its parts) in user
+    space, and the map from user space to OpenSCAD's plane.
+
+    libsvg reads tags in a stream: a start tag of svg, g, text or tspan
+    pushes a container (an svg's with no transform of its own), an end tag
+    of g, text or tspan pops the last one pushed, whichever it is (so an
+    svg inside a group is popped by the group's end, and the group stays);
+    a shape takes the transforms of the containers up to the first one
+    pushed. Every svg element sets the page as it comes; the last one
+    places the drawing, and center's box scales each shape by the page of
+    its time."""
+    import xml.etree.ElementTree as ET
+
+    root = ET.parse(path).getroot()
+    local = lambda el: el.tag.split("}")[-1]
+    if local(root) != "svg":
+        raise ValueError("the root element is not svg")
+
+    def tags(el):
+        yield el, True
         for ch in el:
-            name = local(ch)
-            if name == "defs" or not isinstance(ch.tag, str):
-                continue
-            own = svg_transform(ch.get("transform"))
-            if name in ("g", "text", "tspan"):
-                walk(ch, m @ own)
-            elif name in ("path", "rect", "circle", "ellipse", "line", "polyline", "polygon"):
-                shapes.append((m @ own, svg_parts(ch, name)))
-            elif name == "svg":
-                raise ValueError("an svg inside the drawing is not in the oracle")
-            else:
-                walk(ch, m)
+            if isinstance(ch.tag, str):
+                yield from tags(ch)
+        yield el, False
 
-    walk(root, np.eye(3))
+    page = (0.0, np.ones(2), np.zeros(2), np.zeros(2))
+    shapes, scales, open_, defs = [], [], [], 0
+    for el, start in tags(root):
+        name = local(el)
+        if name == "defs":
+            defs += 1 if start else -1
+            continue
+        if defs:
+            continue
+        if not start:
+            if name in ("g", "text", "tspan"):
+                open_.pop()
+            continue
+        m = open_[-1] if open_ else np.eye(3)
+        if name == "svg":
+            page = svg_page(el, dpi, page)
+            open_.append(m)
+        elif name in ("g", "text", "tspan"):
+            open_.append(m @ svg_transform(el.get("transform")))
+        elif name in ("path", "rect", "circle", "ellipse", "line", "polyline", "polygon"):
+            shapes.append((m @ svg_transform(el.get("transform")), svg_parts(el, name)))
+            scales.append(page[1])
+    height, scale, align, origin = page
     if center:
         pts = []
-        for m, parts in shapes:
+        for (m, parts), k in zip(shapes, scales):
             for x in parts:
-                pts += [m[:2, :2] @ q + m[:2, 2] for q in svg_openscad_points(x)]
-        pts = np.array(pts) * scale if pts else np.zeros((1, 2))
+                pts += [(m[:2, :2] @ q + m[:2, 2]) * k for q in svg_openscad_points(x)]
+        pts = np.array(pts) if pts else np.zeros((1, 2))
         cx, cy = (pts.min(axis=0) + pts.max(axis=0)) / 2
     else:
         cx, cy = -align[0], height - align[1]
