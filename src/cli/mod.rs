@@ -224,7 +224,15 @@ pub fn main() -> i32 {
             return e.exit_code();
         }
     };
-    match run(&cli) {
+    // The stages walk the model's tree recursively: nested
+    // `MAX_NESTING` deep, they need more stack than a thread's default
+    // (`syntax::MAIN_STACK`).
+    let ran = std::thread::Builder::new()
+        .stack_size(csgrt::syntax::MAIN_STACK)
+        .spawn(move || run(&cli))
+        .map_err(|e| Error::Usage(format!("cannot start the main thread: {e}")))
+        .and_then(|t| t.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
+    match ran {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("{e}");
@@ -235,7 +243,7 @@ pub fn main() -> i32 {
 
 pub fn run(cli: &Cli) -> Result<()> {
     let jobs = jobs(cli)?;
-    let mut pool = rayon::ThreadPoolBuilder::new();
+    let mut pool = rayon::ThreadPoolBuilder::new().stack_size(csgrt::syntax::WORKER_STACK);
     if let Some(n) = cli.threads {
         pool = pool.num_threads(n as usize);
     }
@@ -249,10 +257,14 @@ pub fn run(cli: &Cli) -> Result<()> {
         if cli.watch {
             return pool.install(|| watch::watch(cli, job));
         }
-        let scene = scene_of(cli, job)?;
-        return pool.install(|| match &cli.trace_rays {
-            Some(input) => trace_rays(cli, job, &scene, input),
-            None => render_files(cli, job, &scene, true),
+        // In the pool: what the scene's reading casts (its framing) runs
+        // on its threads, with their stacks.
+        return pool.install(|| {
+            let scene = scene_of(cli, job)?;
+            match &cli.trace_rays {
+                Some(input) => trace_rays(cli, job, &scene, input),
+                None => render_files(cli, job, &scene, true),
+            }
         });
     }
     // Several images: each is rendered and written on its own; one that

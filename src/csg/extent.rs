@@ -68,6 +68,10 @@ const FAR_POINT_NUDGE: f64 = 1e-7;
 /// Rays a side of the grid [`Csg::tight_bounds`] casts along each axis.
 pub const FRAMING_GRID: usize = 64;
 
+/// How many levels of a tree below the node framed have their own
+/// surfaces sampled ([`Csg::tight`]).
+pub const FRAMING_LEVELS: usize = 8;
+
 /// Which sides of a box are asked for: `[low, high]`, per axis.
 type Sides = [[bool; 3]; 2];
 
@@ -87,14 +91,14 @@ impl Csg {
         if !loose.is_bounded() || loose.is_empty() {
             return loose;
         }
-        self.tight(root, [[true; 3]; 2])
+        self.tight(root, [[true; 3]; 2], 0)
     }
 
     /// A node's box on the sides `need` asks for (`[low, high]` per axis;
     /// the others are its node box's): each the exact far point where
     /// [`Csg::extreme`] shows it, the rest from its children
     /// ([`Csg::tight_below`]).
-    fn tight(&self, node: u32, need: Sides) -> Aabb {
+    fn tight(&self, node: u32, need: Sides, level: usize) -> Aabb {
         let mut out = self.nodes[node as usize].bounds;
         let mut missing = [[false; 3]; 2];
         for (side, sign) in [(0, -1.0), (1, 1.0)] {
@@ -109,7 +113,7 @@ impl Csg {
             }
         }
         if missing.iter().flatten().any(|&m| m) {
-            let below = self.tight_below(node, missing);
+            let below = self.tight_below(node, missing, level);
             if below.is_empty() {
                 return below;
             }
@@ -133,8 +137,14 @@ impl Csg {
     /// intersection's or a difference's the meet of its children's (the
     /// first one's), shrunk to the surface that rays cast through it find
     /// ([`Csg::refined`]).
-    fn tight_below(&self, node: u32, need: Sides) -> Aabb {
+    fn tight_below(&self, node: u32, need: Sides, level: usize) -> Aabb {
         let n = &self.nodes[node as usize];
+        // Below FRAMING_LEVELS, a node's box is left as it is: the rays
+        // cast for the node above find its surface anyway, and casting
+        // them at every level of a deep chain costs the depth squared.
+        if level >= FRAMING_LEVELS {
+            return n.bounds;
+        }
         match &n.kind {
             // A leaf with no far point (a twist, an offset turned) and a
             // section: their surface inside their box.
@@ -155,21 +165,23 @@ impl Csg {
                             || (need[1][a] && b.max[a] > acc.max[a])
                     });
                     if further {
-                        acc = acc.union(&self.tight(c, need));
+                        acc = acc.union(&self.tight(c, need, level + 1));
                     }
                 }
                 acc
             }
             NodeKind::Op(Op::Intersection, ch) => {
-                let b = ch
-                    .iter()
-                    .fold(Aabb::EVERYTHING, |a, &c| a.intersect(&self.tight(c, need)));
+                let b = ch.iter().fold(Aabb::EVERYTHING, |a, &c| {
+                    a.intersect(&self.tight(c, need, level + 1))
+                });
                 if b.is_empty() {
                     return Aabb::EMPTY;
                 }
                 self.refined(node, b, need)
             }
-            NodeKind::Op(Op::Difference, ch) => self.refined(node, self.tight(ch[0], need), need),
+            NodeKind::Op(Op::Difference, ch) => {
+                self.refined(node, self.tight(ch[0], need, level + 1), need)
+            }
         }
     }
 

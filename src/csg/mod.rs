@@ -281,28 +281,14 @@ impl Csg {
             children.push(u);
         }
         let bounds = op_bounds(op, children.iter().map(|&c| self.nodes[c as usize].bounds));
-        let index = if op == Op::Union {
-            self.union_index(&children)
-        } else {
-            None
-        };
-        // Only where the sorting first-hit query reads them (a union that
-        // walks its hierarchy does not).
-        let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
-        let lanes = if op == Op::Union && sorts && children.len() >= LANES_MIN {
-            let boxes: Vec<Aabb> = children
-                .iter()
-                .map(|&c| self.nodes[c as usize].bounds)
-                .collect();
-            boxes.chunks(4).map(AabbLanes::of).collect()
-        } else {
-            Vec::new()
-        };
+        // A union's hierarchy waits for `index_unions`: one made here and
+        // then flattened into its parent (a chain of nested unions) would
+        // be built again at every level.
         self.add_node(Node {
             kind: NodeKind::Op(op, children),
             bounds,
-            index,
-            lanes,
+            index: None,
+            lanes: Vec::new(),
             pretest: false,
         })
     }
@@ -348,6 +334,52 @@ impl Csg {
         }
     }
 
+    /// Builds the hierarchy (and the boxes in lanes, where the sorting
+    /// first-hit query reads them: a union that walks its hierarchy does
+    /// not) of every union under the root, once the tree is whole; the
+    /// nodes' pretests after them.
+    pub fn index_unions(&mut self) {
+        let Some(root) = self.root else {
+            return;
+        };
+        let mut todo = vec![root];
+        let mut seen = vec![false; self.nodes.len()];
+        while let Some(n) = todo.pop() {
+            if std::mem::replace(&mut seen[n as usize], true) {
+                continue;
+            }
+            match &self.nodes[n as usize].kind {
+                NodeKind::Op(op, ch) => {
+                    todo.extend(ch.iter().copied());
+                    if *op == Op::Union {
+                        let ch = ch.clone();
+                        self.index_union(n, &ch);
+                    }
+                }
+                &NodeKind::Section(c, _) => todo.push(c),
+                NodeKind::Leaf(_) => {}
+            }
+        }
+    }
+
+    fn index_union(&mut self, n: u32, children: &[u32]) {
+        let index = self.union_index(children);
+        let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
+        let lanes = if sorts && children.len() >= LANES_MIN {
+            let boxes: Vec<Aabb> = children
+                .iter()
+                .map(|&c| self.nodes[c as usize].bounds)
+                .collect();
+            boxes.chunks(4).map(AabbLanes::of).collect()
+        } else {
+            Vec::new()
+        };
+        let node = &mut self.nodes[n as usize];
+        node.index = index;
+        node.lanes = lanes;
+        node.pretest = pretest(node);
+    }
+
     fn union_index(&self, children: &[u32]) -> Option<Box<UnionIndex>> {
         let (bounded, unbounded): (Vec<u32>, Vec<u32>) = children
             .iter()
@@ -376,9 +408,7 @@ impl Csg {
     }
 
     fn add_node(&mut self, mut node: Node) -> u32 {
-        let e = node.bounds.max - node.bounds.min;
-        node.pretest =
-            e.x + e.y + e.z < f64::INFINITY && !node.index.as_ref().is_some_and(|ix| ix.near_first);
+        node.pretest = pretest(&node);
         self.nodes.push(node);
         self.nodes.len() as u32 - 1
     }
@@ -828,6 +858,13 @@ impl Csg {
             }
         }
     }
+}
+
+/// Whether a node's box is tested before its spans (a bounded one whose
+/// union does not walk its own hierarchy nearest first).
+fn pretest(node: &Node) -> bool {
+    let e = node.bounds.max - node.bounds.min;
+    e.x + e.y + e.z < f64::INFINITY && !node.index.as_ref().is_some_and(|ix| ix.near_first)
 }
 
 /// The box of an operation from its children's (in order): a union's or

@@ -66,6 +66,7 @@ impl SceneBuilder {
         background: glam::DVec3,
     ) -> Scene {
         self.csg.root = root;
+        self.csg.index_unions();
         if root.is_none() {
             self.warn(
                 src,

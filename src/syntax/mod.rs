@@ -17,9 +17,20 @@ use pest::Parser;
 #[grammar = "../grammar/csg.pest"]
 struct CsgParser;
 
-/// The deepest nesting of statements and vectors accepted. Deeper input is an
-/// error, not a stack overflow in the stages that walk the tree.
-pub const MAX_NESTING: usize = 256;
+/// The deepest nesting of statements and vectors accepted (people's models
+/// nest a few hundred deep: a recursive module's export). Deeper input is
+/// an error, not a stack overflow in the stages that walk the tree (the
+/// CLI runs them on threads with [`MAIN_STACK`] and [`WORKER_STACK`]).
+pub const MAX_NESTING: usize = 4096;
+
+/// The stack of the CLI's thread that reads, resolves and writes a model
+/// (address space reserved; only what the model's depth uses is touched):
+/// enough for [`MAX_NESTING`] levels of each stage's recursion.
+pub const MAIN_STACK: usize = 1 << 30;
+
+/// The stack of each rendering thread (which reads an animation's frames
+/// too, and casts the framing's rays).
+pub const WORKER_STACK: usize = 256 << 20;
 
 /// Parses a whole `.csg` file into its top-level statements.
 pub fn parse_csg(src: &Source) -> Result<Vec<Statement>> {
@@ -350,11 +361,17 @@ mod tests {
 
     #[test]
     fn nesting_past_the_limit_is_an_error_not_a_crash() {
+        // On a thread with the CLI's stack, as the CLI parses.
         let depth = MAX_NESTING + 1;
         let text = "group() {".repeat(depth) + &"}".repeat(depth);
-        let e = err(&text);
+        let e = std::thread::Builder::new()
+            .stack_size(MAIN_STACK)
+            .spawn(move || err(&text))
+            .unwrap()
+            .join()
+            .unwrap();
         assert!(
-            e.starts_with("error: nesting deeper than 256 levels\n"),
+            e.starts_with("error: nesting deeper than 4096 levels\n"),
             "{e}"
         );
     }

@@ -125,7 +125,7 @@ fn a_file_over_the_size_limit_is_refused_before_it_is_read() {
     assert_eq!(
         r.stderr,
         format!(
-            "error: huge.csg: the file has {} bytes; the limit is 64 MiB\n",
+            "error: huge.csg: the file has {} bytes; the limit is 256 MiB\n",
             csgrt::source::MAX_FILE_BYTES + 1
         )
     );
@@ -199,36 +199,66 @@ fn an_unwritable_output_is_a_clear_io_error() {
 
 #[test]
 fn a_million_statements_chained_without_braces_end_in_an_error() {
-    assert_too_deep_to_parse("chain.csg", &("union() ".repeat(1_000_000) + "cube();\n"));
+    // The parser reads them (on the CLI's stack); the limit stops them.
+    let name = "chain.csg";
+    let (dir, _) = scene(name, &("union() ".repeat(1_000_000) + "cube();\n"));
+    let r = csgrt(dir.path(), &[name, "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    let col = 8 * csgrt::syntax::MAX_NESTING + 1;
+    assert!(
+        r.stderr.starts_with(&format!(
+            "error: nesting deeper than 4096 levels\n --> {name}:1:{col}\n"
+        )),
+        "{}",
+        r.stderr
+    );
+    assert!(r.stderr.len() < 600, "{} bytes of message", r.stderr.len());
+    assert_eq!(files(dir.path()), [name]);
 }
 
 #[test]
-fn statements_nest_at_most_256_deep_with_or_without_braces() {
-    let chained = "translate([1, 0, 0])\n".repeat(300) + "cube();\n";
+fn statements_nest_at_most_4096_deep_with_or_without_braces() {
+    assert_eq!(csgrt::syntax::MAX_NESTING, 4096);
+    let chained = "translate([1, 0, 0])\n".repeat(4100) + "cube();\n";
     assert_eq!(
         fails(&chained),
-        "error: nesting deeper than 256 levels\n   --> bad.csg:257:1\n    |\n257 | translate([1, 0, 0])\n    | ^^^^^^^^^ the limit is reached here\n"
+        "error: nesting deeper than 4096 levels\n    --> bad.csg:4097:1\n     |\n4097 | translate([1, 0, 0])\n     | ^^^^^^^^^ the limit is reached here\n"
     );
-    let braced = "group() {\n".repeat(300) + &"}\n".repeat(300);
+    let braced = "group() {\n".repeat(4100) + &"}\n".repeat(4100);
     assert_eq!(
         fails(&braced),
-        "error: nesting deeper than 256 levels\n   --> bad.csg:257:1\n    |\n257 | group() {\n    | ^^^^^ the limit is reached here\n"
+        "error: nesting deeper than 4096 levels\n    --> bad.csg:4097:1\n     |\n4097 | group() {\n     | ^^^^^ the limit is reached here\n"
     );
-    // 256 levels are fine.
-    let (dir, _) = scene(
-        "ok.csg",
-        &("translate([1, 0, 0])\n".repeat(255) + "cube();\n"),
-    );
-    let r = csgrt(dir.path(), &["ok.csg", "--size", "8x6", "-q"]);
-    assert_eq!(r.status, 0, "{}", r.stderr);
+    // 4096 levels are fine: read, framed and rendered (a people's model
+    // nests 269 deep), with and without braces, and as a chain of
+    // differences each level of which the rays walk.
+    for text in [
+        "translate([0.001, 0, 0])\n".repeat(4095) + "cube();\n",
+        "group() {\n".repeat(4095) + "cube();\n" + &"}\n".repeat(4095),
+        "difference() {\n".repeat(4094)
+            + "cube(10, center = true);\n"
+            + &(0..4094)
+                .map(|i| {
+                    format!(
+                        "translate([{}, {}, 5]) sphere(0.3);\n}}\n",
+                        i % 20 - 10,
+                        i / 20 % 20 - 10
+                    )
+                })
+                .collect::<String>(),
+    ] {
+        let (dir, _) = scene("ok.csg", &text);
+        let r = csgrt(dir.path(), &["ok.csg", "--size", "8x6", "-q"]);
+        assert_eq!(r.status, 0, "{}", r.stderr);
+    }
 }
 
 #[test]
-fn vectors_nest_at_most_256_deep() {
-    let text = "sphere(r =\n".to_string() + &"[\n".repeat(300) + &"]\n".repeat(300) + ");\n";
+fn vectors_nest_at_most_4096_deep() {
+    let text = "sphere(r =\n".to_string() + &"[\n".repeat(4100) + &"]\n".repeat(4100) + ");\n";
     assert_eq!(
         fails(&text),
-        "error: nesting deeper than 256 levels\n   --> bad.csg:258:1\n    |\n258 | [\n    | ^ the limit is reached here\n"
+        "error: nesting deeper than 4096 levels\n    --> bad.csg:4098:1\n     |\n4098 | [\n     | ^ the limit is reached here\n"
     );
 }
 
