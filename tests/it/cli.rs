@@ -654,20 +654,32 @@ fn an_unknown_facets_mode_is_a_usage_error() {
         r.stderr
     );
     assert_eq!(files(dir.path()), ["s.csg"]);
-    // And what it cannot facet yet is refused at its place.
+    // What it does not facet is drawn exact, with a warning at its place:
+    // the picture `--facets exact` draws; under --strict, an error.
     let (dir, _) = scene(
         "t.csg",
         "linear_extrude(height = 2, twist = 30) union() { square(1); translate([2, 0]) square(1); }\n",
     );
-    let r = csgrt(dir.path(), &["t.csg", "--facets", "openscad", "-q"]);
-    assert_eq!(r.status, 2);
+    let run = |args: &[&str]| {
+        let mut v = vec!["t.csg", "--size", "16x12"];
+        v.extend(args);
+        csgrt(dir.path(), &v)
+    };
+    let r = run(&["--facets", "openscad", "-o", "o.png"]);
+    assert_eq!(r.status, 0, "{}", r.stderr);
     assert!(
         r.stderr.starts_with(
-            "error: twisting or unevenly scaling a 2-D combination under `--facets openscad` is not supported yet\n --> t.csg:1:1"
+            "warning: twisting or unevenly scaling a 2-D combination or curves is drawn exact under `--facets openscad`\n --> t.csg:1:1"
         ),
         "{}",
         r.stderr
     );
+    assert_eq!(run(&["--facets", "exact", "-o", "e.png", "-q"]).status, 0);
+    let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+    assert!(read("o.png") == read("e.png"), "not the exact picture");
+    let strict = run(&["--facets", "openscad", "--strict", "-o", "s.png", "-q"]);
+    assert_eq!(strict.status, 2, "{}", strict.stderr);
+    assert!(!dir.path().join("s.png").exists());
 }
 
 /// Each file format by its own signature and header, read here by hand;

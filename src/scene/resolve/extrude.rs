@@ -392,7 +392,16 @@ impl Resolver<'_> {
         if h <= 0.0 {
             return self.empty(s, "its height is zero or negative");
         }
-        if self.facets == super::super::Facets::OpenScad && (twist != 0.0 || scale.x != scale.y) {
+        let faceted =
+            self.facets == super::super::Facets::OpenScad && (twist != 0.0 || scale.x != scale.y);
+        let one_polygon = matches!(&f, Figure::Polygon(o) if !o.curved());
+        if faceted && !one_polygon {
+            self.facets_drawn_exact(
+                s,
+                "twisting or unevenly scaling a 2-D combination or curves",
+            );
+        }
+        if faceted && one_polygon {
             let cut = Cut {
                 h,
                 center,
@@ -478,7 +487,10 @@ impl Resolver<'_> {
             self.go_on(e, "it is left out, as in OpenSCAD")?;
             return Ok(None);
         }
-        if self.facets == super::super::Facets::OpenScad {
+        if self.facets == super::super::Facets::OpenScad && !crate::plane::flat::straight(&f, false)
+        {
+            self.facets_drawn_exact(s, "turning curves");
+        } else if self.facets == super::super::Facets::OpenScad {
             // OpenSCAD's fragments, from the shape's whole x extent (with
             // the axis), a fraction of them for a part turn.
             let n = self.fragments(&a, hi.max(0.0) - lo.min(0.0)).unwrap_or(3);

@@ -44,7 +44,7 @@ impl Resolver<'_> {
             _ => {
                 return Err(self.src.error(
                     s.name_span,
-                    "twisting or unevenly scaling a 2-D combination under `--facets openscad` is not supported yet",
+                    "OpenSCAD's facets of a twisted 2-D combination are not built (the caller draws it exact)",
                     "csgrt builds OpenSCAD's slices of one polygon (with its holes)",
                 ))
             }
@@ -234,7 +234,7 @@ impl Resolver<'_> {
             }
             _ => Err(self.src.error(
                 s.name_span,
-                "rotate_extrude of curves under `--facets openscad` is not supported yet",
+                "OpenSCAD's facets of turned curves are not built (the caller draws them exact)",
                 "csgrt builds OpenSCAD's facets of turned polygons and circles",
             )),
         }

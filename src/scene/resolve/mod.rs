@@ -154,17 +154,17 @@ impl Resolver<'_> {
         }
     }
 
-    /// Under `--facets openscad`, an error for a statement whose facets
-    /// csgrt does not build yet.
-    fn openscad_facets_unsupported(&self, s: &Statement, what: &str) -> Result<()> {
+    /// Under `--facets openscad`, a warning for a statement whose facets
+    /// csgrt does not build: it is drawn exact (an error under --strict).
+    fn facets_drawn_exact(&mut self, s: &Statement, what: &str) {
         if self.facets != super::Facets::OpenScad {
-            return Ok(());
+            return;
         }
-        Err(self.src.error(
+        self.warn(
             s.name_span,
-            format!("{what} under `--facets openscad` is not supported yet"),
-            "csgrt builds OpenSCAD's facets of circles, cylinders and spheres; use --facets exact or the default",
-        ))
+            &format!("{what} is drawn exact under `--facets openscad`"),
+            "csgrt builds OpenSCAD's facets of circles, cylinders, spheres and of straight polygons turned or twisted, not of this",
+        );
     }
 
     /// Where a file the model names (`import`, `surface`) is read from:

@@ -133,7 +133,7 @@ impl Resolver<'_> {
                 .iter()
                 .any(|f| matches!(f, Figure::Ellipse(e) if is_circle(e.matrix2)));
             if circles {
-                self.openscad_facets_unsupported(s, "minkowski() with a circle")?;
+                self.facets_drawn_exact(s, "minkowski() with a circle");
             }
             let found = match sum::minkowski(ops.clone()) {
                 // Where the flat sum fails too, its reason is the one left.
@@ -331,7 +331,7 @@ impl Resolver<'_> {
 
     /// `text` under `m`: the union of its glyphs.
     fn text(&mut self, s: &Statement, m: DAffine2) -> Result<Option<Figure>> {
-        self.openscad_facets_unsupported(s, "text")?;
+        self.facets_drawn_exact(s, "text");
         const PARAMS: &[&str] = &[
             "text",
             "size",
@@ -400,7 +400,7 @@ impl Resolver<'_> {
             (None, None) => (Join::Round, 1.0),
         };
         if join == Join::Round {
-            self.openscad_facets_unsupported(s, "offset(r)")?;
+            self.facets_drawn_exact(s, "offset(r)");
         }
         let Some(f) = self.figure_children(s, Op::Union, DAffine2::IDENTITY, depth)? else {
             return Ok(None);
@@ -539,7 +539,7 @@ impl Resolver<'_> {
         path: &std::path::Path,
         m: DAffine2,
     ) -> Result<Option<Figure>> {
-        self.openscad_facets_unsupported(s, "a drawing's curves")?;
+        self.facets_drawn_exact(s, "a drawing's curves");
         let mut dpi = a.number("dpi")?.unwrap_or(72.0);
         if dpi < 0.001 {
             self.warn(
