@@ -400,11 +400,31 @@ impl Resolver<'_> {
             let (mut leaves, mut cut) = (Vec::new(), Vec::new());
             self.union_members(node, true, &mut leaves, &mut cut);
             for c in cut {
-                let pieces = self.polytopes(s, &[c], frame, false)?;
+                let mut pieces = self.polytopes(s, &[c], frame, false)?;
+                // A convex node (an intersection of convex solids) is the
+                // hull of its pieces, within the same distance (that
+                // distance's neighbourhood of a convex set is convex): one
+                // convex part to sum, not each of its cells.
+                if pieces.len() > 1 && self.convex_node(c) {
+                    let pts: Vec<DVec3> = pieces.iter().flat_map(|p| p.vertices()).collect();
+                    let b = self.b.csg.nodes[c as usize].bounds;
+                    let tol = crate::geometry::polytope::plane_tolerance(&b);
+                    pieces = Polytope::hull(&pts, tol).into_iter().collect();
+                }
                 cuts.insert(c, pieces);
             }
         }
         Ok(cuts)
+    }
+
+    /// Whether node `node` is convex: a convex leaf, or an intersection of
+    /// convex nodes.
+    fn convex_node(&self, node: u32) -> bool {
+        match &self.b.csg.nodes[node as usize].kind {
+            NodeKind::Leaf(i) => is_convex(&self.b.csg.prims[*i as usize].shape),
+            NodeKind::Op(Op::Intersection, ch) => ch.iter().all(|&c| self.convex_node(c)),
+            _ => false,
+        }
     }
 
     /// Every choice of one convex piece from each operand's union, summed.
