@@ -146,6 +146,11 @@ def render(binary, rel, extra=()):
         if p.returncode != 0 or not os.path.exists(mask):
             lines = [x for x in p.stderr.splitlines() if "error" in x] or p.stderr.splitlines() or ["no message"]
             return None, lines[0][:200]
+        # Under --facets openscad, what csgrt builds no facets of is drawn
+        # exact with a warning: its facets are not built.
+        exact = [x for x in p.stderr.splitlines() if "is drawn exact under `--facets openscad`" in x]
+        if exact:
+            return None, exact[0][:200]
         return np.asarray(Image.open(mask).convert("L")) > 127, ""
 
 
