@@ -136,28 +136,8 @@ impl Csg {
         let level = |p: DVec3| to_object.transform_point3(p).z;
         // Frame z across `within`: f(p + z·w) = f(p) + z.
         let w = xf.to_world.matrix3 * DVec3::Z;
-        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-        for i in 0..8 {
-            let corner = DVec3::new(
-                if i & 1 == 0 {
-                    within.min.x
-                } else {
-                    within.max.x
-                },
-                if i & 2 == 0 {
-                    within.min.y
-                } else {
-                    within.max.y
-                },
-                if i & 4 == 0 {
-                    within.min.z
-                } else {
-                    within.max.z
-                },
-            );
-            let z = level(corner);
-            (lo, hi) = (lo.min(z), hi.max(z));
-        }
+        let range = crate::geometry::solid::corner_box(within, &to_object);
+        let (lo, hi) = (range.min.z, range.max.z);
         let mut out = Vec::new();
         for q in self.convex_pieces(c, eps, tol, false)? {
             // The fault: the solid's pieces, not their slices.

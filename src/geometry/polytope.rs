@@ -491,29 +491,14 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
             // A convex outline (a circle's chords, a square) is one prism.
             if let [l] = &loops[..] {
                 if crate::plane::hull::convex_polygon(l) {
-                    let pts: Vec<DVec3> = l
-                        .iter()
-                        .flat_map(|&v| {
-                            [
-                                m.transform_point3(v.extend(z)),
-                                m.transform_point3((v * q.top).extend(z + 1.0)),
-                            ]
-                        })
-                        .collect();
-                    return Ok(Polytope::hull(&pts, tol).into_iter().collect());
+                    return Ok(prism(l.iter().copied(), m, z, q.top, tol)
+                        .into_iter()
+                        .collect());
                 }
             }
             for t in super::triangulate::cap(loops) {
-                let mut pts = Vec::with_capacity(6);
-                for (l, i) in t {
-                    let v = loops[l][i];
-                    pts.push(m.transform_point3(v.extend(z)));
-                    pts.push(m.transform_point3((v * q.top).extend(z + 1.0)));
-                }
                 // A triangle whose top shrinks to a point is a pyramid.
-                if let Some(p) = Polytope::hull(&pts, tol) {
-                    out.push(p);
-                }
+                out.extend(prism(t.iter().map(|&(l, i)| loops[l][i]), m, z, q.top, tol));
             }
             Ok(out)
         }
@@ -564,23 +549,16 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
                 return Ok(Vec::new());
             };
             let parts = convex_parts(&flat).ok_or_else(|| {
-                "an offset whose outline csgrt cannot read (more than 2048 edges)".to_string()
+                format!(
+                    "an offset whose outline csgrt cannot read (more than {} edges)",
+                    crate::plane::sites::MAX_PIECES
+                )
             })?;
             let z = if q.centered { -0.5 } else { 0.0 };
-            let mut out = Vec::new();
-            for part in parts {
-                let pts: Vec<DVec3> = part
-                    .iter()
-                    .flat_map(|&v| {
-                        [
-                            m.transform_point3(v.extend(z)),
-                            m.transform_point3(v.extend(z + 1.0)),
-                        ]
-                    })
-                    .collect();
-                out.extend(Polytope::hull(&pts, tol));
-            }
-            Ok(out)
+            let prisms = parts
+                .iter()
+                .filter_map(|part| prism(part.iter().copied(), m, z, 1.0, tol));
+            Ok(prisms.collect())
         }
         // A hull or a sum nested in what is cut: its parts' polytopes
         // hulled, summed corner by corner.
@@ -597,22 +575,34 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
         Shape::Shadow(sh) => {
             let soup = &sh.soup;
             let prisms = soup.tris.iter().filter_map(|t| {
-                let pts: Vec<DVec3> = t
-                    .iter()
-                    .flat_map(|&i| {
-                        let v = soup.pts[i as usize];
-                        [
-                            m.transform_point3(v.extend(0.0)),
-                            m.transform_point3(v.extend(1.0)),
-                        ]
-                    })
-                    .collect();
-                Polytope::hull(&pts, tol)
+                let corners = t.iter().map(|&i| soup.pts[i as usize]);
+                prism(corners, m, 0.0, 1.0, tol)
             });
             Ok(prisms.collect())
         }
         Shape::Halfspace(_) => Err("an unbounded solid (a halfspace)".into()),
     }
+}
+
+/// The hull of a convex polygon's corners at height `z` and, scaled by
+/// `top`, at `z + 1`, placed by `m` (a prism, or a pyramid where the top
+/// shrinks to a point); `None` when it is flat.
+fn prism(
+    corners: impl Iterator<Item = DVec2>,
+    m: &DAffine3,
+    z: f64,
+    top: f64,
+    tol: f64,
+) -> Option<Polytope> {
+    let pts: Vec<DVec3> = corners
+        .flat_map(|v| {
+            [
+                m.transform_point3(v.extend(z)),
+                m.transform_point3((v * top).extend(z + 1.0)),
+            ]
+        })
+        .collect();
+    Polytope::hull(&pts, tol)
 }
 
 /// The most corner sums a nested Minkowski sum's polytope is hulled from.

@@ -59,7 +59,7 @@ pub fn minkowski(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
             };
             return Ok(grown.map(|g| g.moved(to_centre)));
         }
-        _ => return Err(NOT_SUMMED.into()),
+        _ => return Err(not_summed()),
     }
     if pieces.is_empty() {
         return Ok((r > 0.0).then(|| Figure::disc(c, r)));
@@ -80,11 +80,11 @@ pub fn minkowski(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
 fn polygon_plus(a: &Figure, pieces: &[Vec<Piece2>]) -> Result<Option<Figure>, String> {
     let loops = match a {
         Figure::Polygon(o) if !o.curved() => &o.loops,
-        _ => return Err(NOT_SUMMED.into()),
+        _ => return Err(not_summed()),
     };
     let combos = choices((vec![DVec2::ZERO], 0.0), pieces)?;
     if combos.iter().any(|(_, r)| *r != 0.0) {
-        return Err(NOT_SUMMED.into());
+        return Err(not_summed());
     }
     let edges: usize = loops.iter().map(|l| l.len()).sum();
     if combos.len() * (edges + 1) > MAX_SUM_PIECES {
@@ -187,7 +187,7 @@ pub fn convolved(ops: Vec<Figure>) -> Result<Option<Figure>, String> {
 /// A ⊕ B for two straight figures (above).
 fn pair(a: &Figure, b: &Figure) -> Result<Option<Figure>, String> {
     let (Some(ka), Some(kb)) = (boundary(a), boundary(b)) else {
-        return Err(NOT_SUMMED.into());
+        return Err(not_summed());
     };
     if ka.is_empty() || kb.is_empty() {
         // An empty operand: an empty sum.
@@ -257,8 +257,12 @@ fn boundary(f: &Figure) -> Option<Vec<Vec<DVec2>>> {
     }
 }
 
-const NOT_SUMMED: &str =
-    "a 2-D `minkowski` of shapes that are not convex, whose outline csgrt cannot read (curves, ellipses, or more than 20000 edges)";
+fn not_summed() -> String {
+    format!(
+        "a 2-D `minkowski` of shapes that are not convex, whose outline csgrt cannot read (curves, ellipses, or more than {} edges)",
+        super::sites::MAX_PIECES
+    )
+}
 
 /// The convex pieces of a union of convex polygons and circles; false for
 /// anything else.

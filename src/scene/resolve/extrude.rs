@@ -394,14 +394,17 @@ impl Resolver<'_> {
         }
         let faceted =
             self.facets == super::super::Facets::OpenScad && (twist != 0.0 || scale.x != scale.y);
-        let one_polygon = matches!(&f, Figure::Polygon(o) if !o.curved());
-        if faceted && !one_polygon {
+        let one_polygon = match &f {
+            Figure::Polygon(o) if !o.curved() => Some(o),
+            _ => None,
+        };
+        if faceted && one_polygon.is_none() {
             self.facets_drawn_exact(
                 s,
                 "twisting or unevenly scaling a 2-D combination or curves",
             );
         }
-        if faceted && one_polygon {
+        if let (true, Some(o)) = (faceted, one_polygon) {
             let cut = Cut {
                 h,
                 center,
@@ -409,7 +412,7 @@ impl Resolver<'_> {
                 scale,
                 slices,
             };
-            return self.extruded_facets(s, &a, &f, &cut, xf, mat);
+            return self.extruded_facets(s, &a, o, &cut, xf, mat);
         }
         let sweep = Sweep {
             top: scale,

@@ -28,27 +28,18 @@ impl Resolver<'_> {
     /// each quad between two slices split along its shorter diagonal
     /// (`sgn_vdiff`, with OpenSCAD's choice for equal ones: by the
     /// outline's sign and the twist's), the bottom and top capped by each
-    /// outline's own triangles. Only one polygon (with its holes): the
-    /// mesh of a 2-D combination depends on the combined outline.
+    /// outline's own triangles. Only one straight polygon `o` (with its
+    /// holes): the mesh of a 2-D combination depends on the combined
+    /// outline (the caller draws that exact).
     pub(super) fn extruded_facets(
         &mut self,
         s: &Statement,
         a: &Args,
-        f: &Figure,
+        o: &Outlines,
         cut: &Cut,
         xf: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
-        let o = match f {
-            Figure::Polygon(o) if !o.curved() => o,
-            _ => {
-                return Err(self.src.error(
-                    s.name_span,
-                    "OpenSCAD's facets of a twisted 2-D combination are not built (the caller draws it exact)",
-                    "csgrt builds OpenSCAD's slices of one polygon (with its holes)",
-                ))
-            }
-        };
         // OpenSCAD's outlines: an outer one counter-clockwise, a hole (in
         // an odd number of others) clockwise.
         let raw: Vec<Vec<DVec2>> = o.loops.iter().filter(|l| l.len() >= 3).cloned().collect();
