@@ -15,7 +15,7 @@
 //! piece of one operand times every face of the next.
 
 use super::{Csg, NodeKind};
-use crate::geometry::polytope::{halfspace_in, pieces_of, Polytope};
+use crate::geometry::polytope::{halfspace_in, pieces_across, Polytope};
 use crate::geometry::Aabb;
 use crate::math::boolean::Op;
 use glam::DVec3;
@@ -64,7 +64,10 @@ impl Csg {
     ) -> Result<Vec<Polytope>, String> {
         let mut leaves = Local::new();
         let cell = self.nodes[node as usize].bounds;
-        self.leaf_polytopes(node, eps, tol, &cell, &mut leaves)?;
+        // A shadow's flat regions in bands across z: each meets the bands
+        // of another solid at its own heights only.
+        let across = columns.then_some(DVec3::Z);
+        self.leaf_polytopes(node, eps, tol, &cell, across, &mut leaves)?;
         let mut out = Vec::new();
         if cell.is_empty() {
             return Ok(out);
@@ -76,13 +79,15 @@ impl Csg {
 
     /// The polytopes of every leaf under `node` (a halfspace's: its part
     /// in `within`, the box of the node cut; a section's: the prisms over
-    /// its solid's pieces' slices, as long as `within` along the prisms).
+    /// its solid's pieces' slices, as long as `within` along the prisms),
+    /// flat regions cut across `across` ([`pieces_across`]).
     fn leaf_polytopes(
         &self,
         node: u32,
         eps: f64,
         tol: f64,
         within: &Aabb,
+        across: Option<DVec3>,
         out: &mut Local,
     ) -> Result<(), String> {
         match &self.nodes[node as usize].kind {
@@ -95,7 +100,7 @@ impl Csg {
                             .into_iter()
                             .collect()
                     }
-                    _ => pieces_of(&p.shape, &p.xf.to_world, eps, tol)
+                    _ => pieces_across(&p.shape, &p.xf.to_world, eps, tol, across)
                         .map_err(|why| format!("a `{}`: {why}", p.shape.name()))?,
                 };
                 out.insert(node, pieces);
@@ -108,7 +113,7 @@ impl Csg {
             }
             NodeKind::Op(_, ch) => ch
                 .iter()
-                .try_for_each(|&c| self.leaf_polytopes(c, eps, tol, within, out)),
+                .try_for_each(|&c| self.leaf_polytopes(c, eps, tol, within, across, out)),
         }
     }
 

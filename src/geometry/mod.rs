@@ -28,6 +28,7 @@ pub mod solid;
 pub mod sphere;
 pub mod torus;
 pub mod transform;
+pub mod trapezoids;
 pub mod triangulate;
 pub mod twist;
 

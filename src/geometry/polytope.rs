@@ -366,6 +366,18 @@ pub fn stretch(m: &DAffine3) -> f64 {
     (largest.max(0.0).sqrt() * (1.0 + 1e-9)).min(frobenius)
 }
 
+/// The largest stretch `m` gives a vector of the plane z = 0 (a little
+/// over): how far a section's error in that plane moves under it (a
+/// prism's height, however long, moves none of it).
+fn section_stretch(m: &DAffine3) -> f64 {
+    let (a, b) = (m.matrix3.x_axis, m.matrix3.y_axis);
+    let gram = glam::DMat2::from_cols(
+        DVec2::new(a.dot(a), a.dot(b)),
+        DVec2::new(a.dot(b), b.dot(b)),
+    );
+    crate::plane::flat::gram_stretch(gram) * (1.0 + 1e-9)
+}
+
 /// Leaf `shape` placed by `m` as convex polytopes within `eps` of it
 /// (absolute planes' thickness `tol`; none for a flat one); or why not:
 /// an unbounded solid, or one past a limit ([`MAX_MESH_CELLS`],
@@ -373,6 +385,24 @@ pub fn stretch(m: &DAffine3) -> f64 {
 ///
 /// [`MAX_MESH_CELLS`]: super::mesh_cells::MAX_MESH_CELLS
 pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<Polytope>, String> {
+    pieces_across(shape, m, eps, tol, None)
+}
+
+/// [`pieces_of`], a flat region's pieces (a prism's, an offset prism's)
+/// cut between levels across world direction `across` where one is given
+/// and the region's plane is not level across it ([`trapezoids`]), rather
+/// than into triangles.
+///
+/// [`trapezoids`]: super::trapezoids::trapezoids
+pub fn pieces_across(
+    shape: &Shape,
+    m: &DAffine3,
+    eps: f64,
+    tol: f64,
+    across: Option<DVec3>,
+) -> Result<Vec<Polytope>, String> {
+    // The rising direction of `across` in the section's plane.
+    let up = across.map(|w| DVec2::new(m.matrix3.x_axis.dot(w), m.matrix3.y_axis.dot(w)));
     match shape {
         Shape::Cuboid(c) => {
             let lo = super::cuboid::low(c.centered);
@@ -393,7 +423,9 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
             Ok(Polytope::from_loops(&pts, &loops, m).into_iter().collect())
         }
         Shape::Cone(c) => {
-            let n = segments(stretch(m), eps, 1.0);
+            // Each height's section is the polygon of its circle (the two
+            // caps' corners hulled): the error lies in the section's plane.
+            let n = segments(section_stretch(m), eps, 1.0);
             let z0 = super::cone::bottom(c.centered);
             let mut pts = Vec::new();
             let mut loops = Vec::new();
@@ -480,26 +512,21 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
             // Curved edges (text, SVG) as chords within eps of them.
             let flat;
             let loops = if q.region.curved() {
-                let sigma = stretch(m) * q.top.abs().max(1.0);
+                // The section's error, grown by the taper at most.
+                let sigma = section_stretch(m) * q.top.abs().max(1.0);
                 flat = crate::plane::flat::chords(&q.region.outlines, eps / sigma);
                 &flat
             } else {
                 &q.region.outlines.loops
             };
             let z = q.z_lo();
-            let mut out = Vec::new();
-            // A convex outline (a circle's chords, a square) is one prism.
-            if let [l] = &loops[..] {
-                if crate::plane::hull::convex_polygon(l) {
-                    return Ok(prism(l.iter().copied(), m, z, q.top, tol)
-                        .into_iter()
-                        .collect());
-                }
-            }
-            for t in super::triangulate::cap(loops) {
-                // A triangle whose top shrinks to a point is a pyramid.
-                out.extend(prism(t.iter().map(|&(l, i)| loops[l][i]), m, z, q.top, tol));
-            }
+            // A convex outline (a circle's chords, a square) is one prism; a
+            // piece whose top shrinks to a point is a pyramid.
+            let pieces = convex_loops(loops, up);
+            let out = pieces
+                .into_iter()
+                .filter_map(|t| prism(t.into_iter(), m, z, q.top, tol))
+                .collect();
             Ok(out)
         }
         Shape::Lathe(l) => {
@@ -543,12 +570,12 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
             // circles' chords within eps/2 more: the loops of its outline,
             // as a straight prism's.
             use crate::plane::figure::Figure;
-            let sigma = stretch(m);
+            let sigma = section_stretch(m);
             let leaf = Figure::Offset(q.region.clone(), glam::DAffine2::IDENTITY);
             let Some(flat) = crate::plane::flat::flattened(&leaf, eps / sigma, false)? else {
                 return Ok(Vec::new());
             };
-            let parts = convex_parts(&flat).ok_or_else(|| {
+            let parts = convex_parts(&flat, up).ok_or_else(|| {
                 format!(
                     "an offset whose outline csgrt cannot read (more than {} edges)",
                     crate::plane::sites::MAX_PIECES
@@ -567,7 +594,13 @@ pub fn pieces_of(shape: &Shape, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
         Shape::Rounded(r) => {
             let mut out = Vec::new();
             for q in &r.pieces {
-                out.extend(pieces_of(&q.shape, &(*m * q.xf.to_world), eps, tol)?);
+                out.extend(pieces_across(
+                    &q.shape,
+                    &(*m * q.xf.to_world),
+                    eps,
+                    tol,
+                    across,
+                )?);
             }
             Ok(out)
         }
@@ -650,13 +683,13 @@ fn summed_hulls(
 /// itself, other polygons' triangles, a union's parts' parts, another
 /// combination's outline's triangles; `None` when that outline cannot be
 /// read.
-fn convex_parts(f: &crate::plane::figure::Figure) -> Option<Vec<Vec<DVec2>>> {
+fn convex_parts(f: &crate::plane::figure::Figure, up: Option<DVec2>) -> Option<Vec<Vec<DVec2>>> {
     use crate::plane::figure::Figure;
     let loops = match f {
         Figure::Op(crate::math::boolean::Op::Union, kids) => {
             let mut out = Vec::new();
             for k in kids {
-                out.extend(convex_parts(k)?);
+                out.extend(convex_parts(k, up)?);
             }
             return Some(out);
         }
@@ -664,7 +697,7 @@ fn convex_parts(f: &crate::plane::figure::Figure) -> Option<Vec<Vec<DVec2>>> {
         Figure::Op(..) => crate::plane::sites::outline(f)?.loops,
         _ => return None,
     };
-    Some(convex_loops(&loops))
+    Some(convex_loops(&loops, up))
 }
 
 /// The most corners a twisted prism's convex pieces may have in all
@@ -687,12 +720,7 @@ pub const MAX_TWIST_POINTS: usize = 200_000;
 /// mapped linearly, exactly).
 fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<Polytope>, String> {
     // The errors above lie in the section's plane: m's stretch there.
-    let (a, b) = (m.matrix3.x_axis, m.matrix3.y_axis);
-    let gram = glam::DMat2::from_cols(
-        DVec2::new(a.dot(a), a.dot(b)),
-        DVec2::new(a.dot(b), b.dot(b)),
-    );
-    let sigma = crate::plane::flat::gram_stretch(gram) * (1.0 + 1e-9);
+    let sigma = section_stretch(m);
     let big = tw.scale.max_element().max(1.0);
     let loops = match &tw.section {
         super::twist::TwistSection::Region(r) if !r.curved() => r.outlines.loops.clone(),
@@ -708,7 +736,7 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
             }
         }
     };
-    let pieces = convex_loops(&loops);
+    let pieces = convex_loops(&loops, None);
     let diameter = pieces
         .iter()
         .map(|p| {
@@ -762,15 +790,24 @@ fn twisted(tw: &super::Twisted, m: &DAffine3, eps: f64, tol: f64) -> Result<Vec<
 }
 
 /// A region's loops as convex polygons covering it: the loop itself when
-/// it is one convex loop, else its triangles.
-fn convex_loops(loops: &[Vec<DVec2>]) -> Vec<Vec<DVec2>> {
-    match loops {
-        [l] if crate::plane::hull::convex_polygon(l) => vec![l.clone()],
-        _ => super::triangulate::cap(loops)
-            .into_iter()
-            .map(|t| t.iter().map(|&(l, i)| loops[l][i]).collect())
-            .collect(),
+/// it is one convex loop, else its trapezoids between levels across `up`
+/// where that is given and nonzero and the loops do not cross, else its
+/// triangles.
+fn convex_loops(loops: &[Vec<DVec2>], up: Option<DVec2>) -> Vec<Vec<DVec2>> {
+    if let [l] = loops {
+        if crate::plane::hull::convex_polygon(l) {
+            return vec![l.clone()];
+        }
     }
+    if let Some(up) = up.filter(|u| *u != DVec2::ZERO) {
+        if let Some(pieces) = super::trapezoids::trapezoids(loops, up) {
+            return pieces;
+        }
+    }
+    super::triangulate::cap(loops)
+        .into_iter()
+        .map(|t| t.iter().map(|&(l, i)| loops[l][i]).collect())
+        .collect()
 }
 
 /// The box from `lo` to `hi` as a polytope.
@@ -836,7 +873,7 @@ fn turned(loops: &[Vec<DVec2>], m: &DAffine3, eps: f64, tol: f64) -> Vec<Polytop
     } else {
         n
     };
-    let pieces = convex_loops(loops);
+    let pieces = convex_loops(loops, None);
     let at = |p: DVec2, a: f64| m.transform_point3(DVec3::new(p.x * a.cos(), p.x * a.sin(), p.y));
     let mut out = Vec::with_capacity(n * pieces.len());
     for k in 0..n {
