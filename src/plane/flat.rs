@@ -18,7 +18,7 @@
 
 use super::figure::{is_circle, Figure};
 use super::hull::hull_indices_2d;
-use super::offset::{offset, Join};
+use super::offset::{grown_flat, offset, Join};
 use super::Outlines;
 use glam::{DAffine2, DMat2, DVec2};
 
@@ -68,7 +68,14 @@ pub fn flattened(f: &Figure, eps: f64, circles: bool) -> Result<Option<Figure>, 
                 return Ok(None);
             }
             let inner = Outlines::polygons(chords(&o.region.outlines, 0.5 * eps / sigma));
-            match offset(Figure::Polygon(inner), Join::Round, o.r)? {
+            // Kept circles stay the corners' discs; else each corner's
+            // sector, flattened before the map as the chords are.
+            let grown = if circles {
+                offset(Figure::Polygon(inner), Join::Round, o.r)?
+            } else {
+                grown_flat(inner, o.r, 0.5 * eps / sigma)?
+            };
+            match grown {
                 Some(g) => flattened(&g.moved(*at), 0.5 * eps, circles)?,
                 None => None,
             }

@@ -174,6 +174,32 @@ fn union(mut parts: Vec<Figure>) -> Option<Figure> {
 
 /// A simple polygon region grown or shrunk.
 fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
+    polygon_arcs(o, join, d, None)
+}
+
+/// Straight outlines `o` grown by `d` > 0 with round joins, each corner's
+/// disc cut to the sector its offset takes of it (the points whose nearest
+/// point of the outline is that corner lie between its edges' normals) and
+/// flattened to its chords within `eps`: the offset's convex pieces as few
+/// and as small as they can be (a flattened curve's every corner is one,
+/// its sector a sliver); other outlines and distances as [`offset`] makes
+/// them.
+pub fn grown_flat(o: Outlines, d: f64, eps: f64) -> Result<Option<Figure>, String> {
+    if d > 0.0 && !o.curved() {
+        polygon_arcs(o, Join::Round, d, Some(eps))
+    } else {
+        offset(Figure::Polygon(o), Join::Round, d)
+    }
+}
+
+/// [`polygon`], growing corners flattened as [`grown_flat`] says where
+/// `arcs` gives the error.
+fn polygon_arcs(
+    o: Outlines,
+    join: Join,
+    d: f64,
+    arcs: Option<f64>,
+) -> Result<Option<Figure>, String> {
     if o.curved() {
         return curved(o, join, d);
     }
@@ -246,7 +272,10 @@ fn polygon(o: Outlines, join: Join, d: f64) -> Result<Option<Figure>, String> {
                 continue;
             }
             let (t1, t2) = ((v - a).normalize(), (b - v).normalize());
-            parts.push(join_piece(join, v, n1, n2, t1, t2, k));
+            parts.push(match arcs {
+                Some(eps) if d > 0.0 => sector(v, n1, n2, k, eps),
+                _ => join_piece(join, v, n1, n2, t1, t2, k),
+            });
         }
         start += m;
     }
@@ -483,6 +512,23 @@ fn join_piece(join: Join, v: DVec2, n1: DVec2, n2: DVec2, t1: DVec2, t2: DVec2, 
             ]]))
         }
     }
+}
+
+/// The sector of the disc of radius `k` about `v` from normal `n1` to `n2`
+/// (less than a half turn apart) as a polygon: `v` and the arc's points at
+/// equal angles, the fewest whose chords stray at most `eps` from it.
+fn sector(v: DVec2, n1: DVec2, n2: DVec2, k: f64, eps: f64) -> Figure {
+    let theta = n1.perp_dot(n2).atan2(n1.dot(n2));
+    // A chord over angle a strays k·(1 − cos(a/2)) from its arc.
+    let step = 2.0 * (1.0 - (eps / k).min(1.0)).acos();
+    let n = if step > 0.0 {
+        ((theta.abs() / step).ceil() as usize).clamp(1, super::flat::MAX_CHORDS)
+    } else {
+        super::flat::MAX_CHORDS
+    };
+    let mut pts = vec![v];
+    pts.extend((0..=n).map(|i| v + DVec2::from_angle(theta * i as f64 / n as f64).rotate(n1) * k));
+    Figure::Polygon(Outlines::polygons(vec![pts]))
 }
 
 /// Outlines with curved (quadratic) edges offset: with round joins the
