@@ -57,6 +57,8 @@ pub const NAMES: &[&str] = &[
     "crossing_half_stroked",
     "off_w_ignored",
     "sites_xor_united",
+    "shadow_upright_alone",
+    "trapezoids_top_dropped",
 ];
 
 /// Whether the fault `name` is switched on.

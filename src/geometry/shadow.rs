@@ -25,6 +25,145 @@ const BOTTOM: Part = 0;
 const TOP: Part = 1;
 const SIDE: Part = 2;
 
+/// Past this many triangles a soup drops those inside its full cells
+/// ([`pruned`]).
+const PRUNE_TRIANGLES: usize = 4096;
+
+/// The most cells across the grid [`pruned`] lays over a soup.
+const PRUNE_CELLS: usize = 512;
+
+/// Whether counter-clockwise triangle `t` holds `p` (its edges count).
+fn holds(t: [DVec2; 3], p: DVec2) -> bool {
+    (0..3).all(|j| (t[(j + 1) % 3] - t[j]).perp_dot(p - t[j]) >= 0.0)
+}
+
+/// Counter-clockwise triangles `tris` with the same union and fewer
+/// triangles inside it: over a grid of square cells, a cell whose four
+/// corners one triangle holds lies in that triangle (it is convex) — a
+/// full cell; each row's runs of full cells become rectangles (two
+/// triangles each), and a triangle whose box meets only full cells lies in
+/// them and is dropped. The union is unchanged: the rectangles lie in it,
+/// and what is dropped lies in them. A shadow cast by many stacked pieces
+/// (each point under hundreds) keeps only the triangles near its edge,
+/// which are all a line's search then meets.
+fn pruned(mut pts: Vec<DVec2>, tris: Vec<[u32; 3]>) -> (Vec<DVec2>, Vec<[u32; 3]>) {
+    let corners = |t: &[u32; 3]| t.map(|i| pts[i as usize]);
+    let boxes: Vec<(DVec2, DVec2)> = tris
+        .iter()
+        .map(|t| {
+            let p = corners(t);
+            (p[0].min(p[1]).min(p[2]), p[0].max(p[1]).max(p[2]))
+        })
+        .collect();
+    let lo = boxes.iter().fold(DVec2::INFINITY, |a, b| a.min(b.0));
+    let hi = boxes.iter().fold(DVec2::NEG_INFINITY, |a, b| a.max(b.1));
+    let side = (hi - lo).max_element() / PRUNE_CELLS as f64;
+    if !(side > 0.0 && side.is_finite()) {
+        return (pts, tris);
+    }
+    let (nx, ny) = (
+        (((hi.x - lo.x) / side).ceil() as usize).clamp(1, PRUNE_CELLS),
+        (((hi.y - lo.y) / side).ceil() as usize).clamp(1, PRUNE_CELLS),
+    );
+    let tree = EdgeTree::new(&boxes);
+    let corner = |i: usize, j: usize| lo + DVec2::new(i as f64, j as f64) * side;
+    let mut full = vec![false; nx * ny];
+    // The triangle that held the last full cell: most often it holds the
+    // next one too.
+    let mut witness: Option<usize> = None;
+    for j in 0..ny {
+        for i in 0..nx {
+            let c = [
+                corner(i, j),
+                corner(i + 1, j),
+                corner(i + 1, j + 1),
+                corner(i, j + 1),
+            ];
+            let within = |k: usize| c.iter().all(|&p| holds(corners(&tris[k]), p));
+            let mut found = witness.filter(|&k| within(k));
+            if found.is_none() {
+                let mid = 0.5 * (c[0] + c[2]);
+                let near = |a: DVec2, b: DVec2| {
+                    a.x <= mid.x && mid.x <= b.x && a.y <= mid.y && mid.y <= b.y
+                };
+                tree.visit_boxes(near, &mut |k| {
+                    if found.is_none() && within(k as usize) {
+                        found = Some(k as usize);
+                    }
+                });
+            }
+            if found.is_some() {
+                witness = found;
+            }
+            full[j * nx + i] = found.is_some();
+        }
+    }
+    // Cells not full, summed over the rectangle from the grid's corner.
+    let w = nx + 1;
+    let mut sum = vec![0u32; w * (ny + 1)];
+    for j in 0..ny {
+        for i in 0..nx {
+            sum[(j + 1) * w + i + 1] =
+                u32::from(!full[j * nx + i]) + sum[j * w + i + 1] + sum[(j + 1) * w + i]
+                    - sum[j * w + i];
+        }
+    }
+    let cell = |v: f64, n: usize| ((v / side).floor().max(0.0) as usize).min(n - 1);
+    let mut kept: Vec<[u32; 3]> = Vec::new();
+    for (t, (a, b)) in tris.iter().zip(&boxes) {
+        let (i0, i1) = (cell(a.x - lo.x, nx), cell(b.x - lo.x, nx));
+        let (j0, j1) = (cell(a.y - lo.y, ny), cell(b.y - lo.y, ny));
+        // The box's cells, and one more on each side where it ends on a
+        // cell's side (its edge then may lie in the next cell too).
+        let (i0, j0) = (i0.saturating_sub(1), j0.saturating_sub(1));
+        let (i1, j1) = ((i1 + 1).min(nx - 1), (j1 + 1).min(ny - 1));
+        let open = sum[(j1 + 1) * w + i1 + 1] + sum[j0 * w + i0]
+            - sum[j0 * w + i1 + 1]
+            - sum[(j1 + 1) * w + i0];
+        // Kept when it meets a cell that is not full (its box, and none of
+        // its edges with the whole cell beyond it).
+        let meets = |i: usize, j: usize| {
+            let c = [
+                corner(i, j),
+                corner(i + 1, j),
+                corner(i + 1, j + 1),
+                corner(i, j + 1),
+            ];
+            let p = corners(t);
+            (0..3).all(|e| {
+                let (a, b) = (p[e], p[(e + 1) % 3]);
+                c.iter().any(|&q| (b - a).perp_dot(q - a) >= 0.0)
+            })
+        };
+        if open > 0 && (j0..=j1).any(|j| (i0..=i1).any(|i| !full[j * nx + i] && meets(i, j))) {
+            kept.push(*t);
+        }
+    }
+    for j in 0..ny {
+        let mut i = 0;
+        while i < nx {
+            if !full[j * nx + i] {
+                i += 1;
+                continue;
+            }
+            let start = i;
+            while i < nx && full[j * nx + i] {
+                i += 1;
+            }
+            let base = pts.len() as u32;
+            pts.extend([
+                corner(start, j),
+                corner(i, j),
+                corner(i, j + 1),
+                corner(start, j + 1),
+            ]);
+            kept.push([base, base + 1, base + 2]);
+            kept.push([base, base + 2, base + 3]);
+        }
+    }
+    (pts, kept)
+}
+
 /// Triangles of the plane, each counter-clockwise, united.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Soup {
@@ -57,6 +196,11 @@ impl Soup {
         if tris.is_empty() {
             return None;
         }
+        let (pts, tris) = if tris.len() > PRUNE_TRIANGLES {
+            pruned(pts, tris)
+        } else {
+            (pts, tris)
+        };
         let boxes: Vec<(DVec2, DVec2)> = tris
             .iter()
             .map(|t| {

@@ -91,6 +91,8 @@ MESHES = {
     "crossing_half_stroked": "offset_self_touching",
     "off_w_ignored": "off_headers",
     "sites_xor_united": "drawing_touching",
+    "shadow_upright_alone": "approximated_shadow_met",
+    "trapezoids_top_dropped": "approximated_shadow_met",
 }
 
 # fault -> arguments of tools/oracle/approximation.py (the certified
