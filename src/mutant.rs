@@ -59,6 +59,7 @@ pub const NAMES: &[&str] = &[
     "sites_xor_united",
     "shadow_upright_alone",
     "trapezoids_top_dropped",
+    "polytope_part_dropped",
 ];
 
 /// Whether the fault `name` is switched on.

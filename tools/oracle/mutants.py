@@ -62,6 +62,7 @@ MUTANTS = {
     "outline_first_loop_only": (["tests/openscad/offsets.csg"], False),
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
     "framing_loose": (["tests/scenes/ring_sector.csg"], False),
+    "polytope_part_dropped": (["tests/openscad/hull_polytopes.csg"], ["hull_points"]),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)

@@ -681,7 +681,21 @@ def extrusion_parts(leaf, q):
     return whole, parts
 
 
+def hull_inside(leaf, pts):
+    """Whether points are inside a hull or a Minkowski sum of the file's
+    polytopes (csgrt exports only those, as a mesh; curved ones stop the
+    export): manifold3d's hull or sum of the oracle's own meshes of the
+    parts (exact for polytopes), by segment parity."""
+    from tools.oracle.oracle import mesh as oracle_mesh
+
+    m = oracle_mesh.leaf_mesh(leaf, 64, 1e6)
+    verts = m.to_mesh().vert_properties[:, :3]
+    return segment_parity(m, verts, pts, np.array([0.5734621, 0.6143793, 0.5420587]))
+
+
 def leaf_inside(leaf, pts):
+    if leaf.kind in ("hull", "minkowski"):
+        return hull_inside(leaf, pts)
     q = (pts - leaf.matrix[:3, 3]) @ np.linalg.inv(leaf.matrix[:3, :3]).T
     p = leaf.params
     if leaf.kind in reader.EXTRUSIONS:

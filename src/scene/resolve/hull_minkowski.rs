@@ -163,6 +163,10 @@ impl Resolver<'_> {
         frame: DAffine3,
         mat: Material,
     ) -> Result<Option<u32>> {
+        // A hull or a sum of polytopes: the polytope, written out.
+        if let Some(mesh) = crate::geometry::convex::polytope_sum(&hulls) {
+            return self.leaf(s, Shape::Mesh(mesh), frame, mat);
+        }
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
             .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
