@@ -261,10 +261,10 @@ impl Resolver<'_> {
             NodeKind::Leaf(_) => true,
             NodeKind::Op(op, ch) => {
                 ch.iter().all(|&c| self.whole_prism(c))
-                    && (*op == Op::Intersection
-                        || ch
-                            .iter()
-                            .all(|&c| self.upright_range(c) == self.upright_range(ch[0])))
+                    && (*op == Op::Intersection || {
+                        let first = self.upright_range(ch[0]);
+                        ch.iter().all(|&c| self.upright_range(c) == first)
+                    })
             }
             NodeKind::Section(..) => false,
         }
