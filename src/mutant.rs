@@ -60,6 +60,11 @@ pub const NAMES: &[&str] = &[
     "shadow_upright_alone",
     "trapezoids_top_dropped",
     "polytope_part_dropped",
+    "convex_slab_shrunk",
+    "coaxial_axis_dropped",
+    "twist_reach_shrunk",
+    "trig_roots_early",
+    "twist_far_point_untwisted",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -15,10 +15,12 @@ impl Csg {
             NodeKind::Leaf(p) => {
                 let p = &self.prims[*p as usize];
                 let m = &p.xf.to_world;
-                let q = p
-                    .shape
-                    .support(m.matrix3.transpose() * e)
-                    .ok_or("the extent of a halfspace or a twisted extrusion")?;
+                let local = m.matrix3.transpose() * e;
+                let q = match &p.shape {
+                    crate::geometry::Shape::Twisted(t) => Some(t.far_point(local)),
+                    s => s.support(local),
+                }
+                .ok_or("the extent of a halfspace")?;
                 let w = m.transform_point3(q);
                 Ok((e.dot(w), w))
             }

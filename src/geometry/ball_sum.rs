@@ -340,39 +340,22 @@ pub fn as_cylinders(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
     let mut range: Option<(f64, f64)> = None;
     let mut discs = Vec::new();
     for p in parts {
-        let Shape::Cone(c) = &p.shape else {
-            return None;
-        };
-        if c.r0 != c.r1 || c.r0 <= 0.0 {
+        let c = super::coaxial::placed_cone(p)?;
+        if c.r_bottom != c.r_top || c.r_bottom <= 0.0 {
             return None;
         }
-        let m = p.to_world.matrix3;
-        let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
-        let (lx, lz) = (x.length(), z.length());
-        let tight = |v: f64, of: f64| v.abs() <= 1e-12 * of;
-        if !(tight(x.dot(y), lx * lx)
-            && tight(y.length() - lx, lx)
-            && tight(x.dot(z), lx * lz)
-            && tight(y.dot(z), lx * lz))
-        {
+        let a = *axis.get_or_insert(c.axis);
+        if c.axis.cross(a).length() > 1e-12 {
             return None;
         }
-        let a = *axis.get_or_insert(z / lz);
-        if z.cross(a).length() > 1e-12 * lz {
-            return None;
-        }
-        let z0 = crate::geometry::cone::bottom(c.centered);
-        let (b, t) = (
-            p.to_world.transform_point3(DVec3::Z * z0),
-            p.to_world.transform_point3(DVec3::Z * (z0 + 1.0)),
-        );
+        let (b, t) = (c.bottom, c.top);
         let (lo, hi) = (b.dot(a).min(t.dot(a)), b.dot(a).max(t.dot(a)));
         let (rlo, rhi) = *range.get_or_insert((lo, hi));
         let tol = 1e-12 * (rlo.abs().max(rhi.abs()) + (rhi - rlo));
         if (lo - rlo).abs() > tol || (hi - rhi).abs() > tol {
             return None;
         }
-        discs.push((b, lx * c.r0));
+        discs.push((b, c.r_bottom));
     }
     let (a, (lo, hi)) = (axis?, range?);
     let u = a.any_orthonormal_vector();

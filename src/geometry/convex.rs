@@ -132,6 +132,11 @@ pub struct Convex {
     pub hulls: Vec<Vec<ConvexPart>>,
     /// The box, from the support function along ±x, ±y, ±z.
     bounds: Aabb,
+    /// Ten more slabs of supporting planes, along the box's face and
+    /// corner diagonals (`DIAGONALS`): with the box, an outer polytope of
+    /// 26 planes. A line that misses it never starts GJK; one that meets
+    /// it starts where it enters and leaves it.
+    slabs: Box<[(f64, f64); 10]>,
     /// The tolerance of a cast: 10⁻¹² of the box's size and distance.
     tol: f64,
 }
@@ -156,6 +161,7 @@ impl Convex {
         let mut c = Convex {
             hulls,
             bounds: Aabb::EMPTY,
+            slabs: Box::new([(0.0, 0.0); 10]),
             tol: 0.0,
         };
         let axis = |i: usize| DVec3::AXES[i];
@@ -165,6 +171,14 @@ impl Convex {
             lo[i] = c.support_point(-axis(i))[i];
         }
         c.bounds = Aabb::new(lo, hi);
+        for (i, d) in DIAGONALS.into_iter().enumerate() {
+            let d = DVec3::from(d);
+            let (a, mut b) = (d.dot(c.support_point(-d)), d.dot(c.support_point(d)));
+            if crate::mutant::active("convex_slab_shrunk") {
+                b -= 0.01 * (b - a);
+            }
+            c.slabs[i] = (a, b);
+        }
         c.tol = 1e-12
             * (hi - lo)
                 .max_element()
@@ -361,20 +375,29 @@ impl Convex {
         (q - v, MAX_ITERATIONS)
     }
 
-    /// The line o + t·d inside the box, as a range of t.
+    /// The line o + t·d inside the outer polytope (the box and the
+    /// diagonal slabs), as a range of t.
     fn clip(&self, o: DVec3, d: DVec3) -> Option<(f64, f64)> {
         let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for i in 0..3 {
-            let (a, b) = (self.bounds.min[i], self.bounds.max[i]);
-            if d[i] == 0.0 {
-                if o[i] < a || o[i] > b {
-                    return None;
-                }
-                continue;
+        let mut narrow = |od: f64, dd: f64, a: f64, b: f64| {
+            if dd == 0.0 {
+                return od >= a && od <= b;
             }
-            let (t0, t1) = ((a - o[i]) / d[i], (b - o[i]) / d[i]);
+            let (t0, t1) = ((a - od) / dd, (b - od) / dd);
             lo = lo.max(t0.min(t1));
             hi = hi.min(t0.max(t1));
+            true
+        };
+        for i in 0..3 {
+            if !narrow(o[i], d[i], self.bounds.min[i], self.bounds.max[i]) {
+                return None;
+            }
+        }
+        for (&(a, b), dir) in self.slabs.iter().zip(DIAGONALS) {
+            let dir = DVec3::from(dir);
+            if !narrow(dir.dot(o), dir.dot(d), a, b) {
+                return None;
+            }
         }
         // Widened a little, so that the casts start outside.
         let pad = 1e-9 * (hi - lo).abs().max(1.0);
@@ -512,6 +535,25 @@ const NEWTON_STEP: f64 = 1e-6;
 /// How close (relative to the set's size) GJK brings the line's point
 /// before Newton's method is tried.
 const LOOSE: f64 = 1e-6;
+
+/// The directions of [`Convex`]'s diagonal slabs: the box's face
+/// diagonals and corner diagonals, unit length.
+const DIAGONALS: [[f64; 3]; 10] = {
+    const H: f64 = std::f64::consts::FRAC_1_SQRT_2;
+    const T: f64 = 0.577_350_269_189_625_8;
+    [
+        [H, H, 0.0],
+        [H, -H, 0.0],
+        [0.0, H, H],
+        [0.0, H, -H],
+        [H, 0.0, H],
+        [-H, 0.0, H],
+        [T, T, T],
+        [T, T, -T],
+        [T, -T, T],
+        [-T, T, T],
+    ]
+};
 
 /// The most changes of the active atoms a refinement makes.
 const ACTIVE_ROUNDS: usize = 4;

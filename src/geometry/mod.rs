@@ -8,6 +8,7 @@
 pub mod aabb;
 pub mod ball_sum;
 pub mod bvh;
+pub mod coaxial;
 pub mod cone;
 pub mod convex;
 pub mod cuboid;

@@ -227,6 +227,27 @@ impl Twisted {
         let path = TwistPath::new(self, o, d, t0, t1, near.clamp(t0, t1));
         match &self.section {
             TwistSection::Region(region) => {
+                // The whole section's reach first: a line that passes
+                // inside its nearest edge's distance or beyond its farthest
+                // corner, scaled, crosses no side.
+                let (rho0, rho1) =
+                    region
+                        .edges
+                        .iter()
+                        .fold((f64::INFINITY, 0.0f64), |(l, h), &(a, b)| {
+                            (
+                                l.min(segment_distance(a, b)),
+                                h.max(a.length()).max(b.length()),
+                            )
+                        });
+                let rho1 = if crate::mutant::active("twist_reach_shrunk") {
+                    0.9 * rho1
+                } else {
+                    rho1
+                };
+                if !path.reaches(rho0, rho1) {
+                    return cuts;
+                }
                 for (e, &(a, b)) in region.edges.iter().enumerate() {
                     let n = region.normals[e];
                     let c = n.dot(a);
@@ -267,6 +288,78 @@ impl Twisted {
         }
         cuts.sort_by(|x: &(f64, Part), y: &(f64, Part)| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
         cuts
+    }
+
+    /// The point of the solid farthest along `d` (object space), found
+    /// numerically: the section's own farthest point at height z (a
+    /// corner, or the ellipse's point whose normal is the direction seen in
+    /// the section's frame, R(θz)·S(z)·d) gives a value f(z); f is sampled
+    /// at 16 heights and 8 more for each radian of twist, and each sample
+    /// not below its neighbours is refined by golden-section search
+    /// between them to the last bit. The solid's far point in every
+    /// direction is what framing and `resize` measure (a side's farthest
+    /// point is not at a corner, so the solid has no exact support: see
+    /// [`Solid::support`]).
+    pub fn far_point(&self, d: DVec3) -> DVec3 {
+        let z0 = self.z_lo();
+        let at = |z: f64| -> (f64, DVec2) {
+            let s = self.sigma(z).max(DVec2::ZERO);
+            let turn = if crate::mutant::active("twist_far_point_untwisted") {
+                0.0
+            } else {
+                self.twist * z
+            };
+            let w = DMat2::from_angle(turn) * (s * d.truncate());
+            let p = match &self.section {
+                TwistSection::Region(r) => r
+                    .edges
+                    .iter()
+                    .map(|&(a, _)| a)
+                    .max_by(|a, b| w.dot(*a).total_cmp(&w.dot(*b)))
+                    .unwrap_or(DVec2::ZERO),
+                TwistSection::Ellipse(e) => {
+                    let u = (e.matrix2.transpose() * w).normalize_or_zero();
+                    e.translation + e.matrix2 * u
+                }
+            };
+            (w.dot(p) + d.z * (z + z0), p)
+        };
+        let n = 16 + (8.0 * self.twist.abs()).ceil().min(4096.0) as usize;
+        let samples: Vec<f64> = (0..=n).map(|k| at(k as f64 / n as f64).0).collect();
+        let mut best = (f64::NEG_INFINITY, 0.0);
+        for k in 0..=n {
+            let below = |j: usize| samples[j] <= samples[k];
+            if !((k == 0 || below(k - 1)) && (k == n || below(k + 1))) {
+                continue;
+            }
+            let (mut l, mut h) = (
+                (k.max(1) - 1) as f64 / n as f64,
+                (k + 1).min(n) as f64 / n as f64,
+            );
+            const G: f64 = 0.618_033_988_749_894_9;
+            for _ in 0..100 {
+                let (a, b) = (h - G * (h - l), l + G * (h - l));
+                if !(a > l && b < h && a < b) {
+                    break;
+                }
+                if at(a).0 < at(b).0 {
+                    l = a;
+                } else {
+                    h = b;
+                }
+            }
+            for z in [k as f64 / n as f64, 0.5 * (l + h)] {
+                let v = at(z).0;
+                if v > best.0 {
+                    best = (v, z);
+                }
+            }
+        }
+        let z = best.1;
+        let p = at(z).1;
+        let s = self.sigma(z).max(DVec2::ZERO);
+        let x = DMat2::from_diagonal(s) * (DMat2::from_angle(-self.twist * z) * p);
+        x.extend(z + z0)
     }
 
     /// The gradient's direction in the section at `p` on `part` (p in the
@@ -379,16 +472,21 @@ impl TwistPath {
         }
     }
 
-    /// The roots of `side` in [t0, t1] where the path can reach distances
-    /// ρ₀ to ρ₁ from the axis, over pieces in which φ (`turns` times it)
-    /// turns by at most a radian.
-    fn roots(&self, side: &Trig, rho0: f64, rho1: f64, turns: f64, out: &mut SmallVec<[f64; 8]>) {
-        // Where ρ₀·min σ ≤ r(t) ≤ ρ₁·max σ: where r² − ρ₁²σ² ≤ 0 for σx or
-        // σy, and ρ₀²σ² − r² ≤ 0 for σx or σy (quadratic inequalities,
-        // widened for rounding).
+    /// Where the path can be within ρ₁ of the axis (scaled by σ), and
+    /// where it can be at least ρ₀ from it: where ρ₀·min σ ≤ r(t) ≤ ρ₁·max
+    /// σ, from r² − ρ₁²σ² ≤ 0 for σx or σy and ρ₀²σ² − r² ≤ 0 for σx or σy
+    /// (quadratic inequalities, widened for rounding; under an even scale
+    /// σx = σy, one of each).
+    fn reach(&self, rho0: f64, rho1: f64) -> (Spans, Spans) {
         let (t0, t1, r2) = (self.t0, self.t1, self.r2);
         let near = |k: f64, q: Pol| Pol::comb(r2, q, 1.0, -k);
         let far = |k: f64, q: Pol| Pol::comb(q, r2, k, -1.0);
+        if self.sx2.c == self.sy2.c {
+            return (
+                nonpositive(near(rho1 * rho1, self.sx2), t0, t1),
+                nonpositive(far(rho0 * rho0, self.sx2), t0, t1),
+            );
+        }
         let upper = union2(
             nonpositive(near(rho1 * rho1, self.sx2), t0, t1),
             nonpositive(near(rho1 * rho1, self.sy2), t0, t1),
@@ -397,6 +495,23 @@ impl TwistPath {
             nonpositive(far(rho0 * rho0, self.sx2), t0, t1),
             nonpositive(far(rho0 * rho0, self.sy2), t0, t1),
         );
+        (upper, lower)
+    }
+
+    /// Whether the path can be anywhere between ρ₀ and ρ₁ from the axis
+    /// (see [`TwistPath::reach`]).
+    fn reaches(&self, rho0: f64, rho1: f64) -> bool {
+        let (upper, lower) = self.reach(rho0, rho1);
+        upper
+            .iter()
+            .any(|&(ul, uh)| lower.iter().any(|&(ll, lh)| ul.max(ll) <= uh.min(lh)))
+    }
+
+    /// The roots of `side` in [t0, t1] where the path can reach distances
+    /// ρ₀ to ρ₁ from the axis, over pieces in which φ (`turns` times it)
+    /// turns by at most a radian.
+    fn roots(&self, side: &Trig, rho0: f64, rho1: f64, turns: f64, out: &mut SmallVec<[f64; 8]>) {
+        let (upper, lower) = self.reach(rho0, rho1);
         let w = self.phi[1] * turns;
         for &(ul, uh) in &upper {
             for &(ll, lh) in &lower {

@@ -260,7 +260,7 @@ impl Trig {
         if flat || g1.abs() > r * m2 || depth >= 60 || *budget == 0 || m <= l || m >= h {
             // Monotone (or as narrow as it gets): one root if G changes sign.
             if changes {
-                out.push(self.bisect(l, h, gl));
+                out.push(self.bisect(l, h, gl, gh));
             }
             return;
         }
@@ -268,18 +268,44 @@ impl Trig {
         self.isolate(m, h, gm, gh, depth + 1, budget, out);
     }
 
-    /// The sign change of G in [l, h], to the last bit.
-    fn bisect(&self, mut l: f64, mut h: f64, gl: f64) -> f64 {
+    /// The sign change of G in [l, h] (G(l) = `gl`, G(h) = `gh`, of
+    /// opposite signs), to the last bit: the Illinois method, which keeps
+    /// the sign change bracketed as bisection does but takes the secant's
+    /// point (the value at an end kept twice halved), a bisection step
+    /// where that point is not strictly inside. It ends as bisection ends,
+    /// when the bracket's middle is one of its ends.
+    fn bisect(&self, mut l: f64, mut h: f64, mut gl: f64, mut gh: f64) -> f64 {
         let left = gl > 0.0;
-        for _ in 0..200 {
-            let m = 0.5 * (l + h);
-            if m <= l || m >= h {
+        let mut kept = 0i8;
+        let steps = if crate::mutant::active("trig_roots_early") {
+            3
+        } else {
+            200
+        };
+        for _ in 0..steps {
+            let mid = 0.5 * (l + h);
+            if mid <= l || mid >= h {
                 break;
             }
-            if (self.g(m) > 0.0) == left {
-                l = m;
+            let secant = (l * gh - h * gl) / (gh - gl);
+            let m = if secant > l && secant < h {
+                secant
             } else {
-                h = m;
+                mid
+            };
+            let gm = self.g(m);
+            if (gm > 0.0) == left {
+                (l, gl) = (m, gm);
+                if kept == 1 {
+                    gh *= 0.5;
+                }
+                kept = 1;
+            } else {
+                (h, gh) = (m, gm);
+                if kept == -1 {
+                    gl *= 0.5;
+                }
+                kept = -1;
             }
         }
         0.5 * (l + h)

@@ -63,6 +63,11 @@ MUTANTS = {
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
     "framing_loose": (["tests/scenes/ring_sector.csg"], False),
     "polytope_part_dropped": (["tests/openscad/hull_polytopes.csg"], ["hull_points"]),
+    "convex_slab_shrunk": (["tests/openscad/hull_coaxial.csg"], ["hull_spheres"]),
+    "coaxial_axis_dropped": (["tests/openscad/hull_coaxial.csg"], False),
+    "twist_reach_shrunk": (["tests/openscad/twist.csg"], False),
+    "trig_roots_early": (["tests/openscad/twisted_circles.csg"], ["twisted"]),
+    "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)

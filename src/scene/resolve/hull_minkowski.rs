@@ -101,8 +101,13 @@ impl Resolver<'_> {
                     prim.shape.name()
                 ));
             }
+            let turned = match &prim.shape {
+                Shape::Lathe(l) => crate::geometry::coaxial::frustums(l, prim.xf.to_world),
+                _ => None,
+            };
             match hulls_of(&prim.shape) {
                 Some([one]) => out.extend(placed(one, prim.xf.to_world)),
+                _ if turned.is_some() => out.extend(turned.into_iter().flatten()),
                 _ => out.push(ConvexPart {
                     shape: prim.shape.clone(),
                     to_world: prim.xf.to_world,
@@ -166,6 +171,10 @@ impl Resolver<'_> {
         // A hull or a sum of polytopes: the polytope, written out.
         if let Some(mesh) = crate::geometry::convex::polytope_sum(&hulls) {
             return self.leaf(s, Shape::Mesh(mesh), frame, mat);
+        }
+        // A hull of frustums on one axis: the turn of its profile.
+        if let Some((lathe, place)) = crate::geometry::coaxial::as_lathe(&hulls) {
+            return self.leaf(s, Shape::Lathe(lathe), frame * place, mat);
         }
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)

@@ -1,0 +1,210 @@
+//! Hulls of cylinders and cones on one axis, written out as what they are:
+//! a solid of revolution ([`Lathe`]) of a straight profile.
+//!
+//! A set turned about an axis has a hull turned about it too, and the
+//! hull's section by a half-plane through the axis is the right half of
+//! the hull of the sets' full sections: the section of a hull contains the
+//! hull of the sections, and the projection onto that plane of the hull
+//! (the hull of the projection) lies in the hull of the sections, since a
+//! point's projection lies between it and its mirror image in the plane.
+//! A cone frustum's section is a trapezoid, so the hull of coaxial
+//! frustums is the turn of the hull of their rims' points and of the axis
+//! between the lowest and the highest of them: straight edges only,
+//! each a cone, a cylinder or a disc of the lathe.
+
+use super::convex::ConvexPart;
+use super::lathe::Lathe;
+use super::Shape;
+use crate::plane::{Outlines, Region};
+use glam::{DAffine3, DMat3, DVec2, DVec3};
+use std::sync::Arc;
+
+/// A cone frustum placed with circular sections: its axis (unit), its
+/// bottom and top centres, and their radii.
+#[derive(Clone, Copy, Debug)]
+pub struct PlacedCone {
+    pub axis: DVec3,
+    pub bottom: DVec3,
+    pub top: DVec3,
+    pub r_bottom: f64,
+    pub r_top: f64,
+}
+
+/// Whether `v` is within 10⁻¹² of `of` of zero: the test of a placement's
+/// right angles and equal lengths, to the rounding of a file's numbers.
+fn tight(v: f64, of: f64) -> bool {
+    v.abs() <= 1e-12 * of
+}
+
+/// The part as a frustum whose sections across its axis are circles (its
+/// transform a rotation, a uniform scale across the axis and any length
+/// along it), or `None`.
+pub fn placed_cone(p: &ConvexPart) -> Option<PlacedCone> {
+    let Shape::Cone(c) = &p.shape else {
+        return None;
+    };
+    let m = p.to_world.matrix3;
+    let (x, y, z) = (m.x_axis, m.y_axis, m.z_axis);
+    let (lx, lz) = (x.length(), z.length());
+    if !(lx > 0.0
+        && lz > 0.0
+        && tight(x.dot(y), lx * lx)
+        && tight(y.length() - lx, lx)
+        && tight(x.dot(z), lx * lz)
+        && tight(y.dot(z), lx * lz))
+    {
+        return None;
+    }
+    let z0 = super::cone::bottom(c.centered);
+    Some(PlacedCone {
+        axis: z / lz,
+        bottom: p.to_world.transform_point3(DVec3::Z * z0),
+        top: p.to_world.transform_point3(DVec3::Z * (z0 + 1.0)),
+        r_bottom: lx * c.r0,
+        r_top: lx * c.r1,
+    })
+}
+
+/// The hull (one hull, not a sum) of frustums on one axis as a lathe and
+/// its placement (the lathe's z along the axis); `None` when a part is
+/// anything else, off the axis (10⁻¹² of the parts' size), or the hull has
+/// no volume.
+pub fn as_lathe(hulls: &[Vec<ConvexPart>]) -> Option<(Lathe, DAffine3)> {
+    let [parts] = hulls else { return None };
+    let cones: Vec<PlacedCone> = parts.iter().map(placed_cone).collect::<Option<_>>()?;
+    let first = cones.first()?;
+    let (a, o) = (first.axis, first.bottom);
+    let size = cones
+        .iter()
+        .map(|c| (c.top - o).length().max((c.bottom - o).length()) + c.r_bottom.max(c.r_top))
+        .fold(0.0, f64::max);
+    let mut pts = Vec::with_capacity(2 * cones.len() + 2);
+    for c in &cones {
+        for (q, r) in [(c.bottom, c.r_bottom), (c.top, c.r_top)] {
+            // On the axis: no more than the rounding away from it.
+            if !tight((q - o).reject_from_normalized(a).length(), size) {
+                return None;
+            }
+            pts.push(DVec2::new(r, (q - o).dot(a)));
+        }
+    }
+    let (lo, hi) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| {
+            (l.min(p.y), h.max(p.y))
+        });
+    if !crate::mutant::active("coaxial_axis_dropped") {
+        pts.push(DVec2::new(0.0, lo));
+        pts.push(DVec2::new(0.0, hi));
+    }
+    let corners = crate::plane::hull::hull_indices_2d(&pts, 1e-12);
+    if corners.len() < 3 || hi <= lo || pts.iter().all(|p| p.x <= 0.0) {
+        return None;
+    }
+    let profile: Vec<DVec2> = corners.iter().map(|&i| pts[i]).collect();
+    let region = Region::new(Outlines::polygons(vec![profile]));
+    let u = a.any_orthonormal_vector();
+    let place = DAffine3::from_mat3_translation(DMat3::from_cols(u, a.cross(u), a), o);
+    Some((Lathe::new(Arc::new(region)), place))
+}
+
+/// A lathe of straight edges (placed by `m`) as the frustums its edges
+/// turn into, for a hull to take its parts from: the hull of a turned
+/// profile is the hull of its corners' rims, and every corner off the axis
+/// ends an edge that is not level (a corner between two level edges has
+/// none: `None`), whose frustum holds its rim. Level edges and edges on
+/// the axis add nothing.
+pub fn frustums(lathe: &Lathe, m: DAffine3) -> Option<Vec<ConvexPart>> {
+    let region = &lathe.profile;
+    if region.curved() {
+        return None;
+    }
+    let mut out = Vec::new();
+    let mut rims: Vec<DVec2> = Vec::new();
+    for &(a, b) in &region.edges {
+        if a.y == b.y || (a.x <= 0.0 && b.x <= 0.0) {
+            continue;
+        }
+        let (lo, hi) = if a.y < b.y { (a, b) } else { (b, a) };
+        let r = lo.x.max(hi.x);
+        let cone = super::cone::Cone {
+            r0: lo.x.max(0.0) / r,
+            r1: hi.x.max(0.0) / r,
+            centered: false,
+        };
+        let local = DAffine3::from_mat3_translation(
+            DMat3::from_diagonal(DVec3::new(r, r, hi.y - lo.y)),
+            DVec3::Z * lo.y,
+        );
+        out.push(ConvexPart {
+            shape: Shape::Cone(cone),
+            to_world: m * local,
+        });
+        rims.extend([a, b]);
+    }
+    let covered = region
+        .edges
+        .iter()
+        .flat_map(|&(a, b)| [a, b])
+        .all(|v| v.x <= 0.0 || rims.contains(&v));
+    (covered && !out.is_empty()).then_some(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::cone::Cone;
+    use crate::geometry::solid::Solid;
+
+    fn cone(r0: f64, r1: f64, h: f64, z: f64, r: f64) -> ConvexPart {
+        let (r0, r1) = (r0 / r, r1 / r);
+        ConvexPart {
+            shape: Shape::Cone(Cone {
+                r0,
+                r1,
+                centered: false,
+            }),
+            to_world: DAffine3::from_translation(DVec3::new(1.0, 2.0, z))
+                * DAffine3::from_scale(DVec3::new(r, r, h)),
+        }
+    }
+
+    /// A point is in the hull of two coaxial cylinders where it is in the
+    /// cone frustum between the wider one's rim and the other's (the
+    /// closed form of this pair): checked at points of a grid.
+    #[test]
+    fn two_coaxial_cylinders_hull_to_their_frustum() {
+        // r = 3 over z in [0, 1]; r = 1 over z in [0, 5]: the hull is the
+        // r = 3 cylinder below z = 1, the frustum from r = 3 at z = 1 to
+        // r = 1 at z = 5 above.
+        let parts = vec![cone(3.0, 3.0, 1.0, 0.0, 3.0), cone(1.0, 1.0, 5.0, 0.0, 1.0)];
+        let (lathe, place) = as_lathe(&[parts]).expect("coaxial");
+        let inv = place.inverse();
+        let inside = |x: f64, y: f64, z: f64| {
+            let rho = ((x - 1.0).powi(2) + (y - 2.0).powi(2)).sqrt();
+            let r = if z <= 1.0 { 3.0 } else { 3.0 - 0.5 * (z - 1.0) };
+            (0.0..=5.0).contains(&z) && rho <= r
+        };
+        let mut checked = 0;
+        for i in 0..24 {
+            for k in 0..28 {
+                let (x, z) = (
+                    1.0 - 3.5 + 7.0 * (i as f64 + 0.37) / 24.0,
+                    -0.7 + 6.4 * (k as f64 + 0.41) / 28.0,
+                );
+                let y = 2.0 + 0.3 * x;
+                let p = inv.transform_point3(DVec3::new(x, y, z));
+                assert_eq!(lathe.contains(p), inside(x, y, z), "at {x} {y} {z}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 24 * 28);
+    }
+
+    #[test]
+    fn off_the_axis_is_not_a_lathe() {
+        let mut b = cone(1.0, 1.0, 2.0, 0.0, 1.0);
+        b.to_world = DAffine3::from_translation(DVec3::X * 1e-6) * b.to_world;
+        assert!(as_lathe(&[vec![cone(2.0, 1.0, 1.0, 0.0, 2.0), b]]).is_none());
+    }
+}
