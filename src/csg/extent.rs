@@ -204,6 +204,14 @@ impl Csg {
         }
         let step = (region.max - region.min) / FRAMING_GRID as f64;
         let grown = Aabb::new(first.min - step, first.max + step).intersect(&region);
+        // A second grid over a box nearly the region's own is no finer
+        // (its step at least 3/4 of the first's): the first one's sides
+        // stand, within a step of the first grid, 4/3 of a step of a grid
+        // over their own box.
+        let size = |b: &Aabb| b.max - b.min;
+        if (size(&grown) - size(&region) * 0.75).min_element() >= 0.0 {
+            return first;
+        }
         first.union(&self.sampled_bounds(node, &grown, &axes))
     }
 
