@@ -108,48 +108,6 @@ pub fn as_lathe(hulls: &[Vec<ConvexPart>]) -> Option<(Lathe, DAffine3)> {
     Some((Lathe::new(Arc::new(region)), place))
 }
 
-/// A lathe of straight edges (placed by `m`) as the frustums its edges
-/// turn into, for a hull to take its parts from: the hull of a turned
-/// profile is the hull of its corners' rims, and every corner off the axis
-/// ends an edge that is not level (a corner between two level edges has
-/// none: `None`), whose frustum holds its rim. Level edges and edges on
-/// the axis add nothing.
-pub fn frustums(lathe: &Lathe, m: DAffine3) -> Option<Vec<ConvexPart>> {
-    let region = &lathe.profile;
-    if region.curved() {
-        return None;
-    }
-    let mut out = Vec::new();
-    let mut rims: Vec<DVec2> = Vec::new();
-    for &(a, b) in &region.edges {
-        if a.y == b.y || (a.x <= 0.0 && b.x <= 0.0) {
-            continue;
-        }
-        let (lo, hi) = if a.y < b.y { (a, b) } else { (b, a) };
-        let r = lo.x.max(hi.x);
-        let cone = super::cone::Cone {
-            r0: lo.x.max(0.0) / r,
-            r1: hi.x.max(0.0) / r,
-            centered: false,
-        };
-        let local = DAffine3::from_mat3_translation(
-            DMat3::from_diagonal(DVec3::new(r, r, hi.y - lo.y)),
-            DVec3::Z * lo.y,
-        );
-        out.push(ConvexPart {
-            shape: Shape::Cone(cone),
-            to_world: m * local,
-        });
-        rims.extend([a, b]);
-    }
-    let covered = region
-        .edges
-        .iter()
-        .flat_map(|&(a, b)| [a, b])
-        .all(|v| v.x <= 0.0 || rims.contains(&v));
-    (covered && !out.is_empty()).then_some(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

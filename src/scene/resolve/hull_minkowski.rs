@@ -101,13 +101,8 @@ impl Resolver<'_> {
                     prim.shape.name()
                 ));
             }
-            let turned = match &prim.shape {
-                Shape::Lathe(l) => crate::geometry::coaxial::frustums(l, prim.xf.to_world),
-                _ => None,
-            };
             match hulls_of(&prim.shape) {
                 Some([one]) => out.extend(placed(one, prim.xf.to_world)),
-                _ if turned.is_some() => out.extend(turned.into_iter().flatten()),
                 _ => out.push(ConvexPart {
                     shape: prim.shape.clone(),
                     to_world: prim.xf.to_world,
@@ -172,9 +167,17 @@ impl Resolver<'_> {
         if let Some(mesh) = crate::geometry::convex::polytope_sum(&hulls) {
             return self.leaf(s, Shape::Mesh(mesh), frame, mat);
         }
-        // A hull of frustums on one axis: the turn of its profile.
+        // A hull of frustums on one axis: the turn of its profile, which
+        // keeps its parts for a hull it is a part of.
         if let Some((lathe, place)) = crate::geometry::coaxial::as_lathe(&hulls) {
-            return self.leaf(s, Shape::Lathe(lathe), frame * place, mat);
+            let shape = Rounded::new(vec![(Shape::Lathe(lathe), place)], hulls).map_err(|_| {
+                self.src.error(
+                    s.name_span,
+                    format!("this `{}` is out of range or flattened", s.name),
+                    "expected parts of a size within 1e-15 to 1e15 of their distances",
+                )
+            })?;
+            return self.leaf(s, Shape::Rounded(shape), frame, mat);
         }
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
