@@ -170,28 +170,15 @@ impl Resolver<'_> {
         // A hull of frustums on one axis: the turn of its profile, which
         // keeps its parts for a hull it is a part of.
         if let Some((lathe, place)) = crate::geometry::coaxial::as_lathe(&hulls) {
-            let shape = Rounded::new(vec![(Shape::Lathe(lathe), place)], hulls).map_err(|_| {
-                self.src.error(
-                    s.name_span,
-                    format!("this `{}` is out of range or flattened", s.name),
-                    "expected parts of a size within 1e-15 to 1e15 of their distances",
-                )
-            })?;
-            return self.leaf(s, Shape::Rounded(shape), frame, mat);
+            let parts = vec![(Shape::Lathe(lathe), place)];
+            return self.rounded_leaf(s, parts, hulls, frame, mat);
         }
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
             .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
             .or_else(|| crate::geometry::ball_sum::as_cylinders(&hulls));
         if let Some(pieces) = rounded.filter(|_| !crate::mutant::active("hull_gjk_normals")) {
-            let shape = Rounded::new(pieces.parts, hulls).map_err(|_| {
-                self.src.error(
-                    s.name_span,
-                    format!("this `{}` is out of range or flattened", s.name),
-                    "expected parts of a size within 1e-15 to 1e15 of their distances",
-                )
-            })?;
-            return self.leaf(s, Shape::Rounded(shape), frame, mat);
+            return self.rounded_leaf(s, pieces.parts, hulls, frame, mat);
         }
         let c = Convex::new(hulls);
         let b = c.object_bounds();
@@ -337,14 +324,27 @@ impl Resolver<'_> {
         let Some(pieces) = pieces else {
             return Err(self.not_convex(s, what));
         };
-        let shape = Rounded::new(pieces.parts, Vec::new()).map_err(|_| {
+        self.rounded_leaf(s, pieces.parts, Vec::new(), xf, mat)
+    }
+
+    /// A leaf of the union of exact `parts` (keeping the `hulls` they are
+    /// of, for a hull they are part of), placed by `frame`.
+    fn rounded_leaf(
+        &mut self,
+        s: &Statement,
+        parts: Vec<(Shape, DAffine3)>,
+        hulls: Sum,
+        frame: DAffine3,
+        mat: Material,
+    ) -> Result<Option<u32>> {
+        let shape = Rounded::new(parts, hulls).map_err(|_| {
             self.src.error(
                 s.name_span,
                 format!("this `{}` is out of range or flattened", s.name),
                 "expected parts of a size within 1e-15 to 1e15 of their distances",
             )
         })?;
-        self.leaf(s, Shape::Rounded(shape), xf, mat)
+        self.leaf(s, Shape::Rounded(shape), frame, mat)
     }
 
     /// What the operands `nodes` sum to: one mesh that is not convex and
