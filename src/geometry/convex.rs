@@ -96,27 +96,23 @@ impl ConvexPart {
 /// volume, or it would take more than
 /// [`MAX_SUM_CORNERS`](super::polytope::MAX_SUM_CORNERS) sums.
 pub fn polytope_sum(hulls: &[Vec<ConvexPart>]) -> Option<super::Mesh> {
-    let mut sum = vec![DVec3::ZERO];
-    for h in hulls {
-        let mut pts = Vec::new();
-        for (k, part) in h.iter().enumerate() {
-            // The fault: a hull's last part left out.
-            if k > 0 && k + 1 == h.len() && crate::mutant::active("polytope_part_dropped") {
-                continue;
+    let sum = super::polytope::corner_sum(
+        hulls,
+        |h| {
+            let mut pts = Vec::new();
+            for (k, part) in h.iter().enumerate() {
+                // The fault: a hull's last part left out.
+                if k > 0 && k + 1 == h.len() && crate::mutant::active("polytope_part_dropped") {
+                    continue;
+                }
+                pts.extend(part.corners().ok_or(())?);
             }
-            pts.extend(part.corners()?);
-        }
-        // Only the hull's own corners (a flat part's all serve).
-        let corners = hull_corners(&pts).unwrap_or(pts);
-        if sum.len() * corners.len() > super::polytope::MAX_SUM_CORNERS {
-            return None;
-        }
-        let all: Vec<DVec3> = sum
-            .iter()
-            .flat_map(|&a| corners.iter().map(move |&b| a + b))
-            .collect();
-        sum = hull_corners(&all).unwrap_or(all);
-    }
+            Ok(pts)
+        },
+        hull_corners,
+        || (),
+    )
+    .ok()?;
     super::polytope::hull_mesh(&sum)
 }
 

@@ -655,28 +655,48 @@ fn summed_hulls(
     tol: f64,
 ) -> Result<Option<Polytope>, String> {
     let e = eps / hulls.len().max(1) as f64;
+    let sum = corner_sum(
+        hulls,
+        |h| {
+            let mut pts = Vec::new();
+            for part in h {
+                for p in pieces_of(&part.shape, &(*m * part.to_world), e, tol)? {
+                    pts.extend(p.vertices());
+                }
+            }
+            Ok(pts)
+        },
+        |pts| Polytope::hull(pts, tol).map(|p| p.vertices()),
+        || format!("a nested sum of more than {MAX_SUM_CORNERS} corner sums"),
+    )?;
+    Ok(Polytope::hull(&sum, tol))
+}
+
+/// The corners of the Minkowski sum of the hulls of `hulls`' point sets
+/// (`corners` of each, or its error): each set's hull's corners (`hull`,
+/// `None` for a flat set, whose points all serve) added to every corner
+/// of the sum so far and hulled again; `too_many` where that would take
+/// more than [`MAX_SUM_CORNERS`] corner sums.
+pub fn corner_sum<'a, T, E>(
+    hulls: &'a [T],
+    mut corners: impl FnMut(&'a T) -> Result<Vec<DVec3>, E>,
+    hull: impl Fn(&[DVec3]) -> Option<Vec<DVec3>>,
+    too_many: impl FnOnce() -> E,
+) -> Result<Vec<DVec3>, E> {
     let mut sum = vec![DVec3::ZERO];
     for h in hulls {
-        let mut pts = Vec::new();
-        for part in h {
-            for p in pieces_of(&part.shape, &(*m * part.to_world), e, tol)? {
-                pts.extend(p.vertices());
-            }
-        }
-        // A flat part (a disc) has no hull of its own: its corners serve.
-        let corners = Polytope::hull(&pts, tol).map_or(pts, |p| p.vertices());
-        if sum.len() * corners.len() > MAX_SUM_CORNERS {
-            return Err(format!(
-                "a nested sum of more than {MAX_SUM_CORNERS} corner sums"
-            ));
+        let pts = corners(h)?;
+        let own = hull(&pts).unwrap_or(pts);
+        if sum.len() * own.len() > MAX_SUM_CORNERS {
+            return Err(too_many());
         }
         let all: Vec<DVec3> = sum
             .iter()
-            .flat_map(|&a| corners.iter().map(move |&b| a + b))
+            .flat_map(|&a| own.iter().map(move |&b| a + b))
             .collect();
-        sum = Polytope::hull(&all, tol).map_or(all, |p| p.vertices());
+        sum = hull(&all).unwrap_or(all);
     }
-    Ok(Polytope::hull(&sum, tol))
+    Ok(sum)
 }
 
 /// Convex polygons whose union is a straight figure: a convex loop
