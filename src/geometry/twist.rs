@@ -230,16 +230,16 @@ impl Twisted {
                 // The whole section's reach first: a line that passes
                 // inside its nearest edge's distance or beyond its farthest
                 // corner, scaled, crosses no side.
-                let (rho0, rho1) =
-                    region
-                        .edges
-                        .iter()
-                        .fold((f64::INFINITY, 0.0f64), |(l, h), &(a, b)| {
-                            (
-                                l.min(segment_distance(a, b)),
-                                h.max(a.length()).max(b.length()),
-                            )
-                        });
+                let reach: SmallVec<[(f64, f64); 16]> = region
+                    .edges
+                    .iter()
+                    .map(|&(a, b)| (segment_distance(a, b), a.length().max(b.length())))
+                    .collect();
+                let (rho0, rho1) = reach
+                    .iter()
+                    .fold((f64::INFINITY, 0.0f64), |(l, h), &(r0, r1)| {
+                        (l.min(r0), h.max(r1))
+                    });
                 let rho1 = if crate::mutant::active("twist_reach_shrunk") {
                     0.9 * rho1
                 } else {
@@ -260,7 +260,7 @@ impl Twisted {
                         phi: path.phi,
                     };
                     roots.clear();
-                    let (rho1, rho0) = (a.length().max(b.length()), segment_distance(a, b));
+                    let (rho0, rho1) = reach[e];
                     path.roots(&side, rho0, rho1, 1.0, &mut roots);
                     let (ed, len2) = (b - a, (b - a).length_squared());
                     for &t in &roots {
