@@ -3,14 +3,15 @@
 a fixed sample of each licensed repository's models, with the files they
 import and the repository's licence.
 
-    tools/bench/people_collect.py [--per-repo 14] [--out bench/people] GITDIR...
+    python -m tools.bench.people_collect [--per-repo 14] [--out bench/people] GITDIR...
 
 Each GITDIR is a snapshot's git directory named `.../owner+name/repo` (what
 the tool library's `fetch` leaves in /work/.mirror). Its HEAD's files are
 written out (blobs a snapshot lacks are left out), its `.scad` files are
-shuffled with a fixed seed and exported by OpenSCAD (`openscad -o x.csg`,
-60 s at most) until `--per-repo` of them made a model: an export with a
-solid in it, at most 2 MB, every file it imports present and at most 2 MB.
+shuffled with a fixed seed and exported by OpenSCAD as the survey exports
+(`tools/dev/survey.py`'s `export`: `openscad -o x.csg`, 60 s at most, not
+empty) until `--per-repo` of them made a model: such an export of at most
+2 MB, every file it imports present and at most 2 MB.
 The export goes to OUT/owner+name/<the model's path>.csg (the imports
 beside it at their own relative paths, so that the export reads them as
 OpenSCAD did), the licence to OUT/owner+name/LICENSE*, and one line a model
@@ -28,6 +29,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+from tools.dev.survey import export
 
 MAX_BYTES = 2 << 20
 # A licence stated in the README only: the repository's own words, kept with
@@ -106,24 +109,10 @@ def collect(gitdir, per_repo, out, lines):
                 break
             scad = os.path.join(tree, rel)
             csg = scad + ".csg"
-            try:
-                p = subprocess.run(
-                    ["openscad", "-o", csg, scad],
-                    cwd=os.path.dirname(scad),
-                    capture_output=True,
-                    text=True,
-                    timeout=60,
-                )
-            except subprocess.TimeoutExpired:
-                continue
-            if p.returncode or not os.path.exists(csg) or os.path.getsize(csg) > MAX_BYTES:
-                continue
-            if "Current top level object is empty" in p.stderr:
+            if export(scad, csg) or os.path.getsize(csg) > MAX_BYTES:
                 continue
             with open(csg, errors="replace") as f:
                 text = f.read()
-            if not re.search(r"\w+\s*\(", text.replace("group()", "")):
-                continue
             files = [os.path.normpath(os.path.join(os.path.dirname(rel), i)) for i in imports(text) if i]
             if any(
                 os.path.isabs(i) or i.startswith("..") or not os.path.isfile(os.path.join(tree, i))
