@@ -65,6 +65,7 @@ pub const NAMES: &[&str] = &[
     "twist_reach_shrunk",
     "trig_roots_early",
     "twist_far_point_untwisted",
+    "disc_push_short",
 ];
 
 /// Whether the fault `name` is switched on.

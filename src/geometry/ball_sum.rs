@@ -132,6 +132,30 @@ pub fn pieces(pts: &[DVec3], r: f64) -> Option<Pieces> {
         .fold(0.0f64, |s, p| s.max((*p - pts[0]).abs().max_element()));
     let tol = 1e-12 * scale.max(pts.iter().fold(0.0f64, |s, p| s.max(p.abs().max_element())));
     let mut out = Pieces { parts: Vec::new() };
+    match span(&pts, tol) {
+        Span::Point => out.ball(pts[0], r),
+        Span::Segment(a, b) => out.capsule(a, b, r),
+        Span::Plane(n) => {
+            let poly = plane_hull(&pts, pts[0], n, tol);
+            out.slab(&poly, n, r);
+        }
+        Span::Solid => out.solid(&pts, r, tol),
+    }
+    Some(out)
+}
+
+/// What the points span.
+pub enum Span {
+    Point,
+    Segment(DVec3, DVec3),
+    /// A plane, by its normal.
+    Plane(DVec3),
+    Solid,
+}
+
+/// What `pts` (not empty) span, within `tol`: a segment by its two
+/// extremes, a plane by its normal.
+pub fn span(pts: &[DVec3], tol: f64) -> Span {
     let far = |from: &dyn Fn(DVec3) -> f64| {
         pts.iter()
             .copied()
@@ -141,32 +165,21 @@ pub fn pieces(pts: &[DVec3], r: f64) -> Option<Pieces> {
     let p0 = pts[0];
     let p1 = far(&|p| (p - p0).length());
     if (p1 - p0).length() <= tol {
-        out.ball(p0, r);
-        return Some(out);
+        return Span::Point;
     }
     let dir = (p1 - p0).normalize();
     let p2 = far(&|p| (p - p0).reject_from_normalized(dir).length());
     if (p2 - p0).reject_from_normalized(dir).length() <= tol {
-        // A segment: its two extremes.
         let along = |p: DVec3| (p - p0).dot(dir);
-        let a = pts
-            .iter()
-            .copied()
-            .min_by(|x, y| along(*x).total_cmp(&along(*y)))
-            .expect("points");
-        let b = far(&|p| along(p));
-        out.capsule(a, b, r);
-        return Some(out);
+        let a = far(&|p| -along(p));
+        return Span::Segment(a, far(&|p| along(p)));
     }
     let n = (p1 - p0).cross(p2 - p0).normalize();
     let p3 = far(&|p| (p - p0).dot(n).abs());
     if (p3 - p0).dot(n).abs() <= tol {
-        let poly = plane_hull(&pts, p0, n, tol);
-        out.slab(&poly, n, r);
-        return Some(out);
+        return Span::Plane(n);
     }
-    out.solid(&pts, r, tol);
-    Some(out)
+    Span::Solid
 }
 
 impl Pieces {
@@ -197,7 +210,8 @@ impl Pieces {
         self.ball(b, r);
     }
 
-    fn mesh(&mut self, verts: Vec<DVec3>, tris: Vec<[u32; 3]>) {
+    /// A closed mesh piece of these vertices and outward triangles.
+    pub fn mesh(&mut self, verts: Vec<DVec3>, tris: Vec<[u32; 3]>) {
         let data = std::sync::Arc::new(MeshData::new(verts, tris));
         self.parts
             .push((Shape::Mesh(Mesh { data }), DAffine3::IDENTITY));
@@ -206,9 +220,21 @@ impl Pieces {
     /// A flat convex polygon (in order) with normal n: the slab |n·x| ≤ r
     /// over it and its rim's capsules.
     fn slab(&mut self, poly: &[DVec3], n: DVec3, r: f64) {
-        let k = poly.len() as u32;
-        let mut verts: Vec<DVec3> = poly.iter().map(|&p| p + n * r).collect();
-        verts.extend(poly.iter().map(|&p| p - n * r));
+        self.prism(
+            poly.iter().map(|&p| p + n * r).collect(),
+            poly.iter().map(|&p| p - n * r).collect(),
+        );
+        for i in 0..poly.len() {
+            self.capsule_rim(poly[i], poly[(i + 1) % poly.len()], r);
+        }
+    }
+
+    /// The closed mesh between a convex polygon `top` (counter-clockwise
+    /// seen from outside) and `bottom`, the same polygon moved.
+    pub fn prism(&mut self, top: Vec<DVec3>, bottom: Vec<DVec3>) {
+        let k = top.len() as u32;
+        let mut verts = top;
+        verts.extend(bottom);
         let mut tris = Vec::new();
         for i in 1..k - 1 {
             tris.push([0, i, i + 1]);
@@ -220,9 +246,6 @@ impl Pieces {
             tris.push([i, k + j, j]);
         }
         self.mesh(verts, tris);
-        for i in 0..poly.len() {
-            self.capsule_rim(poly[i], poly[(i + 1) % poly.len()], r);
-        }
     }
 
     /// An edge of a rim: its cylinder and its first end's ball (each
@@ -232,53 +255,17 @@ impl Pieces {
         self.ball(a, r);
     }
 
-    /// A solid hull: its faces (each triple of points with every point on
-    /// one side of its plane, the points on that plane making the face),
-    /// the mesh of P with each face pushed out by r, and the edges' and
-    /// vertices' cylinders and balls.
+    /// A solid hull: its faces ([`hull_faces`]), the mesh of P with each
+    /// face pushed out by r, and the edges' and vertices' cylinders and
+    /// balls.
     fn solid(&mut self, pts: &[DVec3], r: f64, tol: f64) {
-        let mut faces: Vec<(DVec3, Vec<usize>)> = Vec::new();
-        let m = pts.len();
-        for i in 0..m {
-            for j in i + 1..m {
-                for k in j + 1..m {
-                    let c = (pts[j] - pts[i]).cross(pts[k] - pts[i]);
-                    let Some(n) = c.try_normalize() else { continue };
-                    if c.length()
-                        <= tol * (pts[j] - pts[i]).length().max((pts[k] - pts[i]).length())
-                    {
-                        continue;
-                    }
-                    let side = |p: DVec3| (p - pts[i]).dot(n);
-                    let (lo, hi) = pts.iter().fold((0.0f64, 0.0f64), |(l, h), &p| {
-                        (l.min(side(p)), h.max(side(p)))
-                    });
-                    let n = if hi <= tol {
-                        n
-                    } else if lo >= -tol {
-                        -n
-                    } else {
-                        continue;
-                    };
-                    let on: Vec<usize> = (0..m)
-                        .filter(|&q| (pts[q] - pts[i]).dot(n).abs() <= tol)
-                        .collect();
-                    if !faces.iter().any(|f| f.1 == on) {
-                        faces.push((n, on));
-                    }
-                }
-            }
-        }
         let mut verts: Vec<DVec3> = pts.to_vec();
         let mut tris: Vec<[u32; 3]> = Vec::new();
         let mut edges: Vec<(usize, usize)> = Vec::new();
         let mut corners: Vec<usize> = Vec::new();
-        for (n, on) in &faces {
-            let local: Vec<DVec3> = on.iter().map(|&q| pts[q]).collect();
-            let ring = plane_hull_indices(&local, local[0], *n, tol);
-            let ids: Vec<usize> = ring.iter().map(|&q| on[q]).collect();
+        for (n, ids) in hull_faces(pts, tol) {
             let base = verts.len() as u32;
-            verts.extend(ids.iter().map(|&q| pts[q] + *n * r));
+            verts.extend(ids.iter().map(|&q| pts[q] + n * r));
             let k = ids.len() as u32;
             for i in 1..k - 1 {
                 tris.push([base, base + i, base + i + 1]);
@@ -309,9 +296,54 @@ impl Pieces {
     }
 }
 
+/// The faces of the hull of `pts` (spanning a volume): each plane through
+/// three of the points with every point on one side of it (within `tol`),
+/// as its outward unit normal and the points on it in order
+/// counter-clockwise about the normal (points on an edge left out).
+pub fn hull_faces(pts: &[DVec3], tol: f64) -> Vec<(DVec3, Vec<usize>)> {
+    let mut faces: Vec<(DVec3, Vec<usize>)> = Vec::new();
+    let m = pts.len();
+    for i in 0..m {
+        for j in i + 1..m {
+            for k in j + 1..m {
+                let c = (pts[j] - pts[i]).cross(pts[k] - pts[i]);
+                let Some(n) = c.try_normalize() else { continue };
+                if c.length() <= tol * (pts[j] - pts[i]).length().max((pts[k] - pts[i]).length()) {
+                    continue;
+                }
+                let side = |p: DVec3| (p - pts[i]).dot(n);
+                let (lo, hi) = pts.iter().fold((0.0f64, 0.0f64), |(l, h), &p| {
+                    (l.min(side(p)), h.max(side(p)))
+                });
+                let n = if hi <= tol {
+                    n
+                } else if lo >= -tol {
+                    -n
+                } else {
+                    continue;
+                };
+                let on: Vec<usize> = (0..m)
+                    .filter(|&q| (pts[q] - pts[i]).dot(n).abs() <= tol)
+                    .collect();
+                if !faces.iter().any(|f| f.1 == on) {
+                    faces.push((n, on));
+                }
+            }
+        }
+    }
+    faces
+        .into_iter()
+        .map(|(n, on)| {
+            let local: Vec<DVec3> = on.iter().map(|&q| pts[q]).collect();
+            let ring = plane_hull_indices(&local, local[0], n, tol);
+            (n, ring.iter().map(|&q| on[q]).collect())
+        })
+        .collect()
+}
+
 /// The convex polygon (counter-clockwise about n) of points in the plane
 /// through `o` with normal `n`.
-fn plane_hull(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<DVec3> {
+pub fn plane_hull(pts: &[DVec3], o: DVec3, n: DVec3, tol: f64) -> Vec<DVec3> {
     plane_hull_indices(pts, o, n, tol)
         .into_iter()
         .map(|i| pts[i])

@@ -992,11 +992,15 @@ def side_pieces(a, b, c):
 # and the hull of points
 # --------------------------------------------------------------------------
 
-CONVEXES = ["hull_spheres", "rounded_box", "hull_points"]
+CONVEXES = ["hull_spheres", "rounded_box", "hull_points", "lofted_plate"]
 # The hull of two balls on the z axis: centres and radii, times the size.
 CAPSULE = ((-0.3, 0.35), (0.4, 0.15))
 # The rounded box: a centred box's sides and the ball's radius, times the size.
 BOX_SIDES, BOX_R = (0.6, 0.4, 0.3), 0.15
+# The lofted plate: the hull of four cylinders at (+-A, +-B), the pair at
+# y = -B from z0 up by HC, the pair at y = B from z1 up by HC, radius R;
+# times the size.
+LOFT_A, LOFT_B, LOFT_R, LOFT_HC, LOFT_Z0, LOFT_Z1 = 0.35, 0.25, 0.12, 0.1, -0.3, 0.05
 # The hull of points: twelve points in general position, as three
 # tetrahedra, times the size.
 POINTS = [
@@ -1008,11 +1012,12 @@ POINTS = [
 
 class Convexed(Prim):
     """hull() of two balls (a tapered capsule), minkowski() of a box and a
-    ball (a rounded box), or hull() of twelve points, of size s centred at
-    c. The line meets a convex set in one interval: the union of the
-    intervals of convex pieces that cover it (the balls and the frustum
-    tangent to both; 3 boxes, 12 cylinders and 8 balls), or the facets'
-    half-spaces."""
+    ball (a rounded box), hull() of twelve points, or hull() of four
+    cylinders, a raised pair and a low one (a lofted plate), of size s
+    centred at c. The line meets a convex set in one interval: the union of
+    the intervals of convex pieces that cover it (the balls and the frustum
+    tangent to both; 3 boxes, 12 cylinders and 8 balls; see loft_pieces),
+    or the facets' half-spaces."""
 
     def __init__(self, kind, c, s, pose="plain"):
         super().__init__(kind, c, s, pose)
@@ -1028,6 +1033,8 @@ class Convexed(Prim):
         elif kind == "rounded_box":
             self.half = [M(float(x * s)) / 2 for x in BOX_SIDES]
             self.r = M(float(BOX_R * s))
+        elif kind == "lofted_plate":
+            self.loft = [M(float(x * s)) for x in (LOFT_A, LOFT_B, LOFT_R, LOFT_HC, LOFT_Z0, LOFT_Z1)]
         else:
             self.pts = [[M(float(x * s)) for x in q] for q in POINTS]
             self.planes = hull_planes(self.pts)
@@ -1042,6 +1049,13 @@ class Convexed(Prim):
         if self.kind == "rounded_box":
             sides = ", ".join(f(x) for x in BOX_SIDES)
             return f"minkowski() {{ cube([{sides}], center = true); sphere(r = {f(BOX_R)}); }}"
+        if self.kind == "lofted_plate":
+            cyls = " ".join(
+                f"translate([{f(sx * LOFT_A)}, {f(sy * LOFT_B)}, {f(z)}]) cylinder(r = {f(LOFT_R)}, h = {f(LOFT_HC)});"
+                for sx in (-1, 1)
+                for sy, z in ((-1, LOFT_Z0), (1, LOFT_Z1))
+            )
+            return f"hull() {{ {cyls} }}"
         tets = []
         for j in range(0, len(POINTS), 4):
             p = [[float(x * s) for x in q] for q in POINTS[j : j + 4]]
@@ -1087,6 +1101,8 @@ class Convexed(Prim):
                         q = quadratic(dot(d, d), dot(rel, d), dot(rel, rel) - r * r)
                         if q:
                             out.append(tuple(q))
+        elif self.kind == "lofted_plate":
+            out += [iv for iv, _ in loft_pieces(self.loft, o, d)]
         else:
             lo, hi = -mp.inf, mp.inf
             for n, h in self.planes:
@@ -1127,12 +1143,114 @@ class Convexed(Prim):
             big = max(abs(x) for x in n)
             curved = sum(1 for x in n if abs(x) > big * mp.mpf(10) ** -20) > 1
             rho = self.r if curved else mp.inf
+        elif self.kind == "lofted_plate":
+            n, rho = loft_normal(self.loft, p)
         else:
             n, _ = min(self.planes, key=lambda nh: abs(dot(nh[0], p) - nh[1]))
             rho = mp.inf
         w = apply(transpose(self.inv), n)
         ln = mp.sqrt(dot(w, w))
         return [x / ln for x in w], rho
+
+
+def loft_edges(loft):
+    """The lofted plate's section through x = 0 (a parallelogram in y, z:
+    the hull of the cylinders' axes seen along x) as its four edges, each
+    (start, end) in (y, z), counter-clockwise from the low pair's bottom."""
+    _, b, _, hc, z0, z1 = loft
+    v = [(-b, z0 + hc), (-b, z0), (b, z1), (b, z1 + hc)]
+    return [(v[i], v[(i + 1) % 4]) for i in range(4)]
+
+
+def loft_pieces(loft, o, d):
+    """The lofted plate as convex pieces, each (interval of t, name): every
+    horizontal section is the section of the axes' hull, a rectangle
+    [-A, A] x [ylo(z), yhi(z)], grown by R: the rectangle grown along x,
+    the rectangle grown along y, and the discs about its four corners,
+    which lie on the edges of the parallelogram at x = +-A (each corner's
+    discs over its edge's heights: a cylinder of circular horizontal
+    sections swept along the edge)."""
+    a, b, r, hc, z0, z1 = loft
+    k = (z1 - z0) / (2 * b)
+    out = []
+
+    def halfspaces(planes):
+        lo, hi = -mp.inf, mp.inf
+        for n, h in planes:
+            nd, no = dot(n, d), dot(n, o)
+            if nd == 0:
+                if no > h:
+                    return None
+                continue
+            t = (h - no) / nd
+            lo, hi = (max(lo, t), hi) if nd < 0 else (lo, min(hi, t))
+        return (lo, hi) if lo < hi else None
+
+    # The parallelogram: -B <= y <= B, z0 + k (y + B) <= z <= z0 + HC + k (y + B),
+    # as k y - z <= -z0 - k B and z - k y <= z0 + HC + k B; along y grown by
+    # R (a shift of each bounding line by R along y).
+    for grow_x, grow_y in ((r, 0), (0, r)):
+        planes = [
+            ([M(1), M(0), M(0)], a + grow_x),
+            ([M(-1), M(0), M(0)], a + grow_x),
+            ([M(0), M(1), M(0)], b + grow_y),
+            ([M(0), M(-1), M(0)], b + grow_y),
+            ([M(0), k, M(-1)], -z0 - k * b + k * grow_y),
+            ([M(0), -k, M(1)], z0 + hc + k * b + k * grow_y),
+            ([M(0), M(0), M(1)], z1 + hc),
+            ([M(0), M(0), M(-1)], -z0),
+        ]
+        iv = halfspaces(planes)
+        if iv:
+            out.append((iv, "grown"))
+    for sx in (-1, 1):
+        for (ya, za), (yb, zb) in loft_edges(loft):
+            x = sx * a
+            # The offset across at height o_z + t d_z from the edge's point there.
+            sy = (yb - ya) / (zb - za)
+            g0, g1 = o[0] - x, d[0]
+            e0 = o[1] - ya - (o[2] - za) * sy
+            e1 = d[1] - d[2] * sy
+            qa, qb, qc = g1 * g1 + e1 * e1, g0 * g1 + e0 * e1, g0 * g0 + e0 * e0 - r * r
+            for iv in clipped(pieces(qa, qb, qc), slab(o[2], d[2], min(za, zb), max(za, zb))):
+                out.append((iv, "swept"))
+    return out
+
+
+def loft_normal(loft, p):
+    """The exact outward normal of the lofted plate at its boundary point p
+    and the smallest radius of curvature there: from p's section, the
+    point q of the section's rectangle nearest p, the offset w = p - q
+    (length R on the side): along x or y off an edge of the rectangle, the
+    normal of the face of the axes' hull that makes that edge; off a
+    corner, across the swept cylinder: w turned a quarter about z, crossed
+    with the edge's direction s (its radius of curvature at least R |s_z| /
+    |s|, the normal turning |s| / |s_z| times as fast as w). On a cap, +-z."""
+    a, b, r, hc, z0, z1 = loft
+    k = (z1 - z0) / (2 * b)
+    tiny = mp.mpf(10) ** -25 * (abs(a) + abs(b))
+    if abs(p[2] - (z1 + hc)) <= tiny or abs(p[2] - z0) <= tiny:
+        return [M(0), M(0), M(1) if p[2] > 0 else M(-1)], mp.inf
+    # The rectangle's y-range at p's height, and which face makes each end.
+    lo_top = (p[2] - z0 - hc) / k - b  # the top slanted face bounds y below
+    hi_bot = (p[2] - z0) / k - b  # the bottom slanted face bounds y above
+    ylo, nlo, elo = (-b, [M(0), M(-1), M(0)], 0) if -b >= lo_top else (lo_top, [M(0), -k, M(1)], 3)
+    yhi, nhi, ehi = (b, [M(0), M(1), M(0)], 2) if b <= hi_bot else (hi_bot, [M(0), k, M(-1)], 1)
+    qx = max(-a, min(a, p[0]))
+    qy = max(ylo, min(yhi, p[1]))
+    w = [p[0] - qx, p[1] - qy]
+    corner = abs(w[0]) > tiny and abs(w[1]) > tiny
+    if not corner:
+        if abs(w[0]) > tiny:
+            return [M(1) if w[0] > 0 else M(-1), M(0), M(0)], mp.inf
+        return (nhi if w[1] > 0 else nlo), mp.inf
+    (ya, za), (yb, zb) = loft_edges(loft)[ehi if w[1] > 0 else elo]
+    s = [M(0), yb - ya, zb - za]
+    perp = [-w[1], w[0], M(0)]
+    n = cross3(perp, s)
+    if n[0] * w[0] + n[1] * w[1] < 0:
+        n = [-x for x in n]
+    return n, r * abs(s[2]) / mp.sqrt(dot(s, s))
 
 
 def tetra_faces(p):
@@ -1235,6 +1353,15 @@ def convex_rays(p, n, rng):
             corner = at(*(BOX_SIDES[i] / 2 + (1 - slim) * BOX_R / 3**0.5 for i in range(3)))
             o = at(3.0, 2.5, 3.5)
             out.append(("corner", o, unit([corner[i] - o[i] for i in range(3)])))
+        elif p.kind == "lofted_plate":
+            # Along a slanted edge's swept cylinder, 1e-9 of the size
+            # inside its side, from its outer quarter.
+            (ya, za), (yb, zb) = loft_edges([LOFT_A, LOFT_B, LOFT_R, LOFT_HC, LOFT_Z0, LOFT_Z1])[3 if j % 2 else 1]
+            q = math.pi / 2 * (j + 0.5) / n
+            w = [(1 - slim) * LOFT_R * math.cos(q), (1 - slim) * LOFT_R * math.sin(q) * (-1 if j % 2 else 1)]
+            mid = [LOFT_A + w[0], (ya + yb) / 2 + w[1], (za + zb) / 2]
+            along = unit([0.0, yb - ya, zb - za])
+            out.append(("grazing", at(*(mid[i] - 3.0 * along[i] for i in range(3))), along))
         else:
             # Past the middle of a hull edge, 1e-9 of the size inside it.
             nplanes = len(p.planes)

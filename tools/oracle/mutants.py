@@ -68,6 +68,7 @@ MUTANTS = {
     "twist_reach_shrunk": (["tests/openscad/twist.csg"], False),
     "trig_roots_early": (["tests/openscad/twisted_circles.csg"], ["twisted"]),
     "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
+    "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)
