@@ -66,6 +66,7 @@ pub const NAMES: &[&str] = &[
     "trig_roots_early",
     "twist_far_point_untwisted",
     "disc_push_short",
+    "disc_hull_frustum_thin",
 ];
 
 /// Whether the fault `name` is switched on.

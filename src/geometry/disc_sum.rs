@@ -133,7 +133,7 @@ pub fn as_disc_sum(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
                     .all(|(n, ring)| (q - axes[ring[0]]).dot(*n) <= near))
                 || cyls.iter().any(|c| {
                     let [a, b] = c.ends.map(|e| local.transform_point3(e));
-                    in_cylinder(q, a, b, near)
+                    in_frustum(q, (a, 1.0), (b, 1.0), near)
                 })
         };
         if !others.iter().all(|&q| inside(q)) {
@@ -306,22 +306,24 @@ fn edges(faces: &[(DVec3, Vec<usize>)]) -> Vec<(usize, usize)> {
     out
 }
 
-/// Whether q is within `near` of the cylinder of unit circular sections
-/// swept along ab (z between a's and b's).
-fn in_cylinder(q: DVec3, a: DVec3, b: DVec3, near: f64) -> bool {
-    let dz = b.z - a.z;
+/// Whether q is within `near` of the frustum of circular sections between
+/// discs a and b.
+pub fn in_frustum(q: DVec3, a: (DVec3, f64), b: (DVec3, f64), near: f64) -> bool {
+    let dz = b.0.z - a.0.z;
     if dz.abs() <= near {
         return false;
     }
-    let s = (q.z - a.z) / dz;
+    let s = (q.z - a.0.z) / dz;
     let ds = near / dz.abs();
-    let c = a + (b - a) * s.clamp(0.0, 1.0);
-    (-ds..=1.0 + ds).contains(&s) && (q.truncate() - c.truncate()).length() <= 1.0 + near
+    let t = s.clamp(0.0, 1.0);
+    let c = a.0 + (b.0 - a.0) * t;
+    let r = a.1 + (b.1 - a.1) * t;
+    (-ds..=1.0 + ds).contains(&s) && (q.truncate() - c.truncate()).length() <= r + near
 }
 
 /// The corners of the hull of `pts` (all of them, deduplicated, when they
 /// span no volume); `None` past [`MAX_HULL_POINTS`].
-fn vertices(pts: &[DVec3]) -> Option<Vec<DVec3>> {
+pub fn vertices(pts: &[DVec3]) -> Option<Vec<DVec3>> {
     let mut v = match super::quickhull::hull(pts, tolerance(pts)) {
         Some((v, _)) => v,
         None => pts.to_vec(),
@@ -345,7 +347,7 @@ fn minkowski(a: &[DVec3], b: &[DVec3]) -> Option<Vec<DVec3>> {
 }
 
 /// The points' extent and distance from the origin, the larger.
-fn scale(pts: &[DVec3]) -> f64 {
+pub fn scale(pts: &[DVec3]) -> f64 {
     let p0 = pts[0];
     pts.iter().fold(0.0f64, |s, p| {
         s.max((*p - p0).abs().max_element())
@@ -355,7 +357,7 @@ fn scale(pts: &[DVec3]) -> f64 {
 
 /// The thickness of a plane: 10⁻¹⁰ of the points' extent and distance
 /// from the origin, as for every hull of corners.
-fn tolerance(pts: &[DVec3]) -> f64 {
+pub fn tolerance(pts: &[DVec3]) -> f64 {
     let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
     super::polytope::plane_tolerance(&b)
 }

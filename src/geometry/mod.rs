@@ -12,6 +12,7 @@ pub mod coaxial;
 pub mod cone;
 pub mod convex;
 pub mod cuboid;
+pub mod disc_hull;
 pub mod disc_sum;
 pub mod halfspace;
 pub mod lathe;

@@ -992,7 +992,7 @@ def side_pieces(a, b, c):
 # and the hull of points
 # --------------------------------------------------------------------------
 
-CONVEXES = ["hull_spheres", "rounded_box", "hull_points", "lofted_plate"]
+CONVEXES = ["hull_spheres", "rounded_box", "hull_points", "lofted_plate", "chamfered_plate"]
 # The hull of two balls on the z axis: centres and radii, times the size.
 CAPSULE = ((-0.3, 0.35), (0.4, 0.15))
 # The rounded box: a centred box's sides and the ball's radius, times the size.
@@ -1001,6 +1001,10 @@ BOX_SIDES, BOX_R = (0.6, 0.4, 0.3), 0.15
 # y = -B from z0 up by HC, the pair at y = B from z1 up by HC, radius R;
 # times the size.
 LOFT_A, LOFT_B, LOFT_R, LOFT_HC, LOFT_Z0, LOFT_Z1 = 0.35, 0.25, 0.12, 0.1, -0.3, 0.05
+# The chamfered plate: a rounded rectangle (half sides A1, B1, radius R1)
+# from Z0 to Z1 under a smaller one (A2, B2, R2) from Z2 to Z3, hulled;
+# times the size.
+CHAMFER = dict(a1=0.35, b1=0.25, r1=0.12, z0=-0.3, z1=0.05, a2=0.2, b2=0.12, r2=0.05, z2=0.2, z3=0.24)
 # The hull of points: twelve points in general position, as three
 # tetrahedra, times the size.
 POINTS = [
@@ -1035,6 +1039,8 @@ class Convexed(Prim):
             self.r = M(float(BOX_R * s))
         elif kind == "lofted_plate":
             self.loft = [M(float(x * s)) for x in (LOFT_A, LOFT_B, LOFT_R, LOFT_HC, LOFT_Z0, LOFT_Z1)]
+        elif kind == "chamfered_plate":
+            self.ch = {k: M(float(v * s)) for k, v in CHAMFER.items()}
         else:
             self.pts = [[M(float(x * s)) for x in q] for q in POINTS]
             self.planes = hull_planes(self.pts)
@@ -1056,6 +1062,16 @@ class Convexed(Prim):
                 for sy, z in ((-1, LOFT_Z0), (1, LOFT_Z1))
             )
             return f"hull() {{ {cyls} }}"
+        if self.kind == "chamfered_plate":
+            c = CHAMFER
+
+            def plate(a, b, r, z, h):
+                sq = f"square([{f(2 * a)}, {f(2 * b)}], center = true)"
+                return f"translate([0, 0, {f(z)}]) linear_extrude(height = {f(h)}) offset(r = {f(r)}) {sq};"
+
+            low = plate(c["a1"], c["b1"], c["r1"], c["z0"], c["z1"] - c["z0"])
+            high = plate(c["a2"], c["b2"], c["r2"], c["z2"], c["z3"] - c["z2"])
+            return f"hull() {{ {low} {high} }}"
         tets = []
         for j in range(0, len(POINTS), 4):
             p = [[float(x * s) for x in q] for q in POINTS[j : j + 4]]
@@ -1103,6 +1119,8 @@ class Convexed(Prim):
                             out.append(tuple(q))
         elif self.kind == "lofted_plate":
             out += [iv for iv, _ in loft_pieces(self.loft, o, d)]
+        elif self.kind == "chamfered_plate":
+            out += chamfer_pieces(self.ch, o, d)
         else:
             lo, hi = -mp.inf, mp.inf
             for n, h in self.planes:
@@ -1145,6 +1163,8 @@ class Convexed(Prim):
             rho = self.r if curved else mp.inf
         elif self.kind == "lofted_plate":
             n, rho = loft_normal(self.loft, p)
+        elif self.kind == "chamfered_plate":
+            n, rho = chamfer_normal(self.ch, p)
         else:
             n, _ = min(self.planes, key=lambda nh: abs(dot(nh[0], p) - nh[1]))
             rho = mp.inf
@@ -1253,6 +1273,105 @@ def loft_normal(loft, p):
     return n, r * abs(s[2]) / mp.sqrt(dot(s, s))
 
 
+def chamfer_section(ch, z):
+    """The chamfered plate's section at height z as a rounded rectangle
+    (half sides, radius) and their rates along z; None off its heights.
+    The smaller plate lies inside the larger one's outline, so the hull is
+    the lower plate and, from its top (Z1) to the upper plate's top (Z3),
+    the hull of those two flat rounded rectangles, whose section at a
+    fraction l of the way is (1 - l) times the one plus l times the other:
+    the half sides and the radius interpolated (an offset of a rectangle is
+    the rectangle plus a disc, and Minkowski combinations add)."""
+    if z < ch["z0"] or z > ch["z3"]:
+        return None
+    if z <= ch["z1"]:
+        return (ch["a1"], ch["b1"], ch["r1"]), (M(0), M(0), M(0))
+    span = ch["z3"] - ch["z1"]
+    l = (z - ch["z1"]) / span
+    rates = tuple((ch[k + "2"] - ch[k + "1"]) / span for k in ("a", "b", "r"))
+    return tuple(ch[k + "1"] + (ch[k + "2"] - ch[k + "1"]) * l for k in ("a", "b", "r")), rates
+
+
+def chamfer_pieces(ch, o, d):
+    """The intervals of t in the chamfered plate's convex pieces: over each
+    of its two height ranges, the rounded rectangle's two crossed boxes
+    (their sides moving linearly with z: half-spaces) and its four corner
+    discs (centres and radius linear in z: a cylinder below, oblique cones
+    above, each a quadratic in t)."""
+    out = []
+    for lo, hi in ((ch["z0"], ch["z1"]), (ch["z1"], ch["z3"])):
+        zs = slab(o[2], d[2], lo, hi)
+        if zs is None:
+            continue
+        (a, b, r), (da, db, dr) = chamfer_section(ch, (lo + hi) / 2)
+        a, b, r = a - da * (hi - lo) / 2, b - db * (hi - lo) / 2, r - dr * (hi - lo) / 2
+        # At height z: a + da (z - lo), and so on; along the line z = o_z + t d_z.
+        at = lambda v0, rate: (v0 + rate * (o[2] - lo), rate * d[2])
+        for wx, wy in ((1, 0), (0, 1)):
+            hx0, hx1 = at(a + wx * r, da + wx * dr)
+            hy0, hy1 = at(b + wy * r, db + wy * dr)
+            iv = zs
+            for g0, g1, h0, h1 in ((o[0], d[0], hx0, hx1), (o[1], d[1], hy0, hy1)):
+                # -h(t) <= g0 + g1 t <= h(t)
+                for sign in (1, -1):
+                    k0, k1 = sign * g0 - h0, sign * g1 - h1  # k0 + k1 t <= 0
+                    if k1 == 0:
+                        if k0 > 0:
+                            iv = None
+                            break
+                        continue
+                    t = -k0 / k1
+                    iv = (iv[0], min(iv[1], t)) if k1 > 0 else (max(iv[0], t), iv[1])
+                if iv is None or iv[0] >= iv[1]:
+                    iv = None
+                    break
+            if iv:
+                out.append(iv)
+        for sx in (-1, 1):
+            for sy in (-1, 1):
+                cx0, cx1 = at(sx * a, sx * da)
+                cy0, cy1 = at(sy * b, sy * db)
+                r0, r1 = at(r, dr)
+                gx0, gx1 = o[0] - cx0, d[0] - cx1
+                gy0, gy1 = o[1] - cy0, d[1] - cy1
+                qa = gx1 * gx1 + gy1 * gy1 - r1 * r1
+                qb = gx0 * gx1 + gy0 * gy1 - r0 * r1
+                qc = gx0 * gx0 + gy0 * gy0 - r0 * r0
+                out += clipped(side_pieces(qa, qb, qc), zs)
+    return out
+
+
+def chamfer_normal(ch, p):
+    """The exact outward normal of the chamfered plate at boundary point p,
+    and the smallest radius of curvature there: on a cap, +-z; else, with
+    F = (distance across from the section's inner rectangle) - radius, its
+    gradient: on a side, (+-1, 0, -(half side + radius)') or its y
+    counterpart; off a corner, w (the unit offset from the corner's
+    centre) and -(w . centre' + radius') along z — constant along a
+    ruling, and turning at most sqrt(1 + |centre'|^2) times as fast as w
+    across: a radius of curvature at least the section's radius over
+    that."""
+    tiny = mp.mpf(10) ** -25 * ch["a1"]
+    if abs(p[2] - ch["z3"]) <= tiny:
+        return [M(0), M(0), M(1)], mp.inf
+    if abs(p[2] - ch["z0"]) <= tiny:
+        return [M(0), M(0), M(-1)], mp.inf
+    (a, b, r), (da, db, dr) = chamfer_section(ch, p[2])
+    qx, qy = max(-a, min(a, p[0])), max(-b, min(b, p[1]))
+    w = [p[0] - qx, p[1] - qy]
+    if abs(w[0]) > tiny and abs(w[1]) > tiny:
+        lw = mp.sqrt(w[0] ** 2 + w[1] ** 2)
+        u = [w[0] / lw, w[1] / lw]
+        sx, sy = (1 if w[0] > 0 else -1), (1 if w[1] > 0 else -1)
+        k = -(u[0] * sx * da + u[1] * sy * db + dr)
+        return [u[0], u[1], k], r / mp.sqrt(1 + da * da + db * db)
+    if abs(w[0]) > tiny:
+        sx = 1 if w[0] > 0 else -1
+        return [M(sx), M(0), -(da + dr)], mp.inf
+    sy = 1 if w[1] > 0 else -1
+    return [M(0), M(sy), -(db + dr)], mp.inf
+
+
 def tetra_faces(p):
     """The four faces of a tetrahedron, clockwise seen from outside
     (OpenSCAD's order)."""
@@ -1353,6 +1472,17 @@ def convex_rays(p, n, rng):
             corner = at(*(BOX_SIDES[i] / 2 + (1 - slim) * BOX_R / 3**0.5 for i in range(3)))
             o = at(3.0, 2.5, 3.5)
             out.append(("corner", o, unit([corner[i] - o[i] for i in range(3)])))
+        elif p.kind == "chamfered_plate":
+            # Across a corner's cone at mid-height, 1e-9 of the size inside
+            # its side, horizontally.
+            ch = {k: M(v) for k, v in CHAMFER.items()}
+            zm = (ch["z1"] + ch["z3"]) / 2
+            (a, b, r), _ = chamfer_section(ch, zm)
+            q = math.pi / 2 * (j + 0.5) / n
+            y = float(r * (1 - M(slim)))
+            cx, cy = float(a), float(b)
+            o = at(cx + 3.0 * math.cos(q) - y * math.sin(q), cy + 3.0 * math.sin(q) + y * math.cos(q), float(zm))
+            out.append(("grazing", o, [-math.cos(q), -math.sin(q), 0.0]))
         elif p.kind == "lofted_plate":
             # Along a slanted edge's swept cylinder, 1e-9 of the size
             # inside its side, from its outer quarter.

@@ -69,6 +69,7 @@ MUTANTS = {
     "trig_roots_early": (["tests/openscad/twisted_circles.csg"], ["twisted"]),
     "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
     "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
+    "disc_hull_frustum_thin": (["tests/openscad/hull_cones.csg"], ["chamfered_plate"]),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)

@@ -177,7 +177,8 @@ impl Resolver<'_> {
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
             .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
             .or_else(|| crate::geometry::ball_sum::as_cylinders(&hulls))
-            .or_else(|| crate::geometry::disc_sum::as_disc_sum(&hulls));
+            .or_else(|| crate::geometry::disc_sum::as_disc_sum(&hulls))
+            .or_else(|| crate::geometry::disc_hull::as_disc_hull(&hulls));
         if let Some(pieces) = rounded.filter(|_| !crate::mutant::active("hull_gjk_normals")) {
             return self.rounded_leaf(s, pieces.parts, hulls, frame, mat);
         }
