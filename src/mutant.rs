@@ -67,6 +67,7 @@ pub const NAMES: &[&str] = &[
     "twist_far_point_untwisted",
     "disc_push_short",
     "disc_hull_frustum_thin",
+    "rounded_lathe_torus_thin",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -55,7 +55,7 @@ pub fn as_rounded(hulls: &[Vec<ConvexPart>]) -> Option<(Vec<DVec3>, f64)> {
             let r = balls[0].1;
             balls
                 .iter()
-                .all(|b| (b.1 - r).abs() <= 1e-12 * r)
+                .all(|b| (b.1 - r).abs() <= super::coaxial::EXPORT_ROUNDING * r)
                 .then(|| (balls.iter().map(|b| b.0).collect(), r))
         }
         _ => None,
@@ -64,12 +64,13 @@ pub fn as_rounded(hulls: &[Vec<ConvexPart>]) -> Option<(Vec<DVec3>, f64)> {
 
 /// A hull that is one ball (a sphere under a uniform scale): its centre
 /// and radius.
-fn ball_of(hull: &[ConvexPart]) -> Option<(DVec3, f64)> {
+pub fn ball_of(hull: &[ConvexPart]) -> Option<(DVec3, f64)> {
     let [p] = hull else { return None };
     ball(p)
 }
 
-/// A part that is a ball: its centre and radius.
+/// A part that is a ball (a sphere under a rotation and a uniform scale,
+/// within [`super::coaxial::EXPORT_ROUNDING`]): its centre and radius.
 pub fn ball(p: &ConvexPart) -> Option<(DVec3, f64)> {
     if !matches!(p.shape, Shape::Sphere(_)) {
         return None;
@@ -79,7 +80,7 @@ pub fn ball(p: &ConvexPart) -> Option<(DVec3, f64)> {
     let r2 = (g.x_axis.x + g.y_axis.y + g.z_axis.z) / 3.0;
     let off = (g - DMat3::from_diagonal(DVec3::splat(r2))).to_cols_array();
     off.iter()
-        .all(|x| x.abs() <= 1e-12 * r2)
+        .all(|x| x.abs() <= super::coaxial::EXPORT_ROUNDING * r2)
         .then(|| (p.to_world.translation, r2.sqrt()))
 }
 

@@ -12,9 +12,10 @@
 //! between the lowest and the highest of them: straight edges only,
 //! each a cone, a cylinder or a disc of the lathe.
 
+use super::ball_sum::{ball_of, Pieces};
 use super::convex::ConvexPart;
 use super::lathe::Lathe;
-use super::Shape;
+use super::{Shape, Sphere, Torus};
 use crate::plane::{Outlines, Region};
 use glam::{DAffine3, DMat3, DVec2, DVec3};
 use std::sync::Arc;
@@ -30,15 +31,31 @@ pub struct PlacedCone {
     pub r_top: f64,
 }
 
-/// Whether `v` is within 10⁻¹² of `of` of zero: the test of a placement's
-/// right angles and equal lengths, to the rounding of a file's numbers.
+/// Whether `v` is within 10⁻¹² of `of` of zero: a point on the axis, to
+/// the rounding of the arithmetic.
 fn tight(v: f64, of: f64) -> bool {
     v.abs() <= 1e-12 * of
 }
 
+/// Whether `v` is within [`EXPORT_ROUNDING`] of `of` of zero: the test of
+/// a placement's right angles and equal lengths.
+fn square(v: f64, of: f64) -> bool {
+    v.abs() <= EXPORT_ROUNDING * of
+}
+
+/// How far from square and even a part's placement may be and still be
+/// taken as a rotation and a uniform scale (relative to its scale): the
+/// CSG export writes matrices to 6 significant digits, so a rotation comes
+/// back square to about 10⁻⁶ (`rotate([0, 0, 36])` as 0.809017 and
+/// 0.587785: rows of length 1 − 1.4·10⁻⁷). Within this, the part is what
+/// the model said — a sphere a ball, a cylinder circular — as OpenSCAD's
+/// own render from the `.scad` has it; the file's rounded matrix differs
+/// from it by at most this fraction of the part's size.
+pub const EXPORT_ROUNDING: f64 = 1e-5;
+
 /// The part as a frustum whose sections across its axis are circles (its
 /// transform a rotation, a uniform scale across the axis and any length
-/// along it), or `None`.
+/// along it, within [`EXPORT_ROUNDING`]), or `None`.
 pub fn placed_cone(p: &ConvexPart) -> Option<PlacedCone> {
     let Shape::Cone(c) = &p.shape else {
         return None;
@@ -48,10 +65,10 @@ pub fn placed_cone(p: &ConvexPart) -> Option<PlacedCone> {
     let (lx, lz) = (x.length(), z.length());
     if !(lx > 0.0
         && lz > 0.0
-        && tight(x.dot(y), lx * lx)
-        && tight(y.length() - lx, lx)
-        && tight(x.dot(z), lx * lz)
-        && tight(y.dot(z), lx * lz))
+        && square(x.dot(y), lx * lx)
+        && square(y.length() - lx, lx)
+        && square(x.dot(z), lx * lz)
+        && square(y.dot(z), lx * lz))
     {
         return None;
     }
@@ -71,6 +88,15 @@ pub fn placed_cone(p: &ConvexPart) -> Option<PlacedCone> {
 /// no volume.
 pub fn as_lathe(hulls: &[Vec<ConvexPart>]) -> Option<(Lathe, DAffine3)> {
     let [parts] = hulls else { return None };
+    let (profile, place) = profile(parts)?;
+    let region = Region::new(Outlines::polygons(vec![profile]));
+    Some((Lathe::new(Arc::new(region)), place))
+}
+
+/// The profile (radius, height; counter-clockwise, its edge on the axis
+/// included) of the hull of `parts`, frustums on one axis, and the
+/// placement of the axis (z along it); `None` as for [`as_lathe`].
+fn profile(parts: &[ConvexPart]) -> Option<(Vec<DVec2>, DAffine3)> {
     let cones: Vec<PlacedCone> = parts.iter().map(placed_cone).collect::<Option<_>>()?;
     let first = cones.first()?;
     let (a, o) = (first.axis, first.bottom);
@@ -102,10 +128,80 @@ pub fn as_lathe(hulls: &[Vec<ConvexPart>]) -> Option<(Lathe, DAffine3)> {
         return None;
     }
     let profile: Vec<DVec2> = corners.iter().map(|&i| pts[i]).collect();
-    let region = Region::new(Outlines::polygons(vec![profile]));
     let u = a.any_orthonormal_vector();
     let place = DAffine3::from_mat3_translation(DMat3::from_cols(u, a.cross(u), a), o);
-    Some((Lathe::new(Arc::new(region)), place))
+    Some((profile, place))
+}
+
+/// A hull of frustums on one axis plus a ball (OpenSCAD's rounded
+/// cylinder, `minkowski() { cylinder(…); sphere(…); }`) as exact pieces:
+/// the set is turned, so its section through the axis is the hull's
+/// profile offset by the ball's radius ρ (a point's nearest point of a
+/// turned set lies in the point's own half-plane), and a convex polygon
+/// offset is the polygon with each edge pushed out by ρ and a disc about
+/// each corner. Turned: one lathe of the profile with its edges (but the
+/// one on the axis) pushed out, joined at each corner by the two walls
+/// from it, a torus about each corner off the axis and a ball at a corner
+/// on it where the edge leaving the axis is not square to it. Placed in
+/// the parts' frame.
+pub fn as_rounded_lathe(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
+    let [a, b] = hulls else { return None };
+    let ((c, r), parts) = match (ball_of(a), ball_of(b)) {
+        (_, Some(ball)) => (ball, a),
+        (Some(ball), None) => (ball, b),
+        _ => return None,
+    };
+    let (mut profile, place) = profile(parts)?;
+    let place = DAffine3::from_translation(c) * place;
+    let twice_area: f64 = (0..profile.len())
+        .map(|i| profile[i].perp_dot(profile[(i + 1) % profile.len()]))
+        .sum();
+    if twice_area < 0.0 {
+        profile.reverse();
+    }
+    let size = profile
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+    let on_axis = |p: DVec2| p.x <= 1e-12 * size;
+    let k = profile.len();
+    // Each edge's outward normal, or none for the edge on the axis.
+    let push: Vec<Option<DVec2>> = (0..k)
+        .map(|i| {
+            let (p, q) = (profile[i], profile[(i + 1) % k]);
+            (!(on_axis(p) && on_axis(q))).then(|| DVec2::new(q.y - p.y, p.x - q.x).normalize() * r)
+        })
+        .collect();
+    let mut outline: Vec<DVec2> = Vec::with_capacity(3 * k);
+    let mut out = Pieces { parts: Vec::new() };
+    for i in 0..k {
+        let p = profile[i];
+        let (before, after) = (push[(i + k - 1) % k], push[i]);
+        outline.extend(before.map(|n| p + n));
+        outline.push(p);
+        outline.extend(after.map(|n| p + n));
+        let leaves = before.or(after).expect("one edge off the axis");
+        let at = |m: DMat3| place * DAffine3::from_mat3_translation(m, DVec3::Z * p.y);
+        if !on_axis(p) {
+            let m = DMat3::from_diagonal(DVec3::splat(p.x));
+            // The fault: each rim's torus 1 % thin.
+            let minor = if crate::mutant::active("rounded_lathe_torus_thin") {
+                0.99 * r / p.x
+            } else {
+                r / p.x
+            };
+            out.parts.push((Shape::Torus(Torus { minor }), at(m)));
+        } else if leaves.y.abs() > 1e-12 * r {
+            out.parts.push((
+                Shape::Sphere(Sphere),
+                at(DMat3::from_diagonal(DVec3::splat(r))),
+            ));
+        }
+    }
+    outline.dedup();
+    let region = Region::new(Outlines::polygons(vec![outline]));
+    out.parts
+        .push((Shape::Lathe(Lathe::new(Arc::new(region))), place));
+    Some(out)
 }
 
 #[cfg(test)]

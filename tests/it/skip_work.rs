@@ -150,3 +150,22 @@ fn a_ray_through_more_spans_than_the_scratch_holds_counts_its_allocation() {
     let s = counters(&text, "4x3");
     assert!(s["span_allocations"].as_u64().unwrap() > 0, "{s}");
 }
+
+#[test]
+fn hulls_and_sums_of_discs_and_balls_take_no_support_function_steps() {
+    // Each of these has an exact form written out of primitives: a loft of
+    // rounded rectangles and a box plus a cylinder (one disc), cones with
+    // parallel axes (discs of several radii), a cylinder plus a ball (a
+    // turned offset), and balls under the CSG export's 6-digit rotations.
+    for text in [
+        "hull() { cylinder(r = 2, h = 1); translate([9, 0, 4]) cylinder(r = 2, h = 1); translate([0, 7, 2]) cylinder(r = 2, h = 1); }",
+        "minkowski() { cube([6, 4, 2]); cylinder(r = 1, h = 1); }",
+        "hull() { cylinder(r1 = 3, r2 = 1, h = 4); translate([6, 1, 5]) cylinder(r = 2, h = 1); }",
+        "minkowski() { cylinder(r1 = 3, r2 = 1, h = 4); sphere(r = 1); }",
+        "hull() { sphere(r = 1); multmatrix([[0.809017, -0.587785, 0, 0], [0.587785, 0.809017, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) translate([5, 0, 1]) sphere(r = 1); translate([0, 4, 0]) sphere(r = 1); translate([1, 1, 4]) sphere(r = 1); }",
+    ] {
+        let s = counters(text, "40x30");
+        assert!(s["mask_hits"].as_u64().unwrap() > 50, "{text}");
+        assert_eq!(s["convex_steps"], 0, "{text}");
+    }
+}

@@ -70,6 +70,7 @@ MUTANTS = {
     "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
     "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
     "disc_hull_frustum_thin": (["tests/openscad/hull_cones.csg"], ["chamfered_plate"]),
+    "rounded_lathe_torus_thin": (["tests/openscad/rounded_lathes.csg"], False),
 }
 
 # fault -> the files of OpenSCAD's own suite (tools/oracle/suite.py --only)

@@ -173,6 +173,10 @@ impl Resolver<'_> {
             let parts = vec![(Shape::Lathe(lathe), place)];
             return self.rounded_leaf(s, parts, hulls, frame, mat);
         }
+        // Such a hull plus a ball: turned too.
+        if let Some(pieces) = crate::geometry::coaxial::as_rounded_lathe(&hulls) {
+            return self.rounded_leaf(s, pieces.parts, hulls, frame, mat);
+        }
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
             .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))

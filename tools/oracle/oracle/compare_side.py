@@ -3,6 +3,7 @@ off the edges and within the bounds, and the same-outputs check of two builds.""
 
 import math
 import os
+import re
 import subprocess
 import tempfile
 
@@ -15,7 +16,7 @@ from . import cast
 from . import mesh
 from . import ray_sets
 
-__all__ = ['SIDES', 'Side', 'check_scene', 'colour_check', 'compare', 'framing_problems', 'judge', 'mixed', 'off_surface', 'same_outputs', 'towards', 'verdict']
+__all__ = ['CAP', 'SIDES', 'Side', 'check_scene', 'colour_check', 'compare', 'finest', 'framing_problems', 'judge', 'mixed', 'off_surface', 'same_outputs', 'towards', 'verdict']
 
 
 # --------------------------------------------------------------------------
@@ -263,6 +264,23 @@ def verdict(rows):
 SIDES = {}  # (path, w, h, rays, n) -> Side: the oracle's side, once a process
 
 
+CAP = re.compile(r"^// oracle: at most (\d+) segments", re.M)
+
+
+def finest(path, segs):
+    """The numbers of segments a scene is checked at: all of `segs`, but
+    where the scene's .scad beside it says `// oracle: at most N segments`
+    (manifold3d's sum of a sphere and a cylinder hulls every pair of their
+    vertices: at 512 segments 130 million points), those up to N."""
+    scad = os.path.splitext(path)[0] + ".scad"
+    if os.path.exists(scad):
+        with open(scad, encoding="utf-8") as f:
+            m = CAP.search(f.read())
+        if m:
+            return [n for n in segs if n <= int(m.group(1))] or segs[:1]
+    return segs
+
+
 def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_fault=False):
     """(rows, problems) for one scene; cmd is csgrt's command line, env
     its environment (None: this one). With first_fault (a build that must
@@ -284,6 +302,7 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_faul
             return [], [f"csgrt failed: {e}"]
     pix_traced, traced = traced[: len(pix_rays)], traced[len(pix_rays) :]
     rows = []
+    segs = finest(path, segs)
     for n in segs:
         key = (os.path.abspath(path), w, h, nrays, n, None if framed is None else repr(framed))
         if key not in SIDES:
