@@ -63,7 +63,7 @@ MUTANTS = {
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
     "framing_loose": (["tests/scenes/ring_sector.csg"], False),
     "polytope_part_dropped": (["tests/openscad/hull_polytopes.csg"], ["hull_points"]),
-    "convex_slab_shrunk": (["tests/openscad/hull_coaxial.csg"], ["hull_spheres"]),
+    "convex_slab_shrunk": (["tests/openscad/hull.csg"], ["hull_spheres"]),
     "coaxial_axis_dropped": (["tests/openscad/hull_coaxial.csg"], False),
     "twist_reach_shrunk": (["tests/openscad/twist.csg"], False),
     "trig_roots_early": (["tests/openscad/twisted_circles.csg"], ["twisted"]),
