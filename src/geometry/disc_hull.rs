@@ -32,7 +32,7 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use crate::geometry::ball_sum::Pieces;
 use crate::geometry::convex::ConvexPart;
-use crate::geometry::disc_sum::{in_frustum, scale, tolerance, vertices};
+use crate::geometry::disc_sum::{in_frustum, minkowski, scale, shape_of, tolerance, vertices};
 use crate::geometry::{Cone, Shape};
 use crate::plane::hull::MAX_HULL_POINTS;
 
@@ -49,12 +49,7 @@ fn ends(p: &ConvexPart) -> Option<[(DVec3, DMat3, [DVec3; 2]); 2]> {
     let z0 = super::cone::bottom(c.centered);
     let end = |z: f64, r: f64| {
         let axes = [m.matrix3.x_axis * r, m.matrix3.y_axis * r];
-        let outer = |a: DVec3| DMat3::from_cols(a * a.x, a * a.y, a * a.z);
-        (
-            m.transform_point3(DVec3::Z * z),
-            outer(axes[0]) + outer(axes[1]),
-            axes,
-        )
+        (m.transform_point3(DVec3::Z * z), shape_of(&axes), axes)
     };
     Some([end(z0, c.r0), end(z0 + 1.0, c.r1)])
 }
@@ -123,12 +118,7 @@ pub fn as_disc_hull(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
         if k == with {
             others = pts;
         } else if !pts.is_empty() {
-            let b: Vec<DVec3> = vertices(&pts)?;
-            corners = corners
-                .iter()
-                .flat_map(|&p| b.iter().map(move |&q| p + q))
-                .collect();
-            corners = vertices(&corners)?;
+            corners = vertices(&minkowski(&corners, &vertices(&pts)?)?)?;
         }
     }
     let centres: Vec<DVec3> = discs.iter().map(|d| d.0).collect();

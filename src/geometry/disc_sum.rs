@@ -55,7 +55,7 @@ fn cylinder(p: &ConvexPart) -> Option<Placed> {
 
 /// The disc's shape: Σ aᵢaᵢᵀ over its half-axes, the same for every
 /// placement of one disc (an ellipse {A·u : |u| ≤ 1} is fixed by AAᵀ).
-fn shape_of(axes: &[DVec3; 2]) -> DMat3 {
+pub fn shape_of(axes: &[DVec3; 2]) -> DMat3 {
     let outer = |a: DVec3| DMat3::from_cols(a * a.x, a * a.y, a * a.z);
     outer(axes[0]) + outer(axes[1])
 }
@@ -338,7 +338,7 @@ pub fn vertices(pts: &[DVec3]) -> Option<Vec<DVec3>> {
 }
 
 /// Every sum of a point of `a` and one of `b`.
-fn minkowski(a: &[DVec3], b: &[DVec3]) -> Option<Vec<DVec3>> {
+pub fn minkowski(a: &[DVec3], b: &[DVec3]) -> Option<Vec<DVec3>> {
     (a.len() * b.len() <= 8 * MAX_HULL_POINTS * MAX_HULL_POINTS).then(|| {
         a.iter()
             .flat_map(|&p| b.iter().map(move |&q| p + q))
