@@ -17,7 +17,7 @@ takes about 4 s a scene).
 Usage: offset_vs_openscad.py FIRST_SEED COUNT [--kind offset|sum|hull|flat|sum2] [--dir DIR] [--csgrt BIN]
 Prints one line a scene and `bad N`; exit status 1 if any scene disagrees.
 """
-import sys, os, subprocess, random, math, tempfile, numpy as np
+import sys, os, subprocess, random, math, tempfile, multiprocessing, numpy as np
 import manifold3d as mf
 from tools.oracle import scene
 from tools import ROOT
@@ -88,8 +88,8 @@ seed0 = int(sys.argv[1]); N = int(sys.argv[2])
 if "--csgrt" in sys.argv:
     BIN = sys.argv[sys.argv.index("--csgrt") + 1]
 ROOT_DIR = sys.argv[sys.argv.index("--dir") + 1] if "--dir" in sys.argv else tempfile.mkdtemp(prefix="offsets-")
-bad = 0
-for seed in range(seed0, seed0+N):
+def check(seed):
+    """(whether csgrt and OpenSCAD disagree on scene `seed`, its line)."""
     rng = random.Random(seed)
     if KIND == "offset":
         o = offs(rng)
@@ -118,8 +118,7 @@ for seed in range(seed0, seed0+N):
     rays = "\n".join(f"{x} {y} 5 0 0 -1" for x, y in pts) + "\n"
     r = subprocess.run([BIN, f"{d}/m.csg", "--trace-rays", "-"], input=rays, capture_output=True, text=True)
     if r.returncode != 0:
-        bad += 1
-        print(seed, "REFUSED by csgrt:", (r.stderr.strip().splitlines() or [""])[0][:150]); continue
+        return True, f"{seed} REFUSED by csgrt: {(r.stderr.strip().splitlines() or [''])[0][:150]}"
     got = [ln.split()[0] != "miss" for ln in r.stdout.strip().splitlines()]
     # OpenSCAD's own mesh, read: membership by the 2-D polygons of its top faces via manifold
     try:
@@ -127,11 +126,8 @@ for seed in range(seed0, seed0+N):
     except FileNotFoundError:
         # OpenSCAD writes no mesh for an empty result: csgrt must draw nothing.
         if any(got):
-            bad += 1
-            print(seed, "MISMATCH: OpenSCAD's result is empty, csgrt hits", sum(got), "rays")
-        else:
-            print(seed, "ok (empty)")
-        continue
+            return True, f"{seed} MISMATCH: OpenSCAD's result is empty, csgrt hits {sum(got)} rays"
+        return False, f"{seed} ok (empty)"
     nv, nf = int(txt[1]), int(txt[2]); vals = txt[4:]
     V = np.array(vals[:3*nv], float).reshape(-1, 3)
     i = 3*nv; tris = []
@@ -156,9 +152,16 @@ for seed in range(seed0, seed0+N):
         if want != g and dist_edge(p) > 2e-3:
             mism += 1
     if mism:
-        bad += 1
-        print(seed, "MISMATCH", mism, scad.strip().replace("\n", " ")[:300])
-    else:
-        print(seed, "ok", sum(got))
+        return True, f"{seed} MISMATCH {mism} {scad.strip().replace(chr(10), ' ')[:300]}"
+    return False, f"{seed} ok {sum(got)}"
+
+
+# The scenes two (or as many as there are cores) at once — OpenSCAD's
+# render is single-threaded — their lines printed in seed order.
+bad = 0
+with multiprocessing.get_context("fork").Pool(os.cpu_count() or 1) as pool:
+    for failed, line in pool.imap(check, range(seed0, seed0 + N)):
+        bad += failed
+        print(line, flush=True)
 print(f"{N - bad} passed, {bad} failed")
 sys.exit(1 if bad else 0)

@@ -27,6 +27,7 @@ Usage: pov_check.py [--csgrt BIN] SCENE...   (exit 1 if any differs)
 
 import argparse
 import math
+import multiprocessing
 import os
 import re
 import subprocess
@@ -870,22 +871,30 @@ def check(path, binary):
     return bad
 
 
+def checked(job):
+    """(scene, its problems): `check`, a scene it cannot read a problem."""
+    path, csgrt = job
+    try:
+        return path, check(path, csgrt)
+    except (ValueError, KeyError, subprocess.CalledProcessError, reader.ReadError) as e:
+        return path, [f"cannot check: {e}"]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("scenes", nargs="+")
     ap.add_argument("--csgrt", default="target/release/csgrt")
     a = ap.parse_args()
     failed = 0
-    for path in a.scenes:
-        try:
-            bad = check(path, a.csgrt)
-        except (ValueError, KeyError, subprocess.CalledProcessError, reader.ReadError) as e:
-            bad = [f"cannot check: {e}"]
-        name = os.path.basename(path)
-        print(f"{name}: {'ok' if not bad else bad[0]}")
-        for b in bad[1:5]:
-            print(f"  {b}")
-        failed += bool(bad)
+    # The scenes two (or as many as there are cores) at once, reported in
+    # the order given.
+    with multiprocessing.get_context("fork").Pool(os.cpu_count() or 1) as pool:
+        for path, bad in pool.imap(checked, [(p, a.csgrt) for p in a.scenes]):
+            name = os.path.basename(path)
+            print(f"{name}: {'ok' if not bad else bad[0]}", flush=True)
+            for b in bad[1:5]:
+                print(f"  {b}")
+            failed += bool(bad)
     print(f"{len(a.scenes) - failed} passed, {failed} failed")
     sys.exit(1 if failed else 0)
 
