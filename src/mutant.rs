@@ -68,6 +68,7 @@ pub const NAMES: &[&str] = &[
     "disc_push_short",
     "disc_hull_frustum_thin",
     "rounded_lathe_torus_thin",
+    "hull_parts_coarse",
 ];
 
 /// Whether the fault `name` is switched on.

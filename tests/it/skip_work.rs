@@ -169,3 +169,20 @@ fn hulls_and_sums_of_discs_and_balls_take_no_support_function_steps() {
         assert_eq!(s["convex_steps"], 0, "{text}");
     }
 }
+
+#[test]
+fn a_hull_cut_in_part_is_one_polytope() {
+    // The intersection is cut into polytopes (the certified
+    // approximation), so the hull is approximated anyway: the cylinder
+    // beside it and the ball a child rotated are cut too, and the hull
+    // of all the corners is one polytope, with no support-function step.
+    for text in [
+        "hull() { intersection() { sphere(r = 5); cube(8, center = true); } translate([9, 0, 0]) cylinder(r = 2, h = 3); }",
+        "hull() { difference() { cube(6); translate([6, 6, 6]) sphere(r = 3); } rotate([30, 0, 0]) translate([0, 9, 0]) scale([1, 2, 1]) sphere(r = 2); }",
+    ] {
+        let s = counters(text, "40x30");
+        assert!(s["mask_hits"].as_u64().unwrap() > 50, "{text}");
+        assert_eq!(s["convex_steps"], 0, "{text}");
+        assert!(s["triangle_tests"].as_u64().unwrap() > 0, "{text}");
+    }
+}

@@ -18,6 +18,11 @@ this file:
 * hull_torus: the hull of a torus (R 10, r 2) met with a box that leaves
   it whole: the disc of radius 10 thickened by 2, length(max(rho - 10, 0),
   z) - 2, exact — its turn cut into wedges, the node 24 wide;
+* hull_cut_and_disc: the hull of a cylinder (r 10, h 4) met with a box that
+  leaves it whole and a thin cylinder of the same radius above it (z 8 to
+  8.5), which the hull takes exactly unless others of its parts are cut:
+  the cylinder r 10 from z 0 to 8.5, the exact distance of a capped
+  cylinder — the node is 20 wide;
 * shadow_ring: the shadow of a ball (r 12) with a round hole (r 5) through
   it, extruded 2: the ring 5 <= rho <= 12, 0 <= z <= 2; max(rho - 12, 5 - rho,
   -z, z - 2), exact inside it and in the hole — the node is 24 wide.
@@ -94,6 +99,12 @@ def hull_torus(p):
     return np.hypot(np.maximum(rho - 10.0, 0.0), p[:, 2]) - 2.0
 
 
+def hull_cut_and_disc(p):
+    rho = np.hypot(p[:, 0], p[:, 1])
+    q = np.stack([rho - 10.0, np.abs(p[:, 2] - 4.25) - 4.25], axis=1)
+    return np.hypot(*np.maximum(q, 0.0).T) + np.minimum(q.max(axis=1), 0.0)
+
+
 def shadow_ring(p):
     rho = np.hypot(p[:, 0], p[:, 1])
     return np.max([rho - 12.0, 5.0 - rho, -p[:, 2], p[:, 2] - 2.0], axis=0)
@@ -161,6 +172,15 @@ CASES = {
         ((-12, -12, -2), (12, 12, 2)),
         (12.0 / math.sqrt(2), 12.0 / math.sqrt(2), 0.0),
         (-0.6, -0.5, -0.4),
+    ),
+    "hull_cut_and_disc": (
+        "hull() { intersection() { cylinder(r = 10, h = 4); cube(size = [40, 40, 40], center = true); }"
+        " translate([0, 0, 8]) cylinder(r = 10, h = 0.5); }\n",
+        hull_cut_and_disc,
+        20.0,
+        ((-10, -10, 0), (10, 10, 8.5)),
+        (10.0 / math.sqrt(2), 10.0 / math.sqrt(2), 8.5),
+        (-0.6, -0.5, -0.5),
     ),
     "shadow_ring": (
         "linear_extrude(height = 2) projection(cut = false) difference() { sphere(r = 12);"

@@ -111,6 +111,7 @@ APPROXIMATION = {
     "pieces_uncut": (),
     "flat_coarse": (),
     "turn_wedges_coarse": (),
+    "hull_parts_coarse": (),
 }
 
 # fault -> seeds of tools/oracle/offset_vs_openscad.py (OpenSCAD's own

@@ -7,7 +7,9 @@
 use super::Resolver;
 use crate::csg::NodeKind;
 use crate::error::Severity;
+use crate::geometry::convex::ConvexPart;
 use crate::geometry::polytope::Polytope;
+use crate::geometry::Aabb;
 use crate::plane::figure::Figure;
 use crate::scene::args::Args;
 use crate::syntax::ast::Statement;
@@ -18,6 +20,10 @@ use glam::{DAffine3, DVec2};
 /// the exact solid, so the hull or sum made of them does too — under half
 /// a pixel at any view where that node spans fewer than 4096 pixels.
 pub const APPROXIMATION: f64 = 1.0 / 8192.0;
+
+/// The most corners a hull's exactly taken parts are cut into beside its
+/// cut nodes ([`Resolver::part_polytopes`]); past it they stay exact.
+pub const MAX_PART_CORNERS: usize = 200_000;
 
 /// What the certified approximation takes, said where it cannot.
 pub const LIMITS: &str = "csgrt cuts bounded solids into at most 250000 convex pieces within 1/8192 of their size (every limit is listed in docs/LANGUAGE.md)";
@@ -70,6 +76,65 @@ impl Resolver<'_> {
             });
         }
         Ok(out)
+    }
+
+    /// The parts a hull takes exactly (by their support points) when
+    /// others of it are cut already: the hull is approximated anyway, so
+    /// these are cut into convex polytopes too, within `eps` (the least
+    /// distance any cut node is cut within: [`Resolver::cut_within`]), and
+    /// the hull of them all is one polytope,
+    /// met with no support-function steps, within what the cut nodes'
+    /// notes (those from `noted` on) say; their boxes grow to take in the
+    /// parts. `None` where a part cannot be cut or the parts' corners
+    /// would pass [`MAX_PART_CORNERS`] (the parts stay exact).
+    pub(super) fn part_polytopes(
+        &mut self,
+        parts: &[ConvexPart],
+        eps: f64,
+        frame: DAffine3,
+        noted: usize,
+    ) -> Option<Vec<Polytope>> {
+        let eps = if crate::mutant::active("hull_parts_coarse") {
+            8.0 * eps
+        } else {
+            eps
+        };
+        let (mut out, mut all, mut corners) = (Vec::new(), Aabb::EMPTY, 0usize);
+        for p in parts {
+            let b = p.shape.world_bounds(&p.to_world);
+            // (A part far larger than the cut nodes: cut that finely, too
+            // many corners; past eight times the usual fineness, exact.)
+            let size = (b.max - b.min).max_element();
+            if b.is_empty() || !b.is_bounded() || size > 8.0 * eps / APPROXIMATION {
+                return None;
+            }
+            let tol = crate::geometry::polytope::plane_tolerance(&b);
+            let pieces =
+                crate::geometry::polytope::pieces_of(&p.shape, &p.to_world, eps, tol).ok()?;
+            corners += pieces.iter().map(|q| q.vertices().len()).sum::<usize>();
+            if corners > MAX_PART_CORNERS {
+                return None;
+            }
+            out.extend(pieces);
+            all = all.union(&b);
+        }
+        let world = crate::geometry::solid::corner_box(&all, &frame);
+        for a in &mut self.b.approximations[noted..] {
+            a.bounds = a.bounds.union(&world);
+        }
+        Some(out)
+    }
+
+    /// The least distance nodes `cut` are cut within by
+    /// [`Resolver::polytopes`]: [`APPROXIMATION`] of the longest side of
+    /// each one's box.
+    pub(super) fn cut_within(&self, cut: &[u32]) -> f64 {
+        cut.iter()
+            .map(|&c| {
+                let b = self.b.csg.nodes[c as usize].bounds;
+                (b.max - b.min).max_element() * APPROXIMATION
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Bounded node `node` cut into convex polytopes within

@@ -209,14 +209,24 @@ impl Resolver<'_> {
         mat: Material,
     ) -> Result<Option<u32>> {
         let (mut parts, mut cut) = (Vec::new(), Vec::new());
+        let noted = self.b.approximations.len();
         let found = self
             .parts_of(node, &mut parts, &mut cut)
             .and_then(|()| self.polytopes(s, &cut, frame, false));
+        let eps = self.cut_within(&cut);
         self.b.csg.rewind(mark);
         let polytopes = found.map_err(|why| self.not_convex(s, &why))?;
         if !cut.is_empty() {
-            // The cut nodes' part: the hull of their polytopes' corners.
-            let pts: Vec<DVec3> = polytopes.iter().flat_map(|p| p.vertices()).collect();
+            // The cut nodes' part: the hull of their polytopes' corners;
+            // the hull being approximated anyway, with the other parts'
+            // polytopes too, where they can be cut.
+            let mut pts: Vec<DVec3> = polytopes.iter().flat_map(|p| p.vertices()).collect();
+            if !parts.is_empty() {
+                if let Some(more) = self.part_polytopes(&parts, eps, frame, noted) {
+                    pts.extend(more.iter().flat_map(|p| p.vertices()));
+                    parts.clear();
+                }
+            }
             match crate::geometry::polytope::hull_mesh(&pts) {
                 Some(mesh) if parts.is_empty() => {
                     return self.leaf(s, Shape::Mesh(mesh), frame, mat);
