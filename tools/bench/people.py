@@ -2,7 +2,7 @@
 """People's models (bench/people/) timed as a user runs csgrt, beside OpenSCAD's
 CGAL render and manifold3d's mesh and raster of the same files (issue 45).
 
-    python -m tools.bench.people [--csgrt BIN] [--limit 120] [--json F] [--out F] [FILE...]
+    python -m tools.bench.people [--csgrt BIN] [--against BIN] [--limit 120] [--json F] [--out F] [FILE...]
 
 For each export (every `.csg` under bench/people/ unless files are given),
 each on its own, one after another:
@@ -61,6 +61,25 @@ def csgrt_time(csgrt, model, work, limit):
     if t is not None and t < 1.0:
         t = statistics.median([t] + [timed([csgrt, "-q", "-o", png, model], limit)[0] or t for _ in range(2)])
     return t, why
+
+
+def paired_times(csgrt, other, model, work, limit):
+    """csgrt_time of two builds, their runs alternated — this machine's speed
+    drifts by tens of percent over minutes, so builds timed in runs apart
+    cannot be compared — as ((t, why), (t, why))."""
+    png = os.path.join(work, "c.png")
+    runs = {b: [] for b in (csgrt, other)}
+    why = {}
+    for k in range(3):
+        for b in (csgrt, other):
+            if k and (not runs[b] or runs[b][0] >= 1.0):
+                continue
+            t, w = timed([b, "-q", "-o", png, model], limit)
+            if t is None:
+                why[b] = w
+            else:
+                runs[b].append(t)
+    return tuple((statistics.median(runs[b]), None) if runs[b] else (None, why[b]) for b in (csgrt, other))
 
 
 def openscad_time(model, work, limit):
@@ -150,6 +169,11 @@ def main():
         help="an earlier run's --json: the columns skipped now are taken from it (OpenSCAD's "
         "and manifold's times do not change with csgrt's build)",
     )
+    ap.add_argument(
+        "--against",
+        help="another csgrt build, timed beside this one model by model (their runs alternated): "
+        "the ratio of each model's times and their distribution",
+    )
     ap.add_argument("--manifold-child", nargs=2, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.manifold_child:
@@ -172,10 +196,16 @@ def main():
             return old.get(key), old.get(key + "_why", "skipped")
 
         with tempfile.TemporaryDirectory(prefix="people") as work:
-            c = kept("csgrt") if "csgrt" in skip else csgrt_time(csgrt, model, work, a.limit)
+            before = (None, "not asked")
+            if a.against:
+                c, before = paired_times(csgrt, os.path.abspath(a.against), model, work, a.limit)
+            else:
+                c = kept("csgrt") if "csgrt" in skip else csgrt_time(csgrt, model, work, a.limit)
             o = kept("openscad") if "openscad" in skip else openscad_time(model, work, a.limit)
             m = kept("manifold") if "manifold" in skip else manifold_time(csgrt, model, work, a.limit)
         row = {"model": name, "csgrt": c[0], "csgrt_why": c[1], "openscad": o[0], "openscad_why": o[1], "manifold": m[0], "manifold_why": m[1]}
+        if a.against:
+            row.update(against=before[0], against_why=before[1])
         rows.append(row)
         print(f"{name}: csgrt {fmt(*c, a.limit)} ({c[1] or 'ok'}), OpenSCAD {fmt(*o, a.limit)}, manifold {fmt(*m, a.limit)} ({m[1] or 'ok'})", file=sys.stderr, flush=True)
     if a.json:
@@ -217,6 +247,21 @@ def report(rows, limit):
         "| model | csgrt | OpenSCAD CGAL | ratio | manifold3d mesh + raster | ratio |",
         "|---|---|---|---|---|---|",
     ]
+    paired = [r for r in done if r.get("against")]
+    if paired:
+        ratios = sorted((r["csgrt"] / r["against"], r["model"]) for r in paired)
+        before = [r["against"] if r["against"] is not None else limit for r in rows if "against" in r]
+        lines[-2:-2] = [
+            f"Against the other build, timed beside it ({len(paired)} models both finished): geometric mean of "
+            f"this / that {gmean([x for x, _ in ratios]):.3f}; this faster by more than 10 % on "
+            f"{sum(x < 1 / 1.1 for x, _ in ratios)}, slower by more than 10 % on {sum(x > 1.1 for x, _ in ratios)}"
+            + "".join(f"; {m} {x:.3f}" for x, m in ratios if x > 1.1)
+            + f". That build's median {statistics.median(before):.3f} s, 90th percentile {percentile(before, 0.9):.3f} s, "
+            f"{sum(t > 2 for t in before)} over 2 s. Most changed: "
+            + ", ".join(f"{m} {x:.3f}" for x, m in ratios[:5])
+            + ".",
+            "",
+        ]
     for r in sorted(rows, key=lambda r: -(r["csgrt"] if r["csgrt"] is not None else limit)):
         ro = f"{r['csgrt'] / r['openscad']:.3f}" if r["csgrt"] is not None and r["openscad"] else ""
         rm = f"{r['csgrt'] / r['manifold']:.3f}" if r["csgrt"] is not None and r["manifold"] else ""
