@@ -337,11 +337,15 @@ impl Csg {
     /// Builds the hierarchy (and the boxes in lanes, where the sorting
     /// first-hit query reads them: a union that walks its hierarchy does
     /// not) of every union under the root, once the tree is whole; the
-    /// nodes' pretests after them.
+    /// nodes' pretests after them. The children's boxes there are cut to
+    /// where the union can matter ([`Csg::contexts`]), so the hierarchy and
+    /// the lanes answer for queries of the whole tree (from the root), as
+    /// every query is.
     pub fn index_unions(&mut self) {
         let Some(root) = self.root else {
             return;
         };
+        let ctx = self.contexts(root);
         let mut todo = vec![root];
         let mut seen = vec![false; self.nodes.len()];
         while let Some(n) = todo.pop() {
@@ -353,7 +357,8 @@ impl Csg {
                     todo.extend(ch.iter().copied());
                     if *op == Op::Union {
                         let ch = ch.clone();
-                        self.index_union(n, &ch);
+                        let within = ctx[n as usize].intersect(&self.nodes[n as usize].bounds);
+                        self.index_union(n, &ch, &within);
                     }
                 }
                 &NodeKind::Section(c, _) => todo.push(c),
@@ -362,14 +367,45 @@ impl Csg {
         }
     }
 
-    fn index_union(&mut self, n: u32, children: &[u32]) {
-        let index = self.union_index(children);
+    /// For each node under `root`, a box outside which its spans cannot
+    /// change the root's: everything for the root; for a child of an
+    /// operation, the operation's own within its box (every operation is
+    /// pointwise, and its result lies in its box: a union's the union of
+    /// its children's, an intersection's their overlap, a difference's its
+    /// first child's), over all its parents; everything for a section's
+    /// child, which is met along another line (the ray's foot). Empty for
+    /// a node the root does not reach. (Children come before parents, so
+    /// one pass from the root down sets each before its children read it.)
+    fn contexts(&self, root: u32) -> Vec<Aabb> {
+        let mut ctx = vec![Aabb::EMPTY; self.nodes.len()];
+        ctx[root as usize] = Aabb::EVERYTHING;
+        for i in (0..=root as usize).rev() {
+            if ctx[i].is_empty() {
+                continue;
+            }
+            match &self.nodes[i].kind {
+                NodeKind::Op(_, ch) => {
+                    let inner = ctx[i].intersect(&self.nodes[i].bounds);
+                    for &c in ch {
+                        ctx[c as usize] = ctx[c as usize].union(&inner);
+                    }
+                }
+                &NodeKind::Section(c, _) => ctx[c as usize] = Aabb::EVERYTHING,
+                NodeKind::Leaf(_) => {}
+            }
+        }
+        ctx
+    }
+
+    /// Indexes union `n` over `children`, their boxes cut to `within`.
+    fn index_union(&mut self, n: u32, children: &[u32], within: &Aabb) {
+        let boxes: Vec<Aabb> = children
+            .iter()
+            .map(|&c| self.nodes[c as usize].bounds.intersect(within))
+            .collect();
+        let index = union_index(children, &boxes);
         let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
         let lanes = if sorts && children.len() >= LANES_MIN {
-            let boxes: Vec<Aabb> = children
-                .iter()
-                .map(|&c| self.nodes[c as usize].bounds)
-                .collect();
             boxes.chunks(4).map(AabbLanes::of).collect()
         } else {
             Vec::new()
@@ -378,33 +414,6 @@ impl Csg {
         node.index = index;
         node.lanes = lanes;
         node.pretest = pretest(node);
-    }
-
-    fn union_index(&self, children: &[u32]) -> Option<Box<UnionIndex>> {
-        let (bounded, unbounded): (Vec<u32>, Vec<u32>) = children
-            .iter()
-            .partition(|&&c| self.nodes[c as usize].bounds.is_bounded());
-        if bounded.len() < UNION_INDEX_MIN {
-            return None;
-        }
-        let items: Vec<(u32, Aabb)> = bounded
-            .iter()
-            .map(|&c| (c, self.nodes[c as usize].bounds))
-            .collect();
-        let bvh = Bvh::build(&items, UNION_LEAF);
-        let vol = |b: &Aabb| {
-            let e = b.max - b.min;
-            e.x * e.y * e.z
-        };
-        let root = items.iter().fold(Aabb::EMPTY, |a, x| a.union(&x.1));
-        // (A flat union's box has no volume: ∞ or NaN, never below.)
-        let fill: f64 = items.iter().map(|x| vol(&x.1)).sum::<f64>() / vol(&root);
-        let near_first = bounded.len() > BEST_FIRST_MIN || fill < FILL_MAX;
-        Some(Box::new(UnionIndex {
-            near_first,
-            bvh,
-            unbounded,
-        }))
     }
 
     fn add_node(&mut self, mut node: Node) -> u32 {
@@ -858,6 +867,40 @@ impl Csg {
             }
         }
     }
+}
+
+/// The hierarchy of a union over `children`, whose boxes (cut to where
+/// the union matters) are `boxes`: none for fewer than
+/// [`UNION_INDEX_MIN`] bounded ones. A child whose box is empty there is
+/// left out; one whose box is unbounded is always looked at.
+fn union_index(children: &[u32], boxes: &[Aabb]) -> Option<Box<UnionIndex>> {
+    let met = children.iter().zip(boxes).filter(|(_, b)| !b.is_empty());
+    let items: Vec<(u32, Aabb)> = met
+        .clone()
+        .filter(|(_, b)| b.is_bounded())
+        .map(|(&c, &b)| (c, b))
+        .collect();
+    let unbounded: Vec<u32> = met
+        .filter(|(_, b)| !b.is_bounded())
+        .map(|(&c, _)| c)
+        .collect();
+    if items.len() < UNION_INDEX_MIN {
+        return None;
+    }
+    let bvh = Bvh::build(&items, UNION_LEAF);
+    let vol = |b: &Aabb| {
+        let e = b.max - b.min;
+        e.x * e.y * e.z
+    };
+    let root = items.iter().fold(Aabb::EMPTY, |a, x| a.union(&x.1));
+    // (A flat union's box has no volume: ∞ or NaN, never below.)
+    let fill: f64 = items.iter().map(|x| vol(&x.1)).sum::<f64>() / vol(&root);
+    let near_first = items.len() > BEST_FIRST_MIN || fill < FILL_MAX;
+    Some(Box::new(UnionIndex {
+        near_first,
+        bvh,
+        unbounded,
+    }))
 }
 
 /// Whether a node's box is tested before its spans (a bounded one whose

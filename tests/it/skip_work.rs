@@ -186,3 +186,32 @@ fn a_hull_cut_in_part_is_one_polytope() {
         assert!(s["triangle_tests"].as_u64().unwrap() > 0, "{text}");
     }
 }
+
+#[test]
+fn a_union_met_by_a_small_box_looks_only_at_what_lies_in_it() {
+    // Eleven slivers fanning out from an apex 1,000 units away (a bevel
+    // gear's teeth run to its cone's apex), met with a box at their far
+    // ends, where they lie apart: every sliver's own box holds the whole
+    // box met, but within it each holds only its own end, so a ray there
+    // tests the few slivers it passes near (2.4 a ray; 4.0 when the
+    // slivers' whole boxes were indexed).
+    let slivers: String = (-5..=5)
+        .map(|k| {
+            let a = (k as f64 * 2.0f64).to_radians();
+            let (c, s) = (a.cos(), a.sin());
+            format!(
+                "multmatrix([[{c}, {}, 0, -1000], [{s}, {c}, 0, 0], [0, 0, 1, -50], [0, 0, 0, 1]]) \
+                 cube([1100, 4, 100], center = false);\n",
+                -s
+            )
+        })
+        .collect();
+    let text = format!(
+        "intersection() {{ union() {{\n{slivers}}} translate([60, -60, -5]) cube([40, 120, 10]); }}\n"
+    );
+    let s = counters(&text, "80x60");
+    let rays = s["primary_rays"].as_u64().unwrap() + s["shadow_rays"].as_u64().unwrap();
+    assert!(s["mask_hits"].as_u64().unwrap() > 100, "{text}");
+    let tests = s["primitive_tests"].as_u64().unwrap();
+    assert!(tests < 3 * rays, "{tests} primitive tests for {rays} rays");
+}
