@@ -357,8 +357,7 @@ impl Csg {
                     todo.extend(ch.iter().copied());
                     if *op == Op::Union {
                         let ch = ch.clone();
-                        let within = ctx[n as usize].intersect(&self.nodes[n as usize].bounds);
-                        self.index_union(n, &ch, &within);
+                        self.index_union(n, &ch, &ctx[n as usize]);
                     }
                 }
                 &NodeKind::Section(c, _) => todo.push(c),
@@ -368,26 +367,27 @@ impl Csg {
     }
 
     /// For each node under `root`, a box outside which its spans cannot
-    /// change the root's: everything for the root; for a child of an
-    /// operation, the operation's own within its box (every operation is
+    /// change the root's, within its own box: its box for the root; for a
+    /// child of an operation, the operation's (every operation is
     /// pointwise, and its result lies in its box: a union's the union of
     /// its children's, an intersection's their overlap, a difference's its
-    /// first child's), over all its parents; everything for a section's
-    /// child, which is met along another line (the ray's foot). Empty for
-    /// a node the root does not reach. (Children come before parents, so
-    /// one pass from the root down sets each before its children read it.)
+    /// first child's), over all its parents, met with the child's box;
+    /// a section's child's own box, as it is met along another line (the
+    /// ray's foot). Empty for a node the root does not reach. (Children
+    /// come before parents, so one pass from the root down has each whole
+    /// before its children read it.)
     fn contexts(&self, root: u32) -> Vec<Aabb> {
         let mut ctx = vec![Aabb::EMPTY; self.nodes.len()];
         ctx[root as usize] = Aabb::EVERYTHING;
         for i in (0..=root as usize).rev() {
+            ctx[i] = ctx[i].intersect(&self.nodes[i].bounds);
             if ctx[i].is_empty() {
                 continue;
             }
             match &self.nodes[i].kind {
                 NodeKind::Op(_, ch) => {
-                    let inner = ctx[i].intersect(&self.nodes[i].bounds);
                     for &c in ch {
-                        ctx[c as usize] = ctx[c as usize].union(&inner);
+                        ctx[c as usize] = ctx[c as usize].union(&ctx[i]);
                     }
                 }
                 &NodeKind::Section(c, _) => ctx[c as usize] = Aabb::EVERYTHING,

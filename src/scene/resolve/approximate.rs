@@ -13,7 +13,7 @@ use crate::geometry::Aabb;
 use crate::plane::figure::Figure;
 use crate::scene::args::Args;
 use crate::syntax::ast::Statement;
-use glam::{DAffine3, DVec2};
+use glam::{DAffine3, DVec2, DVec3};
 
 /// The certified approximation's error bound, relative to the longest side
 /// of the box of the node approximated: each polytope stays within this of
@@ -82,58 +82,52 @@ impl Resolver<'_> {
     /// others of it are cut already: the hull is approximated anyway, so
     /// these are cut into convex polytopes too, within `eps` (the least
     /// distance any cut node is cut within: [`Resolver::cut_within`]), and
-    /// the hull of them all is one polytope,
-    /// met with no support-function steps, within what the cut nodes'
-    /// notes (those from `noted` on) say; their boxes grow to take in the
-    /// parts. `None` where a part cannot be cut or the parts' corners
-    /// would pass [`MAX_PART_CORNERS`] (the parts stay exact).
+    /// the hull of them all is one polytope, met with no support-function
+    /// steps, within what the cut nodes' notes (those from `noted` on)
+    /// say; their boxes grow to take in the parts. The pieces' corners;
+    /// `None` where a part cannot be cut or they would pass
+    /// [`MAX_PART_CORNERS`] (the parts stay exact).
     pub(super) fn part_polytopes(
         &mut self,
         parts: &[ConvexPart],
         eps: f64,
         frame: DAffine3,
         noted: usize,
-    ) -> Option<Vec<Polytope>> {
+    ) -> Option<Vec<DVec3>> {
         let eps = if crate::mutant::active("hull_parts_coarse") {
             8.0 * eps
         } else {
             eps
         };
-        let (mut out, mut all, mut corners) = (Vec::new(), Aabb::EMPTY, 0usize);
+        let (mut corners, mut all) = (Vec::new(), Aabb::EMPTY);
         for p in parts {
             let b = p.shape.world_bounds(&p.to_world);
             // (A part far larger than the cut nodes: cut that finely, too
-            // many corners; past eight times the usual fineness, exact.)
-            let size = (b.max - b.min).max_element();
-            if b.is_empty() || !b.is_bounded() || size > 8.0 * eps / APPROXIMATION {
+            // many corners; past eight times its own fineness, exact.)
+            if b.is_empty() || !b.is_bounded() || cut_distance(&b) > 8.0 * eps {
                 return None;
             }
             let tol = crate::geometry::polytope::plane_tolerance(&b);
             let pieces =
                 crate::geometry::polytope::pieces_of(&p.shape, &p.to_world, eps, tol).ok()?;
-            corners += pieces.iter().map(|q| q.vertices().len()).sum::<usize>();
-            if corners > MAX_PART_CORNERS {
+            corners.extend(pieces.iter().flat_map(|q| q.vertices()));
+            if corners.len() > MAX_PART_CORNERS {
                 return None;
             }
-            out.extend(pieces);
             all = all.union(&b);
         }
         let world = crate::geometry::solid::corner_box(&all, &frame);
         for a in &mut self.b.approximations[noted..] {
             a.bounds = a.bounds.union(&world);
         }
-        Some(out)
+        Some(corners)
     }
 
     /// The least distance nodes `cut` are cut within by
-    /// [`Resolver::polytopes`]: [`APPROXIMATION`] of the longest side of
-    /// each one's box.
+    /// [`Resolver::polytopes`].
     pub(super) fn cut_within(&self, cut: &[u32]) -> f64 {
         cut.iter()
-            .map(|&c| {
-                let b = self.b.csg.nodes[c as usize].bounds;
-                (b.max - b.min).max_element() * APPROXIMATION
-            })
+            .map(|&c| cut_distance(&self.b.csg.nodes[c as usize].bounds))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -147,10 +141,16 @@ impl Resolver<'_> {
         columns: bool,
     ) -> std::result::Result<(Vec<Polytope>, f64), String> {
         let b = self.b.csg.nodes[node as usize].bounds;
-        let eps = (b.max - b.min).max_element() * APPROXIMATION;
+        let eps = cut_distance(&b);
         let tol = crate::geometry::polytope::plane_tolerance(&b);
         Ok((self.b.csg.convex_pieces(node, eps, tol, columns)?, eps))
     }
+}
+
+/// The distance a solid boxed by `b` is cut within: [`APPROXIMATION`] of
+/// the box's longest side.
+fn cut_distance(b: &Aabb) -> f64 {
+    (b.max - b.min).max_element() * APPROXIMATION
 }
 
 impl Resolver<'_> {

@@ -223,7 +223,7 @@ impl Resolver<'_> {
             let mut pts: Vec<DVec3> = polytopes.iter().flat_map(|p| p.vertices()).collect();
             if !parts.is_empty() {
                 if let Some(more) = self.part_polytopes(&parts, eps, frame, noted) {
-                    pts.extend(more.iter().flat_map(|p| p.vertices()));
+                    pts.extend(more);
                     parts.clear();
                 }
             }
