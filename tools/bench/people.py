@@ -56,30 +56,23 @@ def timed(cmd, limit, cwd=None):
 
 
 def csgrt_time(csgrt, model, work, limit):
-    png = os.path.join(work, "c.png")
-    t, why = timed([csgrt, "-q", "-o", png, model], limit)
-    if t is not None and t < 1.0:
-        t = statistics.median([t] + [timed([csgrt, "-q", "-o", png, model], limit)[0] or t for _ in range(2)])
-    return t, why
+    return builds_times([csgrt], model, work, limit)[0]
 
 
-def paired_times(csgrt, other, model, work, limit):
-    """csgrt_time of two builds, their runs alternated — this machine's speed
+def builds_times(builds, model, work, limit):
+    """Each build's (t, why) for `csgrt -q -o x.png model`: one run, and
+    where it took under a second the median of 3, a failed rerun counting
+    as the first. Several builds' runs alternate — this machine's speed
     drifts by tens of percent over minutes, so builds timed in runs apart
-    cannot be compared — as ((t, why), (t, why))."""
+    cannot be compared."""
     png = os.path.join(work, "c.png")
-    runs = {b: [] for b in (csgrt, other)}
-    why = {}
-    for k in range(3):
-        for b in (csgrt, other):
-            if k and (not runs[b] or runs[b][0] >= 1.0):
-                continue
-            t, w = timed([b, "-q", "-o", png, model], limit)
-            if t is None:
-                why[b] = w
-            else:
-                runs[b].append(t)
-    return tuple((statistics.median(runs[b]), None) if runs[b] else (None, why[b]) for b in (csgrt, other))
+    first = [timed([b, "-q", "-o", png, model], limit) for b in builds]
+    runs = [[t] for t, _ in first]
+    for _ in range(2):
+        for b, (t, _), got in zip(builds, first, runs):
+            if t is not None and t < 1.0:
+                got.append(timed([b, "-q", "-o", png, model], limit)[0] or t)
+    return [(statistics.median(got), None) if t is not None else (None, why) for (t, why), got in zip(first, runs)]
 
 
 def openscad_time(model, work, limit):
@@ -198,7 +191,7 @@ def main():
         with tempfile.TemporaryDirectory(prefix="people") as work:
             before = (None, "not asked")
             if a.against:
-                c, before = paired_times(csgrt, os.path.abspath(a.against), model, work, a.limit)
+                c, before = builds_times([csgrt, os.path.abspath(a.against)], model, work, a.limit)
             else:
                 c = kept("csgrt") if "csgrt" in skip else csgrt_time(csgrt, model, work, a.limit)
             o = kept("openscad") if "openscad" in skip else openscad_time(model, work, a.limit)
