@@ -75,38 +75,114 @@ impl fmt::Display for Diagnostic {
         };
         let num = self.line.to_string();
         let pad = " ".repeat(num.len());
-        writeln!(f, "{kind}: {}", self.message)?;
-        writeln!(f, "{pad}--> {}:{}:{}", self.file, self.line, self.col)?;
+        writeln!(f, "{kind}: {}", printable(&self.message))?;
+        writeln!(
+            f,
+            "{pad}--> {}:{}:{}",
+            printable(&self.file),
+            self.line,
+            self.col
+        )?;
         writeln!(f, "{pad} |")?;
-        // A long line (a polyhedron's points, a machine-written file) is
-        // shown as a window of `WINDOW` characters around the caret.
+        // The characters around the caret as they are shown: a control
+        // character escaped (`\x1b`), a tab kept so that the caret lines
+        // up under it. (Each shows as one column or more, so no character
+        // further than `WINDOW` from the caret can be in the window.)
         let chars: Vec<char> = self.source_line.chars().collect();
         let at = (self.col - 1).min(chars.len());
-        let (from, to) = if chars.len() <= WINDOW {
-            (0, chars.len())
-        } else {
-            let from = at.saturating_sub(WINDOW / 2).min(chars.len() - WINDOW);
-            (from, from + WINDOW)
+        let lo = at.saturating_sub(WINDOW);
+        let hi = (at + WINDOW).min(chars.len());
+        let shown: Vec<String> = chars[lo..hi]
+            .iter()
+            .map(|&c| match c {
+                '\t' => c.to_string(),
+                c => printable(c.encode_utf8(&mut [0; 4])).into_owned(),
+            })
+            .collect();
+        let width = |from: usize, to: usize| -> usize {
+            shown[from - lo..to - lo]
+                .iter()
+                .map(|s| s.chars().count())
+                .sum()
         };
-        let shown: String = chars[from..to].iter().collect();
+        // A long line (a polyhedron's points, a machine-written file) is
+        // shown as a window of at most `WINDOW` columns around the caret,
+        // grown on whichever side of it is narrower.
+        let (mut from, mut to) = (at, at);
+        loop {
+            let right = to < hi && (from == lo || width(at, to) <= width(from, at));
+            let (f2, t2) = match (right, from > lo) {
+                (true, _) => (from, to + 1),
+                (false, true) => (from - 1, to),
+                (false, false) => break,
+            };
+            if width(f2, t2) > WINDOW {
+                break;
+            }
+            (from, to) = (f2, t2);
+        }
         let (open, close) = (
             if from > 0 { "…" } else { "" },
             if to < chars.len() { "…" } else { "" },
         );
-        writeln!(f, "{num} | {open}{shown}{close}")?;
-        // Tabs in the source line are echoed under the caret so it lines up.
+        writeln!(
+            f,
+            "{num} | {open}{}{close}",
+            shown[from - lo..to - lo].concat()
+        )?;
         let lead: String = " ".repeat(open.chars().count())
-            + &chars[from..at]
+            + &shown[from - lo..at - lo]
                 .iter()
-                .map(|&c| if c == '\t' { '\t' } else { ' ' })
+                .map(|s| match s.as_str() {
+                    "\t" => s.clone(),
+                    s => " ".repeat(s.chars().count()),
+                })
                 .collect::<String>();
-        let carets = "^".repeat(self.caret_len.max(1).min(to.saturating_sub(at).max(1)));
+        let under = (at + self.caret_len.max(1)).min(to);
+        let carets = "^".repeat(width(at, under).max(1));
         if self.label.is_empty() {
             write!(f, "{pad} | {lead}{carets}")
         } else {
-            write!(f, "{pad} | {lead}{carets} {}", self.label)
+            write!(f, "{pad} | {lead}{carets} {}", printable(&self.label))
         }
     }
+}
+
+/// `text` safe to print on a terminal: each control character (an escape
+/// sequence's ESC, a bell, a carriage return, a NUL, DEL, C1) and each
+/// character that reorders text (Unicode's bidirectional controls) written
+/// as an escape (`\x1b`, `\u{202e}`), so a model's bytes never act on the
+/// terminal that shows a message quoting them. A newline too: a message
+/// of several lines is built with [`printable_lines`].
+pub fn printable(text: &str) -> std::borrow::Cow<'_, str> {
+    escaped(text, false)
+}
+
+/// [`printable`], keeping newlines (a message of several lines, such as
+/// OpenSCAD's own words relayed).
+pub fn printable_lines(text: &str) -> std::borrow::Cow<'_, str> {
+    escaped(text, true)
+}
+
+fn escaped(text: &str, newlines: bool) -> std::borrow::Cow<'_, str> {
+    let unsafe_char = |c: char| {
+        (c.is_control() && !(newlines && c == '\n'))
+            || matches!(c, '\u{200e}' | '\u{200f}' | '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+    };
+    if !text.chars().any(unsafe_char) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if !unsafe_char(c) {
+            out.push(c);
+        } else if (c as u32) < 0x80 {
+            out.push_str(&format!("\\x{:02x}", c as u32));
+        } else {
+            out.push_str(&format!("\\u{{{:x}}}", c as u32));
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Everything that can go wrong in csgrt.
@@ -116,10 +192,10 @@ pub enum Error {
     #[error("{0}")]
     Scene(Box<Diagnostic>),
     /// Bad command-line use that clap cannot see (a bad `--size`, say).
-    #[error("error: {0}")]
+    #[error("error: {}", printable_lines(.0))]
     Usage(String),
     /// Reading or writing a file failed.
-    #[error("error: {path}: {source}")]
+    #[error("error: {}: {}", printable(&path.display().to_string()), printable(&source.to_string()))]
     Io {
         path: PathBuf,
         #[source]

@@ -45,7 +45,7 @@ pub fn exercise(data: &[u8]) {
         max_depth: 4,
         ..Settings::default()
     };
-    let out = render::render(&scene, &s, &|| {});
+    let out = render::render(&scene, &s, &|_| {});
     assert_eq!(out.rgb.len(), 6 * 4 * 3);
     assert_eq!(out.stats.nonfinite_samples, 0, "a non-finite sample");
     assert_eq!(render::mask(&scene, &s).len(), 6 * 4);
@@ -100,7 +100,7 @@ pub fn exercise_svg(data: &[u8]) {
         max_depth: 2,
         ..Settings::default()
     };
-    let out = render::render(&scene, &s, &|| {});
+    let out = render::render(&scene, &s, &|_| {});
     assert_eq!(out.stats.nonfinite_samples, 0, "a non-finite sample");
 }
 

@@ -51,6 +51,14 @@ pub fn load_ray(src: &Source) -> Result<Scene> {
     scene::resolve_ray(src, &syntax::ray::parse_ray(src)?)
 }
 
+/// A frame of OpenSCAD's export of a `.scad` program resolved into a
+/// scene, with the view the program sets (`$vpt`, `$vpr`, `$vpd`).
+pub fn load_scad_frame(frame: &import::scad::Frame, facets: scene::Facets) -> Result<Scene> {
+    let mut scene = load_csg_with(&frame.source, facets)?;
+    scene.scad_view = frame.view.map(scene::openscad_view::Viewpoint::of_scad);
+    Ok(scene)
+}
+
 /// Loads a model by its extension.
 pub fn load(path: &Path) -> Result<Scene> {
     load_with(path, crate::scene::Facets::default())
@@ -66,10 +74,19 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
     match source::extension(path).as_deref() {
         Some("csg") => crate::load_csg_with(&source::read_source(path)?, facets),
         Some("ray") => load_ray(&source::read_source(path)?),
-        Some("scad") => crate::load_csg_with(&crate::import::scad::export(path, defines)?, facets),
-        _ => Err(Error::Usage(format!(
+        Some("scad") => {
+            let export = crate::import::scad::export(path, defines)?;
+            let loaded = load_scad_frame(&export.frames[0], facets);
+            if loaded.is_err() {
+                // The message may point into the export: kept for it.
+                export.keep();
+            }
+            loaded
+        }
+        // A missing file or a folder said as such before its extension.
+        _ => source::model_file(path).and(Err(Error::Usage(format!(
             "{}: unknown model format; expected a `.csg` scene, a `.ray` display list or a `.scad` program",
             path.display()
-        ))),
+        )))),
     }
 }

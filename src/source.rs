@@ -10,6 +10,9 @@ use std::path::Path;
 pub struct Source {
     pub name: String,
     pub text: String,
+    /// Where the files the text names are found, when not in the folder
+    /// of `name` (OpenSCAD's export of a `.scad` program: the program's).
+    pub folder: Option<std::path::PathBuf>,
 }
 
 impl Source {
@@ -17,21 +20,30 @@ impl Source {
         Source {
             name: name.into(),
             text: text.into(),
+            folder: None,
         }
+    }
+
+    /// The source with the files it names found in `folder`.
+    pub fn with_folder(mut self, folder: &Path) -> Source {
+        self.folder = Some(folder.to_path_buf());
+        self
     }
 
     /// Where a file the model names (an `import`, a `surface`) lies: an
     /// absolute path as it is, a relative one against the model's own
-    /// folder, as OpenSCAD resolves them.
+    /// folder (or [`Source::folder`]), as OpenSCAD resolves them.
     pub fn beside(&self, file: &str) -> std::path::PathBuf {
         let file = std::path::Path::new(file);
         if file.is_absolute() {
             return file.to_path_buf();
         }
-        let folder = std::path::Path::new(&self.name)
-            .parent()
-            .filter(|p| !p.as_os_str().is_empty())
-            .unwrap_or(std::path::Path::new("."));
+        let folder = match &self.folder {
+            Some(f) => f.as_path(),
+            None => std::path::Path::new(&self.name)
+                .parent()
+                .unwrap_or(std::path::Path::new("")),
+        };
         folder.join(file)
     }
 
@@ -140,7 +152,15 @@ pub fn read_source(path: &Path) -> Result<Source> {
     let bytes = std::fs::read(path).map_err(|e| unreadable(path, e))?;
     let name = path.display().to_string();
     match String::from_utf8(bytes) {
-        Ok(text) => Ok(Source::new(name, text)),
+        Ok(text) => match text.find('\0') {
+            // Text never holds a NUL: this is a binary file.
+            Some(at) => Err(Source::new(name, text).error(
+                TextRange::new(at, at + 1),
+                "byte 0x00 (NUL) in the file: it is not text",
+                "expected a model's text (`.csg`, `.ray` or `.scad`), not a binary file",
+            )),
+            None => Ok(Source::new(name, text)),
+        },
         Err(e) => {
             // The place of the first byte that is not UTF-8, in the text
             // as far as it is (the same bytes in its lossy reading).
@@ -158,7 +178,7 @@ pub fn read_source(path: &Path) -> Result<Source> {
 
 /// The metadata of a model or ray file, or why it is none: missing, not
 /// readable or a folder, in plain words (see [`unreadable`]).
-pub(crate) fn model_file(path: &Path) -> Result<std::fs::Metadata> {
+pub fn model_file(path: &Path) -> Result<std::fs::Metadata> {
     let meta = std::fs::metadata(path).map_err(|e| unreadable(path, e))?;
     if meta.is_dir() {
         return Err(Error::Usage(format!(
@@ -213,7 +233,13 @@ mod tests {
         assert_eq!(src.beside("/abs/a.stl"), std::path::Path::new("/abs/a.stl"));
         assert_eq!(
             Source::new("x.csg", "").beside("a.stl"),
-            std::path::Path::new("./a.stl")
+            std::path::Path::new("a.stl")
+        );
+        assert_eq!(
+            Source::new("/tmp/e/x.csg", "")
+                .with_folder(std::path::Path::new("m"))
+                .beside("a.stl"),
+            std::path::Path::new("m/a.stl")
         );
     }
 

@@ -3,6 +3,7 @@
 
 use super::Cli;
 use csgrt::error::{Error, Result};
+use csgrt::geometry::Aabb;
 use csgrt::source::is_scad;
 use csgrt::{load_model, Scene};
 use std::path::{Path, PathBuf};
@@ -100,12 +101,9 @@ pub(super) fn jobs(cli: &Cli) -> Result<Vec<Job>> {
             }),
             Some(n) => {
                 for i in 0..n {
-                    let mut defines = cli.define.clone();
-                    // OpenSCAD's own frame time, `frame * (1.0 / frames)`.
-                    defines.push(format!("$t={:?}", i as f64 * (1.0 / n as f64)));
                     out.push(Job {
                         model: model.clone(),
-                        defines,
+                        defines: cli.define.clone(),
                         output: with_stem_suffix(&output, &format!("{i:05}")),
                     });
                 }
@@ -142,7 +140,9 @@ pub(super) fn jobs(cli: &Cli) -> Result<Vec<Job>> {
 /// printed.
 pub(super) fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
     let mut scene = load_model(&job.model, cli.facets, &job.defines)?;
-    finish_scene(cli, &mut scene)?;
+    for said in finish_scene(cli, &mut scene, None)? {
+        eprintln!("{said}");
+    }
     Ok(scene)
 }
 
@@ -152,15 +152,29 @@ pub(super) fn watched_scene(cli: &Cli, job: &Job) -> Result<(Scene, Vec<PathBuf>
     if !is_scad(&job.model) {
         return Ok((scene_of(cli, job)?, vec![job.model.clone()]));
     }
-    let (src, deps) = csgrt::import::scad::export_with(&job.model, &job.defines, true)?;
-    let mut scene = csgrt::load_csg_with(&src, cli.facets)?;
-    finish_scene(cli, &mut scene)?;
-    Ok((scene, deps))
+    let export = csgrt::import::scad::export_frames(&job.model, &job.defines, None, true)?;
+    let mut scene = match csgrt::load_scad_frame(&export.frames[0], cli.facets) {
+        Ok(s) => s,
+        Err(e) => {
+            export.keep();
+            return Err(e);
+        }
+    };
+    for said in finish_scene(cli, &mut scene, None)? {
+        eprintln!("{said}");
+    }
+    Ok((scene, export.deps))
 }
 
-/// The command line's view and colours applied to a loaded scene; its
-/// warnings printed, or under `--strict` the first of them the error.
-fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
+/// The command line's view and colours applied to a loaded scene (with
+/// `frames`, the box of all an animation's frames, framed by each); the
+/// warnings and notes to print, or under `--strict` the first warning the
+/// error.
+pub(super) fn finish_scene(
+    cli: &Cli,
+    scene: &mut Scene,
+    frames: Option<&Aabb>,
+) -> Result<Vec<String>> {
     if cli.strict {
         if let Some(w) = scene.warnings.first() {
             let mut d = w.clone();
@@ -169,13 +183,12 @@ fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
             return Err(csgrt::Error::Scene(Box::new(d)));
         }
     }
-    set_view(cli, scene);
+    let mut told: Vec<String> = Vec::new();
+    set_view(cli, scene, frames, &mut told);
     if let Some(c) = &cli.colorscheme {
         scene.apply_color_scheme(c);
     }
-    for w in &scene.warnings {
-        eprintln!("{w}");
-    }
+    told.extend(scene.warnings.iter().map(|w| w.to_string()));
     // Each approximated statement once, with its largest error at this
     // view (a statement may approximate several parts).
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
@@ -203,31 +216,45 @@ fn finish_scene(cli: &Cli, scene: &mut Scene) -> Result<()> {
                 " (over half a pixel: the bound is for views where this part spans fewer than 4096 pixels)"
             }
         );
-        eprintln!("{d}");
+        told.push(d.to_string());
     }
-    Ok(())
+    Ok(told)
 }
 
 /// The command line's camera options put into the scene: OpenSCAD's camera
-/// for any of `--camera`, `--viewall` or `--autocenter`; `--projection`
+/// for any of `--camera`, `--viewall` or `--autocenter`, or for the view a
+/// `.scad` program sets (`$vp*`, which `--camera` overrides and which
+/// turn `--viewall` and `--autocenter` off, as in OpenSCAD); `--projection`
 /// alone keeps the file's camera (or csgrt's framing) and sets how it
-/// projects.
-fn set_view(cli: &Cli, scene: &mut Scene) {
+/// projects. `frames`: the box to frame instead of the scene's own (an
+/// animation's, the same for every frame).
+fn set_view(cli: &Cli, scene: &mut Scene, frames: Option<&Aabb>, told: &mut Vec<String>) {
     use csgrt::scene::openscad_view::{self, ViewOptions};
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
-    let opts = ViewOptions {
-        camera: cli.camera,
+    let file_view = scene.scad_view.filter(|_| cli.camera.is_none());
+    let mut opts = ViewOptions {
+        camera: cli.camera.or(file_view),
         viewall: cli.viewall,
         autocenter: cli.autocenter,
         projection: cli.projection,
     };
+    if file_view.is_some() && (opts.viewall || opts.autocenter) {
+        told.push(
+            "warning: --viewall and --autocenter give way to the view the program sets with $vp*, as in OpenSCAD"
+                .to_string(),
+        );
+        (opts.viewall, opts.autocenter) = (false, false);
+    }
     if opts.is_openscad() {
-        let bounds = scene.result_bounds();
+        let bounds = frames.copied().unwrap_or_else(|| scene.result_bounds());
         scene.camera = Some(openscad_view::camera(&opts, &bounds, width, height));
         return;
     }
     // Found once: the render, the mask and the dumps each take the view.
-    scene.fix_framing();
+    match frames {
+        Some(b) if scene.camera.is_none() => scene.framed = Some(*b),
+        _ => scene.fix_framing(),
+    }
     if let Some(projection) = cli.projection {
         scene.camera = Some(csgrt::scene::CameraSpec {
             projection,

@@ -5,6 +5,7 @@
 
 use csgrt::error::{Error, Result};
 
+mod animate;
 mod jobs;
 mod output;
 mod watch;
@@ -24,10 +25,23 @@ pub const MAX_THREADS: usize = 1024;
 /// The most frames `--animate` renders.
 pub const MAX_FRAMES: u32 = 100_000;
 
+/// What `--help` ends with.
+const EXAMPLES: &str = "\
+Examples:
+  csgrt part.scad                         part.png: OpenSCAD's view and colours, 800x600
+  csgrt part.scad --size 1920x1080 -o big.png
+  csgrt part.scad --camera 0,0,0,55,0,25,140 --projection ortho
+                                          OpenSCAD's --camera (translate, rotate, distance)
+  csgrt part.scad -D width=40 -D 'label=\"A\"'
+                                          set the program's variables, as OpenSCAD's -D
+  csgrt part.scad --animate 24            part00000.png ... part00023.png, $t = i/24
+  csgrt part.scad --watch                 render again each time the file is saved
+  csgrt *.csg -O thumbnails/              one image per model";
+
 /// csgrt renders CSG scenes exactly: OpenSCAD's `.csg` export plus camera,
 /// lights and materials.
 #[derive(Parser, Debug)]
-#[command(name = "csgrt", version, about, long_about = None)]
+#[command(name = "csgrt", version, about, long_about = None, after_help = EXAMPLES)]
 pub struct Cli {
     /// The scenes to render: `.csg`, the seed's `.ray` display list, or
     /// `.scad` (exported to `.csg` by `openscad` on PATH first). Several
@@ -73,9 +87,10 @@ pub struct Cli {
     #[arg(long, value_name = "N", default_value_t = 5,
           value_parser = clap::value_parser!(u32).range(0..=MAX_DEPTH as i64))]
     pub max_depth: u32,
-    /// Worker threads (default: all cores); the image is the same for any N.
+    /// Worker threads (default, or 0: all cores); the image is the same
+    /// for any N.
     #[arg(long, value_name = "N",
-          value_parser = clap::value_parser!(u16).range(1..=MAX_THREADS as i64))]
+          value_parser = clap::value_parser!(u16).range(0..=MAX_THREADS as i64))]
     pub threads: Option<u16>,
     /// Also write an 8-bit grey PNG: 255 where the pixel-centre ray hits.
     #[arg(long, value_name = "FILE")]
@@ -244,6 +259,7 @@ pub fn main() -> i32 {
 pub fn run(cli: &Cli) -> Result<()> {
     let jobs = jobs(cli)?;
     let mut pool = rayon::ThreadPoolBuilder::new().stack_size(csgrt::syntax::WORKER_STACK);
+    // (0: rayon's default, a thread a core.)
     if let Some(n) = cli.threads {
         pool = pool.num_threads(n as usize);
     }
@@ -269,13 +285,12 @@ pub fn run(cli: &Cli) -> Result<()> {
     }
     // Several images: each is rendered and written on its own; one that
     // fails is reported and the others still come out. The exit status is
-    // the worst of theirs. Frames of an animation are exported and
-    // rendered side by side (each render uses the whole pool too).
+    // the worst of theirs. Frames of an animation are exported together
+    // and rendered side by side (each render uses the whole pool too).
     let one = |job: &Job| scene_of(cli, job).and_then(|s| render_files(cli, job, &s, false));
     let results: Vec<Result<()>> = pool.install(|| {
         if cli.animate.is_some() {
-            use rayon::prelude::*;
-            jobs.par_iter().map(one).collect()
+            animate::animate(cli, &jobs)
         } else {
             jobs.iter().map(one).collect()
         }

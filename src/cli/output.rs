@@ -26,6 +26,9 @@ pub(super) fn trace_rays(cli: &Cli, job: &Job, scene: &Scene, input: &Path) -> R
         read_source(input)?
     };
     let rays = probe::parse_rays(&src)?;
+    if let Some(p) = &cli.stats_json {
+        check_target(p, &job.model)?;
+    }
     let start = Instant::now();
     let mut stats = Stats::default();
     // Timed: the hits and their normals; their printing is not.
@@ -40,7 +43,7 @@ pub(super) fn trace_rays(cli: &Cli, job: &Job, scene: &Scene, input: &Path) -> R
         out.push('\n');
     }
     if let Some(p) = &cli.stats_json {
-        write_atomic(p, &job.model, stats_json(&stats, seconds).as_bytes())?;
+        stage(p, stats_json(&stats, seconds).as_bytes())?.commit()?;
     }
     to_stdout(out.as_bytes())
 }
@@ -58,8 +61,14 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
 pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let output = &job.output;
+    // An export alone (`--export-pov`, `--dump-scene`) writes no image
+    // unless `-o` names one.
+    let exports = cli.export_pov.is_some() || cli.dump_scene.is_some();
+    let image_wanted = cli.output.is_some() || !exports;
+    // Every target checked before anything is rendered: a missing folder
+    // or a folder in a file's place is found now, not after the render.
     for p in [
-        Some(output),
+        image_wanted.then_some(output),
         cli.mask.as_ref(),
         cli.stats_json.as_ref(),
         cli.dump_scene.as_ref(),
@@ -68,19 +77,33 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
     .into_iter()
     .flatten()
     {
-        refuse_model(p, &job.model)?;
+        if p != Path::new("-") {
+            check_target(p, &job.model)?;
+        }
     }
     // Formats before rendering: nothing is drawn for an output csgrt cannot
     // write.
     let format = ImageFormat::of(output)?;
-    let mask_format = cli.mask.as_deref().map(ImageFormat::of).transpose()?;
-    if let (Some(p), Some(f)) = (&cli.mask, mask_format) {
-        if f.is_linear() {
-            return Err(Error::Usage(format!(
-                "{}: a mask is an 8-bit grey image; expected .png, .jpg, .bmp, .tif or .webp",
-                p.display()
-            )));
-        }
+    let mask_format = match cli.mask.as_deref() {
+        None => None,
+        Some(p) => match ImageFormat::of(p) {
+            Ok(f) if !f.is_linear() => Some(f),
+            _ => {
+                return Err(Error::Usage(format!(
+                    "{}: a mask is an 8-bit grey image; expected .png, .jpg, .jpeg, .bmp, \
+                     .tif, .tiff or .webp (or `-` for PNG on standard output)",
+                    p.display()
+                )))
+            }
+        },
+    };
+    let to_terminal = |p: &Path| p == Path::new("-") && std::io::stdout().is_terminal();
+    if (image_wanted && to_terminal(output)) || cli.mask.as_deref().is_some_and(to_terminal) {
+        return Err(Error::Usage(
+            "-: standard output is a terminal, which would show the image's bytes; \
+             redirect it (`> part.png`) or pipe it to a program"
+                .into(),
+        ));
     }
     let settings = Settings {
         width,
@@ -98,21 +121,29 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
             "the image and the mask cannot both go to standard output".into(),
         ));
     }
+    if !image_wanted && cli.mask.is_none() && cli.stats_json.is_none() {
+        // Nothing that needs the render: the exports alone.
+        return write_exports(cli, scene, Vec::new());
+    }
     let bar = (bar && !cli.quiet && std::io::stderr().is_terminal()).then(|| {
-        let b = ProgressBar::new(height as u64);
+        // In samples, not rows: a row of sky costs little, a row through
+        // the part much more, and the second pass of adaptive
+        // anti-aliasing is added when it is planned.
+        let b = ProgressBar::new(0);
         b.set_style(
-            ProgressStyle::with_template(
-                "{spinner} rendering [{bar:40}] {pos}/{len} rows, {eta} left",
-            )
-            .expect("a valid template")
-            .progress_chars("=> "),
+            ProgressStyle::with_template("{spinner} rendering [{bar:40}] {percent}%, {eta} left")
+                .expect("a valid template")
+                .progress_chars("=> "),
         );
         b
     });
     let start = Instant::now();
-    let tick = || {
+    let tick = |p: render::Progress| {
         if let Some(b) = &bar {
-            b.inc(1);
+            match p {
+                render::Progress::Planned(n) => b.inc_length(n),
+                render::Progress::Done(n) => b.inc(n),
+            }
         }
     };
     let image = render::render(scene, &settings, &tick);
@@ -121,36 +152,45 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
         b.finish_and_clear();
     }
     let mask = cli.mask.as_ref().map(|_| render::mask(scene, &settings));
-    // Everything is computed; now write.
-    let rgb = if format.is_linear() {
-        format.encode_linear(&image.radiance, width, height)?
-    } else {
-        format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?
-    };
-    write_image(output, &job.model, &rgb)?;
+    // Everything is computed; now each file is staged beside its target,
+    // and only when all are staged are they renamed into place.
+    let mut staged = Vec::new();
+    let mut to_out = None;
+    if image_wanted {
+        let rgb = if format.is_linear() {
+            format.encode_linear(&image.radiance, width, height)?
+        } else {
+            format.encode(&image.rgb, width, height, image::ExtendedColorType::Rgb8)?
+        };
+        if output == Path::new("-") {
+            to_out = Some(rgb);
+        } else {
+            staged.push(stage(output, &rgb)?);
+        }
+    }
     if let (Some(p), Some(m), Some(f)) = (&cli.mask, &mask, mask_format) {
         let grey = f.encode(m, width, height, image::ExtendedColorType::L8)?;
-        write_image(p, &job.model, &grey)?;
-    }
-    if let Some(p) = &cli.dump_scene {
-        let cam = scene.view(width, height);
-        let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
-            .expect("JSON of plain values");
-        write_atomic(p, &job.model, json.as_bytes())?;
-    }
-    if let Some(p) = &cli.export_pov {
-        let cam = scene.view(width, height);
-        let sdl = pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
-        write_atomic(p, &job.model, sdl.as_bytes())?;
+        if p == Path::new("-") {
+            to_out = Some(grey);
+        } else {
+            staged.push(stage(p, &grey)?);
+        }
     }
     if let Some(p) = &cli.stats_json {
-        write_atomic(p, &job.model, stats_json(&image.stats, seconds).as_bytes())?;
+        staged.push(stage(p, stats_json(&image.stats, seconds).as_bytes())?);
+    }
+    write_exports(cli, scene, staged)?;
+    if let Some(bytes) = to_out {
+        to_stdout(&bytes)?;
+    }
+    if !image_wanted {
+        return Ok(());
     }
     if !cli.quiet {
         let name = if output == Path::new("-") {
             "<stdout>".to_string()
         } else {
-            output.display().to_string()
+            csgrt::error::printable(&output.display().to_string()).into_owned()
         };
         let sampling = match settings.adaptive {
             None => format!("{} spp", settings.spp),
@@ -272,71 +312,92 @@ impl ImageFormat {
     }
 }
 
-/// An image to its file, or to standard output for `-`.
-fn write_image(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
-    if path == Path::new("-") {
-        to_stdout(bytes)
-    } else {
-        write_atomic(path, model, bytes)
+/// `--dump-scene` and `--export-pov` staged beside `staged` (the render's
+/// files), then all of them renamed into place.
+fn write_exports(cli: &Cli, scene: &Scene, mut staged: Vec<Staged>) -> Result<()> {
+    let (width, height) = cli.imgsize.unwrap_or(cli.size);
+    let cam = scene.view(width, height);
+    if let Some(p) = &cli.dump_scene {
+        let json = serde_json::to_string_pretty(&dump::scene_json(scene, &cam, width, height))
+            .expect("JSON of plain values");
+        staged.push(stage(p, json.as_bytes())?);
     }
+    if let Some(p) = &cli.export_pov {
+        let sdl = pov::scene_sdl(scene, &cam, width, height, cli.max_depth);
+        staged.push(stage(p, sdl.as_bytes())?);
+    }
+    staged.into_iter().try_for_each(Staged::commit)
 }
 
-/// Refuses an output path that names the model itself.
-fn refuse_model(out: &Path, model: &Path) -> Result<()> {
-    let same = match (out.canonicalize(), model.canonicalize()) {
+/// Refuses, before anything is computed, an output that could not be
+/// written: one that names the model, one in a folder that does not exist
+/// (or is a file), one in the place of a folder, a device or a pipe.
+/// These are the user's to fix (exit 2); a write that fails later all the
+/// same (a full disk, permissions) is the system's (exit 1).
+fn check_target(path: &Path, model: &Path) -> Result<()> {
+    let same = match (path.canonicalize(), model.canonicalize()) {
         (Ok(a), Ok(b)) => a == b,
-        _ => out == model,
+        _ => path == model,
     };
+    let refuse = |why: &str| Err(Error::Usage(format!("{}: {why}", path.display())));
     if same {
-        return Err(Error::Usage(format!(
-            "{}: an output may not overwrite the model",
-            out.display()
-        )));
+        return refuse("an output may not overwrite the model");
+    }
+    let dir = folder_of(path);
+    match std::fs::metadata(dir) {
+        Ok(m) if m.is_dir() => {}
+        Ok(_) => return refuse(&format!("{} is not a folder", dir.display())),
+        Err(_) => return refuse(&format!("no such folder: {}", dir.display())),
+    }
+    // The rename would replace a device or a pipe (say `/dev/null`) with a
+    // file, and a folder cannot be replaced at all: only regular files.
+    if let Ok(m) = std::fs::metadata(path) {
+        if m.is_dir() {
+            return refuse("it is a folder");
+        }
+        if !m.is_file() {
+            return refuse(
+                "it exists and is not a regular file; outputs replace regular files only",
+            );
+        }
     }
     Ok(())
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it.
-fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
-    refuse_model(path, model)?;
-    let dir = match path.parent() {
+/// The folder a file is written into (`.` for a bare name).
+fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
-    };
+    }
+}
+
+/// A file written in full to a temporary file beside its target, not yet
+/// in place.
+struct Staged {
+    tmp: tempfile::NamedTempFile,
+    path: std::path::PathBuf,
+}
+
+impl Staged {
+    /// Renames the file into place.
+    fn commit(self) -> Result<()> {
+        self.tmp
+            .persist(&self.path)
+            .map_err(|e| Error::io(&self.path, e.error))?;
+        Ok(())
+    }
+}
+
+/// `bytes` written to a temporary file beside `path` (checked already by
+/// [`check_target`]); dropped uncommitted, it is removed.
+fn stage(path: &Path, bytes: &[u8]) -> Result<Staged> {
+    let dir = folder_of(path);
     let mut builder = tempfile::Builder::new();
     builder.prefix(".csgrt-");
     // An image is an ordinary file: readable by all, like one `create`d.
     #[cfg(unix)]
     builder.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o644));
-    let refuse = |why: String| {
-        Err(Error::io(
-            path,
-            std::io::Error::new(std::io::ErrorKind::InvalidInput, why),
-        ))
-    };
-    match std::fs::metadata(dir) {
-        Ok(m) if m.is_dir() => {}
-        Ok(_) => return refuse(format!("{} is not a folder", dir.display())),
-        Err(_) => return refuse(format!("no such folder: {}", dir.display())),
-    }
-    // The rename would replace a device or a pipe (say `/dev/null`) with a
-    // file, and a folder cannot be replaced at all: only regular files.
-    if let Ok(m) = std::fs::symlink_metadata(path) {
-        let m = if m.file_type().is_symlink() {
-            std::fs::metadata(path).unwrap_or(m)
-        } else {
-            m
-        };
-        if m.is_dir() {
-            return refuse("it is a folder".to_string());
-        }
-        if !m.is_file() {
-            return refuse(
-                "it exists and is not a regular file; outputs replace regular files only"
-                    .to_string(),
-            );
-        }
-    }
     // tempfile's errors name its random file; say only what went wrong.
     let mut tmp = builder.tempfile_in(dir).map_err(|e| {
         let why = match e.kind() {
@@ -353,8 +414,10 @@ fn write_atomic(path: &Path, model: &Path, bytes: &[u8]) -> Result<()> {
         )
     })?;
     tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
-    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
-    Ok(())
+    Ok(Staged {
+        tmp,
+        path: path.to_path_buf(),
+    })
 }
 
 /// The counters as one JSON object.

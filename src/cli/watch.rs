@@ -42,6 +42,9 @@ fn failed(
 /// Renders `job` until the process is stopped; returns only if watching
 /// cannot start or stops working.
 pub(crate) fn watch(cli: &Cli, job: &Job) -> Result<()> {
+    // A model that is not there (or is a folder) at the start is a
+    // mistake in the command, not a file being saved: said, exit 2.
+    csgrt::source::model_file(&job.model)?;
     let (tx, rx) = mpsc::channel();
     let mut watcher = notify::recommended_watcher(tx).map_err(|e| failed("<file watcher>", e))?;
     let mut folders = HashSet::new();

@@ -96,9 +96,18 @@ fn both_finite(a: DVec3, b: DVec3) -> bool {
     z.x + z.y + z.z == 0.0
 }
 
-/// Renders the scene; `on_row` is called once per finished row (of the
-/// last pass).
-pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Rendered {
+/// What a render tells of its progress, counted in samples (camera rays):
+/// the samples of a pass once it is planned, then each row's as it is
+/// done. Adaptive anti-aliasing plans its second pass only when the first
+/// is done, so the total grows once.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    Planned(u64),
+    Done(u64),
+}
+
+/// Renders the scene, telling `progress` how far it is.
+pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync)) -> Rendered {
     let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
     // The line families the rays come in: through the eye, or along the
     // orthographic view; along each directional light's shadow rays.
@@ -146,7 +155,9 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
     let mut rgb = vec![0u8; 3 * w * s.height as usize];
     let mut lin = vec![0f32; if keep { rgb.len() } else { 0 }];
     let first = if s.adaptive.is_some() { 1 } else { s.spp };
-    let tick_first = s.adaptive.is_none();
+    progress(Progress::Planned(
+        s.width as u64 * s.height as u64 * first as u64,
+    ));
     // Each row is written in place by whichever thread takes it; the
     // counters are sums and maxima, the same in any order.
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
@@ -156,21 +167,23 @@ pub fn render(scene: &Scene, s: &Settings, on_row: &(dyn Fn() + Sync)) -> Render
             put(row, lrow, x as usize, c);
             st.pixels += 1;
         }
-        if tick_first {
-            on_row();
-        }
+        progress(Progress::Done(s.width as u64 * first as u64));
         st
     });
     if let Some(a) = s.adaptive {
         let again = refine(&lin, w, s.height as usize, a.threshold);
+        let count = again.iter().filter(|&&f| f).count() as u64;
+        progress(Progress::Planned(count * s.spp as u64));
         stats.add(&rows(&mut rgb, &mut lin, w, |y, row, lrow| {
             let mut st = Stats::default();
             let flags = &again[y as usize * w..][..w];
+            let mut n = 0;
             for (x, _) in flags.iter().enumerate().filter(|(_, &f)| f) {
                 let c = pixel(x as u32, y, s.spp, &mut st);
                 put(row, lrow, x, c);
+                n += 1;
             }
-            on_row();
+            progress(Progress::Done(n * s.spp as u64));
             st
         }));
         if !s.radiance {

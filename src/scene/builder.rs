@@ -93,6 +93,7 @@ impl SceneBuilder {
             planar: false,
             approximations: self.approximations,
             framed: None,
+            scad_view: None,
         }
     }
 }

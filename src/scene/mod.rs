@@ -126,6 +126,9 @@ pub struct Scene {
     /// The box the default camera frames, once [`Scene::fix_framing`] has
     /// found it (finding it casts rays); `None`: found at each view.
     pub framed: Option<Aabb>,
+    /// The view a `.scad` program sets with `$vpt`, `$vpr`, `$vpd`: the
+    /// camera unless the file's own or `--camera` replaces it.
+    pub scad_view: Option<openscad_view::Viewpoint>,
 }
 
 /// A node csgrt approximates: where it is, its world box and its error (a
@@ -168,6 +171,14 @@ impl Scene {
 
     /// The camera to render with at `width`×`height`.
     pub fn view(&self, width: u32, height: u32) -> CameraSpec {
+        if let (None, Some(v)) = (self.camera, self.scad_view) {
+            let opts = openscad_view::ViewOptions {
+                camera: Some(v),
+                ..Default::default()
+            };
+            // (No `--viewall` here: the box is not needed.)
+            return openscad_view::camera(&opts, &Aabb::EMPTY, width, height);
+        }
         self.camera
             .unwrap_or_else(|| defaults::framing_camera(&self.framing_bounds(), width, height))
     }
@@ -190,7 +201,7 @@ impl Scene {
     /// Finds the box the default camera frames once, for every later view
     /// of this scene (whose tree must not change after).
     pub fn fix_framing(&mut self) {
-        if self.camera.is_none() && self.framed.is_none() {
+        if self.camera.is_none() && self.scad_view.is_none() && self.framed.is_none() {
             self.framed = Some(self.framing_bounds());
         }
     }

@@ -20,8 +20,11 @@ use glam::{DMat3, DVec3};
 
 /// OpenSCAD's default vertical field of view, degrees.
 pub const FOV_Y: f64 = 22.5;
-/// OpenSCAD's viewer distance for an empty scene.
+/// OpenSCAD's viewer distance for an empty scene, and of its default
+/// view.
 pub const DEFAULT_DISTANCE: f64 = 140.0;
+/// OpenSCAD's default `$vpr`, degrees.
+pub const DEFAULT_ROTATION: DVec3 = DVec3::new(55.0, 0.0, 25.0);
 
 /// The two forms of `--camera`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,6 +40,17 @@ pub enum Viewpoint {
 }
 
 impl Viewpoint {
+    /// The camera a program's `$vp*` give: OpenSCAD's default view
+    /// (`$vpt` = 0, `$vpr` = [55, 0, 25], `$vpd` = 140) with what the
+    /// program sets in place of its parts.
+    pub fn of_scad(v: crate::import::scad::ScadView) -> Viewpoint {
+        Viewpoint::Gimbal {
+            translate: v.translate.map_or(DVec3::ZERO, DVec3::from),
+            rotate: v.rotate.map_or(DEFAULT_ROTATION, DVec3::from),
+            distance: v.distance.unwrap_or(DEFAULT_DISTANCE),
+        }
+    }
+
     /// OpenSCAD's parse of `--camera`: 7 numbers are a gimbal, 6 a vector.
     pub fn parse(s: &str) -> Result<Viewpoint, String> {
         let bad = || {
@@ -196,7 +210,7 @@ pub fn camera(opts: &ViewOptions, bounds: &Aabb, width: u32, height: u32) -> Cam
             opts.autocenter,
         ),
         None => (
-            Gimbal::from_vpr(DVec3::ZERO, DVec3::new(55.0, 0.0, 25.0), DEFAULT_DISTANCE),
+            Gimbal::from_vpr(DVec3::ZERO, DEFAULT_ROTATION, DEFAULT_DISTANCE),
             true,
             true,
         ),

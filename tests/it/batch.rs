@@ -125,18 +125,39 @@ fn several_models_refuse_single_file_options_and_clashing_names() {
     }
 }
 
-/// `--animate N` runs OpenSCAD once per frame with `-D $t=i/N` (a stand-in
-/// here that moves a ball by `$t`), and frame i is the image of that
-/// export, named as OpenSCAD names frames.
+/// A stand-in for `openscad -o DIR/NAME.csg ... --animate=N ...` that
+/// records its arguments and writes frame i as `DIR/NAME0000i.csg`: the
+/// CSG `body` prints with `$1` = i/N (six decimals), `$2` = i, `$3` = N
+/// (shell builtins only: PATH holds nothing else).
+#[cfg(unix)]
+fn fake_animating_openscad(body: &str) -> tempfile::TempDir {
+    common::fake_openscad(&format!(
+        r#"n=1
+for a in "$@"; do case "$a" in --animate=*) n="${{a#--animate=}}";; esac; done
+echo "$@" >> "${{0%/*}}/calls.txt"
+base="${{2%.csg}}"
+i=0
+while [ $i -lt $n ]; do
+  t="$((i / n)).$(printf %06d $(( (i * 1000000 / n) % 1000000 )))"
+  frame() {{
+{body}
+  }}
+  frame "$t" "$i" "$n" > "$base$(printf %05d $i).csg"
+  i=$((i + 1))
+done"#
+    ))
+}
+
+/// `--animate N` runs OpenSCAD once, as `openscad --animate=N` (which sets
+/// `$t` before the program's own assignments; a stand-in here that moves a
+/// ball by `$t`), and frame i is the image of OpenSCAD's frame i, named as
+/// OpenSCAD names frames.
 #[cfg(unix)]
 #[test]
 fn animate_renders_openscads_frames() {
     let (dir, _) = common::scene("spin.scad", "translate([$t, 0, 0]) sphere(1);\n");
-    let bin = common::fake_openscad(
-        r#"t=0
-for a in "$@"; do case "$a" in '$t='*) t="${a#\$t=}";; esac; done
-echo "$@" >> "${0%/*}/calls.txt"
-printf 'camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, %s], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(1);\n' "$t" > "$2""#,
+    let bin = fake_animating_openscad(
+        r#"printf 'camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, %s], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(1);\n' "$1""#,
     );
     let (status, said) = common::csgrt_with_path(
         dir.path(),
@@ -165,17 +186,16 @@ printf 'camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, %s]
             "spin.scad"
         ]
     );
+    // One run of OpenSCAD for all the frames, the user's -D first.
     let calls = std::fs::read_to_string(bin.path().join("calls.txt")).unwrap();
-    let mut ts: Vec<&str> = calls
-        .lines()
-        .map(|l| l.split_whitespace().find(|w| w.starts_with("$t=")).unwrap())
-        .collect();
-    ts.sort();
-    assert_eq!(ts, ["$t=0.0", "$t=0.25", "$t=0.5", "$t=0.75"]);
-    assert!(calls.lines().all(|l| l.contains("-D k=1")), "{calls}");
+    assert_eq!(calls.lines().count(), 1, "{calls}");
+    assert!(calls.contains("--animate=4"), "{calls}");
+    assert!(!calls.contains("$t="), "{calls}");
+    let k = calls.find("-D k=1").expect("the user's -D");
+    assert!(k < calls.find("-D __csgrt_view").unwrap(), "{calls}");
     let mut frames = Vec::new();
     for i in 0..4 {
-        let x = i as f64 / 4.0;
+        let x = format!("{:.6}", i as f64 / 4.0);
         let want = alone(
             "a.csg",
             &format!("camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, {x}], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(1);\n"),
@@ -204,6 +224,61 @@ printf 'camera(eye = [0, -5, 0], lookat = [0, 0, 0]);\nmultmatrix([[1, 0, 0, %s]
     assert_eq!(
         common::files(&dir.path().join("frames")),
         ["spin00000.png", "spin00001.png"]
+    );
+}
+
+/// The frames of an animation share one camera, framing the box of them
+/// all: a cube that stands still while a ball moves away stays where it
+/// is, pixel for pixel, in every frame (framed anew, it would shrink).
+#[cfg(unix)]
+#[test]
+fn animate_keeps_one_camera_for_all_frames() {
+    let (dir, _) = common::scene(
+        "slide.scad",
+        "cube(10); translate([40*$t, 0, 0]) sphere(3);\n",
+    );
+    let bin = fake_animating_openscad(
+        r#"printf 'cube(size = [10, 10, 10], center = false);\nmultmatrix([[1, 0, 0, %s], [0, 1, 0, -8], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 3);\n' "$((40 * $2 / $3))""#,
+    );
+    let (status, said) = common::csgrt_with_path(
+        dir.path(),
+        bin.path(),
+        &["slide.scad", "--animate", "4", "--size", "80x60", "-q"],
+    );
+    assert_eq!((status, said.as_str()), (0, ""));
+    let frame = |i: usize| {
+        image::open(dir.path().join(format!("slide{i:05}.png")))
+            .unwrap()
+            .to_rgb8()
+    };
+    // The cube alone, under the camera the four frames share: the frames'
+    // box is the cube's and the balls' (at x = 0 and x = 30).
+    let (cube_dir, _) = common::scene(
+        "cube.csg",
+        "cube(size = [10, 10, 10], center = false);\n\
+         multmatrix([[1, 0, 0, 0], [0, 1, 0, -8], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 3);\n\
+         multmatrix([[1, 0, 0, 30], [0, 1, 0, -8], [0, 0, 1, 0], [0, 0, 0, 1]]) sphere(r = 3);\n",
+    );
+    let r = csgrt(
+        cube_dir.path(),
+        &["cube.csg", "--size", "80x60", "-q", "-o", "c.png"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let both = image::open(cube_dir.path().join("c.png"))
+        .unwrap()
+        .to_rgb8();
+    // Where the two end balls are not, frames 0 and 3 show the cube as
+    // the union of the three does: the same camera.
+    let (f0, f3) = (frame(0), frame(3));
+    let mut same = 0;
+    for (x, y, p) in both.enumerate_pixels() {
+        if f0.get_pixel(x, y) == p && f3.get_pixel(x, y) == p {
+            same += 1;
+        }
+    }
+    assert!(
+        same as f64 > 0.9 * 80.0 * 60.0,
+        "{same} of 4800 pixels agree"
     );
 }
 

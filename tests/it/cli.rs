@@ -442,8 +442,8 @@ fn disabled_and_background_statements_are_left_out() {
 fn export_pov_writes_one_complete_file() {
     // What the SDL says is checked against the model by an independent
     // reader of both (tools/oracle/pov_check.py, in .ci/run); here only the
-    // command's contract: status 0, the image and the export beside it,
-    // a whole one.
+    // command's contract: status 0, the export beside the model,
+    // a whole one (and no image: an export alone renders nothing).
     let (dir, _) = scene(
         "p.csg",
         &std::fs::read_to_string("tests/scenes/export.csg").unwrap(),
@@ -456,7 +456,7 @@ fn export_pov_writes_one_complete_file() {
     let sdl = std::fs::read_to_string(dir.path().join("p.pov")).unwrap();
     let opens = sdl.matches('{').count();
     assert!(opens > 0 && opens == sdl.matches('}').count(), "{sdl}");
-    assert_eq!(files(dir.path()), ["p.csg", "p.png", "p.pov"]);
+    assert_eq!(files(dir.path()), ["p.csg", "p.pov"]);
 }
 
 /// The image and the warnings of `text` (with a camera that sees the
@@ -814,11 +814,18 @@ fn a_scad_model_is_exported_by_openscad_on_path_then_rendered() {
     let asked = std::fs::read_to_string(dir.path().join("args.txt")).unwrap();
     let words: Vec<&str> = asked.split_whitespace().collect();
     assert_eq!(words[0], "-o");
-    assert!(words[1].ends_with("export.csg"), "{asked}");
+    assert!(words[1].ends_with("/part.csg"), "{asked}");
+    // `--viewall`, which OpenSCAD turns off (with a notice) exactly when
+    // the program sets `$vp*`, and the echo of them after the user's -D.
     assert_eq!(
-        &words[2..],
-        ["-D", "r=2", "-D", "name=\"a", "b\"", "part.scad"]
+        &words[2..9],
+        ["--viewall", "-D", "r=2", "-D", "name=\"a", "b\"", "-D"]
     );
+    assert!(
+        words[9].starts_with("__csgrt_view=echo(__csgrt_view=[$vpt,$vpr,$vpd,$vpf])"),
+        "{asked}"
+    );
+    assert_eq!(words.last(), Some(&"part.scad"));
     let r = csgrt(dir.path(), &["ref.csg", "--size", "40x30", "-q"]);
     assert_eq!(r.status, 0, "{}", r.stderr);
     let read = |n: &str| std::fs::read(dir.path().join(n)).unwrap();
@@ -849,7 +856,15 @@ fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
     assert_eq!(status, 2);
     assert_eq!(
         said,
-        "error: part.scad: OpenSCAD could not export it (exit status: 1); it said:\nERROR: Parser error in file part.scad, line 1\n"
+        "error: OpenSCAD says: Parser error\n --> part.scad:1:1\n  |\n1 | sphere(;\n  | ^^^^^^^^ on this line (OpenSCAD gives no column)\n"
+    );
+    // An error OpenSCAD does not place: all it said.
+    let bin = common::fake_openscad("echo \"Can't parse file 'part.scad'!\" >&2\nexit 1");
+    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    assert_eq!(
+        said,
+        "error: part.scad: OpenSCAD could not export it (exit status: 1); it said:\nCan't parse file 'part.scad'!\n"
     );
     // OpenSCAD's warnings are passed on, its progress lines not.
     let bin = common::fake_openscad(&format!(
@@ -868,11 +883,6 @@ fn a_scad_model_without_openscad_or_that_it_refuses_is_a_clear_error() {
         )
     );
     std::fs::remove_file(dir.path().join("w.png")).unwrap();
-    // An error in the export is placed in it, named after the model.
-    let bin = common::fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
-    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
-    assert_eq!(status, 2);
-    assert!(said.contains(" --> part.scad.csg:1:6\n"), "{said}");
     assert_eq!(files(dir.path()), ["part.scad"]);
 }
 
@@ -1004,4 +1014,242 @@ fn a_color_scheme_colours_what_the_file_does_not() {
         "{}",
         r.stderr
     );
+}
+
+/// A model's bytes never act on the terminal: control characters in a
+/// message (an escape sequence that clears the screen and sets the
+/// title, a bell) are written as escapes, and the caret still stands
+/// under what it points at.
+#[test]
+fn messages_escape_the_control_characters_of_the_model() {
+    let (dir, _) = scene("esc.csg", "cube(size = \u{1b}[2J \u{1b}]0;pwned\u{7} 2);\n");
+    let r = csgrt(dir.path(), &["esc.csg", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        !r.stderr.chars().any(|c| c.is_control() && c != '\n'),
+        "{:?}",
+        r.stderr
+    );
+    let lines: Vec<&str> = r.stderr.lines().collect();
+    assert_eq!(
+        lines[3], r"1 | cube(size = \x1b[2J \x1b]0;pwned\x07 2);",
+        "{}",
+        r.stderr
+    );
+    let caret = lines[4].find('^').unwrap();
+    assert_eq!(&lines[3][caret..caret + 4], r"\x1b", "{}", r.stderr);
+    assert!(lines[0].contains(r"`\x1b`"), "{}", r.stderr);
+    // A binary file is said to be one, its bytes escaped.
+    std::fs::write(
+        dir.path().join("bin.csg"),
+        b"\x7fELF\x02\x01\x01\x00\x00\x1b[31m",
+    )
+    .unwrap();
+    let r = csgrt(dir.path(), &["bin.csg", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert!(
+        r.stderr
+            .starts_with("error: byte 0x00 (NUL) in the file: it is not text\n --> bin.csg:1:8\n"),
+        "{}",
+        r.stderr
+    );
+    assert!(
+        !r.stderr.chars().any(|c| c.is_control() && c != '\n'),
+        "{:?}",
+        r.stderr
+    );
+    assert_eq!(files(dir.path()), ["bin.csg", "esc.csg"]);
+}
+
+/// `--export-pov` or `--dump-scene` alone writes that file and no image
+/// (the render is not needed); `-o` asks for the image too.
+#[test]
+fn an_export_alone_writes_no_image() {
+    let (dir, _) = scene("s.csg", SPHERE);
+    let r = csgrt(
+        dir.path(),
+        &[
+            "s.csg",
+            "--export-pov",
+            "s.pov",
+            "--dump-scene",
+            "s.json",
+            "-q",
+        ],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(files(dir.path()), ["s.csg", "s.json", "s.pov"]);
+    let r = csgrt(
+        dir.path(),
+        &["s.csg", "--export-pov", "t.pov", "-o", "t.png", "-q"],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    assert_eq!(
+        files(dir.path()),
+        ["s.csg", "s.json", "s.pov", "t.png", "t.pov"]
+    );
+}
+
+/// OpenSCAD takes a `cube`'s size as a number or three numbers; anything
+/// else (`[2, 2]`, a string, four numbers) it warns about and makes the
+/// unit cube (its own export of such a cube reads `size = [1, 1, 1]`).
+#[test]
+fn a_cube_size_openscad_cannot_read_is_the_unit_cube_with_a_warning() {
+    let dump = |text: &str| {
+        let (dir, _) = scene("c.csg", text);
+        let r = csgrt(
+            dir.path(),
+            &["c.csg", "-q", "--dump-scene", "d.json", "-o", "c.png"],
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+        (stats(dir.path(), "d.json")["root"].clone(), r.stderr)
+    };
+    let (unit, said) = dump("cube(size = [1, 1, 1]);\n");
+    assert_eq!(said, "");
+    for bad in ["[2, 2]", "\"a\"", "[1, 2, 3, 4]", "[1, \"a\", 2]", "true"] {
+        let (root, said) = dump(&format!("cube(size = {bad});\n"));
+        assert_eq!(root, unit, "{bad}");
+        assert!(
+            said.starts_with("warning: `size` of `cube` is neither a number nor a vector of 3 numbers; the cube is 1 × 1 × 1, as in OpenSCAD\n --> c.csg:1:13\n"),
+            "{bad}: {said}"
+        );
+    }
+}
+
+/// A folder named as a model is said to be one, whatever its name.
+#[test]
+fn a_folder_is_no_model() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("part")).unwrap();
+    let r = csgrt(dir.path(), &["part", "-q"]);
+    assert_eq!(r.status, 2, "{}", r.stderr);
+    assert_eq!(r.stderr, "error: part: is a folder, not a file\n");
+    let r = csgrt(dir.path(), &["nothing", "-q"]);
+    assert_eq!(r.stderr, "error: nothing: no such file\n");
+}
+
+/// `--help` ends with examples.
+#[test]
+fn help_shows_examples() {
+    let dir = tempfile::tempdir().unwrap();
+    let r = common::csgrt(dir.path(), &["--help"]);
+    assert_eq!(r.status, 0);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_csgrt"))
+        .arg("--help")
+        .output()
+        .unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("\nExamples:\n  csgrt part.scad "), "{text}");
+    assert!(text.contains("--animate 24"), "{text}");
+}
+
+/// A `.scad` program's `$vpt`, `$vpr`, `$vpd` are the camera (OpenSCAD's
+/// gimbal: the eye `$vpd` from `$vpt`, turned by `$vpr`), unless
+/// `--camera` is given; they turn `--viewall` off, with a warning.
+/// OpenSCAD reports them through the echo csgrt adds (a stand-in here
+/// that says what OpenSCAD 2021.01 says for `$vpr = [90, 0, 0]; $vpd =
+/// 60; $vpt = [1, 2, 3];`).
+#[cfg(unix)]
+#[test]
+fn a_scad_program_s_view_is_the_camera() {
+    let (dir, _) = scene(
+        "v.scad",
+        "$vpr = [90, 0, 0]; $vpd = 60; $vpt = [1, 2, 3]; cube(10);\n",
+    );
+    let bin = common::fake_openscad(
+        "echo 'ECHO: __csgrt_view = [[1, 2, 3], [90, 0, 0], 60, 22.5]' >&2\n\
+         echo 'WARNING: Viewall and autocenter disabled in favor of $vp*' >&2\n\
+         printf 'cube(size = [10, 10, 10], center = false);\\n' > \"$2\"",
+    );
+    let eye = |args: &[&str]| {
+        let (status, said) = common::csgrt_with_path(
+            dir.path(),
+            bin.path(),
+            &[
+                &[
+                    "v.scad",
+                    "-q",
+                    "--size",
+                    "40x30",
+                    "--dump-scene",
+                    "d.json",
+                    "-o",
+                    "v.png",
+                ][..],
+                args,
+            ]
+            .concat(),
+        );
+        assert_eq!(status, 0, "{said}");
+        let d = stats(dir.path(), "d.json");
+        let v = |k: &str| -> Vec<f64> {
+            d["camera"][k]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_f64().unwrap())
+                .collect()
+        };
+        (v("eye"), v("lookat"), said)
+    };
+    // $vpr = [90, 0, 0]: the eye in front (−y) of $vpt, $vpd away.
+    let (e, l, said) = eye(&[]);
+    assert_eq!(said, "");
+    let near = |a: &[f64], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9);
+    assert!(
+        near(&e, [1.0, -58.0, 3.0]) && near(&l, [1.0, 2.0, 3.0]),
+        "{e:?} {l:?}"
+    );
+    let (_, _, said) = eye(&["--viewall"]);
+    assert!(
+        said.contains("--viewall and --autocenter give way to the view the program sets with $vp*"),
+        "{said}"
+    );
+    // --camera wins.
+    let (e, l, _) = eye(&["--camera", "0,0,0,0,0,0,100"]);
+    assert!(
+        near(&e, [0.0, 0.0, 100.0]) && near(&l, [0.0, 0.0, 0.0]),
+        "{e:?} {l:?}"
+    );
+}
+
+/// OpenSCAD's messages that name a line are placed there, in the user's
+/// `.scad` (OpenSCAD gives no column: the caret takes the line); an error
+/// in csgrt's reading of the export names the export, kept for it.
+#[cfg(unix)]
+#[test]
+fn scad_messages_point_into_the_users_files() {
+    let (dir, _) = scene("part.scad", "cube(10);\n  sphere(r=;\n");
+    let bin = common::fake_openscad(
+        "echo 'ERROR: Parser error: syntax error in file part.scad, line 2' >&2\n\
+         echo \"Can't parse file 'part.scad'!\" >&2\nexit 1",
+    );
+    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    assert_eq!(
+        said,
+        "error: OpenSCAD says: Parser error: syntax error\n --> part.scad:2:3\n  |\n2 |   sphere(r=;\n  |   ^^^^^^^^^^ on this line (OpenSCAD gives no column)\n"
+    );
+    // A warning at a line is placed too, and the render goes on.
+    let bin = common::fake_openscad(
+        "echo \"WARNING: Ignoring unknown variable 'q' in file part.scad, line 1\" >&2\n\
+         printf 'cube(size = [10, 10, 10], center = false);\\n' > \"$2\"",
+    );
+    let (status, said) =
+        common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q", "-o", "w.png"]);
+    assert_eq!(status, 0, "{said}");
+    assert_eq!(
+        said,
+        "warning: OpenSCAD says: Ignoring unknown variable 'q'\n --> part.scad:1:1\n  |\n1 | cube(10);\n  | ^^^^^^^^^ on this line (OpenSCAD gives no column)\n"
+    );
+    // csgrt's own error in the export: the export is kept and named.
+    let bin = common::fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
+    let (status, said) = common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q"]);
+    assert_eq!(status, 2);
+    let at = said.lines().nth(1).unwrap().trim_start_matches(" --> ");
+    let kept = std::path::Path::new(at.strip_suffix(":1:6").expect(&said));
+    assert!(kept.ends_with("part.csg") && kept.is_file(), "{said}");
+    assert_eq!(std::fs::read_to_string(kept).unwrap(), "cube(sise = 2);\n");
+    std::fs::remove_dir_all(kept.parent().unwrap()).unwrap();
+    assert_eq!(files(dir.path()), ["part.scad", "w.png"]);
 }

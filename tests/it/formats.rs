@@ -111,7 +111,16 @@ fn default_lights_give_each_visible_face_of_a_cube_its_own_shade() {
     let (dir, _) = scene("c.csg", "cube(10);\n");
     let r = csgrt(
         dir.path(),
-        &["c.csg", "--size", "200x150", "--dump-scene", "d.json", "-q"],
+        &[
+            "c.csg",
+            "--size",
+            "200x150",
+            "--dump-scene",
+            "d.json",
+            "-q",
+            "-o",
+            "c.png",
+        ],
     );
     assert_eq!(r.status, 0, "{}", r.stderr);
     let d = common::stats(dir.path(), "d.json");

@@ -85,8 +85,8 @@ fn too_many_samples_threads_or_depth_and_too_big_an_image() {
             "invalid value '65' for '--max-depth <N>': 65 is not in 0..=64",
         ),
         (
-            vec!["--threads", "0"],
-            "invalid value '0' for '--threads <N>': 0 is not in 1..=1024",
+            vec!["--threads", "1025"],
+            "invalid value '1025' for '--threads <N>': 1025 is not in 0..=1024",
         ),
         (
             vec!["--size", "40000x10"],
@@ -185,16 +185,56 @@ fn a_million_nested_braces_end_in_an_error_not_a_stack_overflow() {
     assert_too_deep_to_parse("deep.csg", &("group() {".repeat(n) + &"}".repeat(n)));
 }
 
+/// An output in a folder that is not there is the user's to fix: said
+/// before the render (exit 2), and no other output is written either.
 #[test]
-fn an_unwritable_output_is_a_clear_io_error() {
+fn an_output_in_a_missing_folder_is_refused_before_anything_is_written() {
     let (dir, _) = scene("s.csg", "sphere();\n");
     let r = csgrt(
         dir.path(),
         &["s.csg", "--size", "8x6", "-q", "-o", "missing/x.png"],
     );
-    assert_eq!(r.status, 1, "{}", r.stderr);
+    assert_eq!(r.status, 2, "{}", r.stderr);
     assert_eq!(r.stderr, "error: missing/x.png: no such folder: missing\n");
     assert_eq!(files(dir.path()), ["s.csg"]);
+    for (args, bad) in [
+        (
+            &["--stats-json", "nodir/s.json", "-o", "t.png"][..],
+            "nodir/s.json",
+        ),
+        (&["-o", "t.png", "--mask", "nodir/m.png"][..], "nodir/m.png"),
+        (
+            &["-o", "t.png", "--dump-scene", "nodir/d.json"][..],
+            "nodir/d.json",
+        ),
+        (
+            &["-o", "t.png", "--export-pov", "nodir/p.pov"][..],
+            "nodir/p.pov",
+        ),
+    ] {
+        let r = csgrt(
+            dir.path(),
+            &[&["s.csg", "--size", "8x6", "-q"][..], args].concat(),
+        );
+        assert_eq!(r.status, 2, "{args:?}: {}", r.stderr);
+        assert_eq!(r.stderr, format!("error: {bad}: no such folder: nodir\n"));
+        assert_eq!(files(dir.path()), ["s.csg"], "{args:?}: nothing written");
+    }
+}
+
+/// `--threads 0` is all the cores, as in most tools: the same image.
+#[test]
+fn threads_zero_means_every_core() {
+    let (dir, _) = scene("s.csg", "sphere();\n");
+    for (n, out) in [("0", "a.png"), ("1", "b.png")] {
+        let r = csgrt(
+            dir.path(),
+            &["s.csg", "--size", "40x30", "-q", "--threads", n, "-o", out],
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+    }
+    let read = |n: &str| std::fs::read(dir.path().join(n)).unwrap();
+    assert_eq!(read("a.png"), read("b.png"));
 }
 
 #[test]
@@ -306,15 +346,15 @@ fn output_fails_in(
 }
 
 #[test]
-fn outputs_that_cannot_be_written_are_clear_io_errors() {
+fn outputs_that_cannot_be_written_are_refused_before_the_render() {
     let none = |_: &std::path::Path| {};
     assert_eq!(
         output_fails("s.csg/x.png", none),
-        (1, "error: s.csg/x.png: s.csg is not a folder\n".to_string())
+        (2, "error: s.csg/x.png: s.csg is not a folder\n".to_string())
     );
     assert_eq!(
         output_fails("sub", |d| std::fs::create_dir(d.join("sub")).unwrap()),
-        (1, "error: sub: it is a folder\n".to_string())
+        (2, "error: sub: it is a folder\n".to_string())
     );
 }
 
@@ -324,7 +364,7 @@ fn a_device_or_a_link_to_one_is_never_replaced() {
     let (status, stderr, dir) = output_fails_in("null.png", |d| {
         std::os::unix::fs::symlink("/dev/null", d.join("null.png")).unwrap()
     });
-    assert_eq!(status, 1);
+    assert_eq!(status, 2);
     assert_eq!(
         stderr,
         "error: null.png: it exists and is not a regular file; outputs replace regular files only\n"

@@ -152,3 +152,19 @@ fn watch_takes_one_image() {
         common::refused(dir.path(), args, "--watch", &["a.csg", "b.csg"]);
     }
 }
+
+/// A model that is not there when the watch starts is a mistake in the
+/// command, said at once (exit 2), not waited for.
+#[test]
+fn watch_of_a_missing_model_stops_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut w = spawn(dir.path(), &["missing.csg", "--watch", "-q"], None);
+    let log = dir.path().join("log.txt");
+    until(&log, "csgrt to stop", || {
+        matches!(w.0.try_wait(), Ok(Some(_)))
+    });
+    let status = w.0.wait().unwrap();
+    assert_eq!(status.code(), Some(2));
+    let said = std::fs::read_to_string(&log).unwrap();
+    assert_eq!(said, "error: missing.csg: no such file\n");
+}

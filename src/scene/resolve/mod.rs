@@ -170,10 +170,7 @@ impl Resolver<'_> {
     /// Where a file the model names (`import`, `surface`) is read from:
     /// joined to the model's folder (an absolute name stays as it is).
     fn named_file(&self, file: &str) -> std::path::PathBuf {
-        std::path::Path::new(&self.src.name)
-            .parent()
-            .unwrap_or(std::path::Path::new("."))
-            .join(file)
+        self.src.beside(file)
     }
 
     /// The bytes of a file the model names, or an error at `place` with

@@ -9,7 +9,7 @@ use crate::mutant;
 use crate::plane::Region;
 use crate::scene::args::Args;
 use crate::scene::Material;
-use crate::syntax::ast::Statement;
+use crate::syntax::ast::{Statement, ValueKind};
 use glam::{DAffine3, DVec3};
 
 /// Binds a solid statement's arguments under the world transform and
@@ -95,7 +95,19 @@ fn cube(
     _depth: usize,
 ) -> Result<Option<u32>> {
     let a = Args::bind(res.src, s, &["size", "center"])?;
-    let size = a.scalar_or_vec3("size", 1.0)?.unwrap_or(DVec3::ONE);
+    // OpenSCAD takes a number or a vector of three numbers; anything else
+    // (`[2, 2]`, a string) it warns about and makes the unit cube.
+    let size = match a.get("size") {
+        Some(v) if !size_of_cube(&v.kind) => {
+            res.warn(
+                v.span,
+                "`size` of `cube` is neither a number nor a vector of 3 numbers; the cube is 1 × 1 × 1, as in OpenSCAD",
+                "expected a number or [x, y, z]",
+            );
+            DVec3::ONE
+        }
+        _ => a.scalar_or_vec3("size", 1.0)?.unwrap_or(DVec3::ONE),
+    };
     let center = a.boolean("center")?.unwrap_or(false);
     if size.min_element() <= 0.0 {
         return res.empty(s, "a size is zero or negative");
@@ -104,6 +116,18 @@ fn cube(
     let scale = if center { 0.5 * size } else { size };
     let shape = Shape::Cuboid(Cuboid { centered: center });
     res.leaf(s, shape, xf * DAffine3::from_scale(scale), mat)
+}
+
+/// Whether OpenSCAD reads a `cube`'s `size` as one: `undef`, a number or
+/// a vector of three numbers.
+fn size_of_cube(v: &ValueKind) -> bool {
+    match v {
+        ValueKind::Undef | ValueKind::Number(_) => true,
+        ValueKind::Vector(items) => {
+            items.len() == 3 && items.iter().all(|c| matches!(c.kind, ValueKind::Number(_)))
+        }
+        _ => false,
+    }
 }
 
 fn sphere(
