@@ -69,6 +69,7 @@ pub const NAMES: &[&str] = &[
     "disc_hull_frustum_thin",
     "rounded_lathe_torus_thin",
     "hull_parts_coarse",
+    "pov_clearance_wide",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -12,7 +12,19 @@
 //!   `interior { ior }`. POV weighs a transmitting surface's own colour by
 //!   1 − kt where the lecture's model adds both, so glass differs a little.
 //! * `assumed_gamma 1.0` and `max_trace_level`, `adc_bailout 1/512` as
-//!   csgrt's ray tree. Render with `+FN +W… +H… File_Gamma=1.0` to match.
+//!   csgrt's ray tree. csgrt's 8-bit images hold linear values, so POV-Ray
+//!   matches them only with `File_Gamma=1.0` (an INI option no scene can
+//!   set): the file's first lines give the command.
+//! * Coincident faces: where a difference takes away a part whose face lies
+//!   on a face of what it is taken from (an extruded ring: two cylinders of
+//!   one height), POV-Ray cannot tell which face is in front and draws
+//!   either. csgrt decides such faces exactly; the export gives each part
+//!   a difference takes away a clearance instead: the part scaled by
+//!   1 + 2·[`CLEARANCE`] about its box's centre (a part taken away inside
+//!   a part taken away shrinks by as much), written after its matrix as
+//!   `translate -c scale k translate c`. Its faces move by at most
+//!   [`CLEARANCE`] of its box's diagonal: no pixel of an image under
+//!   10,000 pixels across the part.
 
 use crate::csg::{Csg, NodeKind};
 use crate::math::boolean::Op;
@@ -45,7 +57,13 @@ pub const SECTION_ERROR: &str =
 pub const XOR_ERROR: &str =
     "#error \"csgrt: a drawing's outlines combined even-odd have no POV-Ray equivalent\"";
 
-fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
+/// How far (a fraction of its box's diagonal) a part that a difference
+/// takes away is grown past the faces it may share (see the module's text).
+pub const CLEARANCE: f64 = 1e-4;
+
+/// `clear`: +1 for a part a difference takes away (grown by the
+/// clearance), −1 for one taken away from such a part (shrunk), 0 else.
+fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, clear: i8, out: &mut String) {
     let pad = "  ".repeat(depth);
     let n = &csg.nodes[id as usize];
     let (word, kids) = match &n.kind {
@@ -63,10 +81,26 @@ fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
             let prim = &csg.prims[*p as usize];
             let solid = prim.shape.pov();
             let m = &scene.materials[prim.material as usize];
+            let mut placed = matrix(&prim.xf.to_world);
+            if clear != 0 && prim.bounds.is_bounded() && !prim.bounds.is_empty() {
+                let c = prim.bounds.center();
+                let room = if crate::mutant::active("pov_clearance_wide") {
+                    100.0 * CLEARANCE
+                } else {
+                    CLEARANCE
+                };
+                let k = 1.0 + 2.0 * room * clear as f64;
+                let _ = write!(
+                    placed,
+                    " translate {} scale {k:?} translate {}",
+                    v(-c),
+                    v(c)
+                );
+            }
             let _ = writeln!(
                 out,
                 "{pad}{solid} {}\n{pad}  texture {{ pigment {{ color rgbt <{:?}, {:?}, {:?}, {:?}> }} finish {{ ambient {:?} diffuse {:?} phong {:?} phong_size {:?} reflection {:?} }} }}{}\n{pad}}}",
-                matrix(&prim.xf.to_world),
+                placed,
                 m.color.x,
                 m.color.y,
                 m.color.z,
@@ -86,8 +120,14 @@ fn node(scene: &Scene, csg: &Csg, id: u32, depth: usize, out: &mut String) {
         }
     };
     let _ = writeln!(out, "{pad}{word} {{");
-    for &c in kids {
-        node(scene, csg, c, depth + 1, out);
+    for (i, &c) in kids.iter().enumerate() {
+        let taken = matches!(n.kind, NodeKind::Op(Op::Difference, _)) && i > 0;
+        let sign = match (taken, clear) {
+            (false, s) => s,
+            (true, 0) => 1,
+            (true, s) => -s,
+        };
+        node(scene, csg, c, depth + 1, sign, out);
     }
     let _ = writeln!(out, "{pad}}}");
 }
@@ -105,7 +145,15 @@ pub fn scene_sdl(
         Light::Ambient { color } => a + *color,
         _ => a,
     });
-    let _ = writeln!(out, "// Written by csgrt --export-pov.\n#version 3.7;");
+    let _ = writeln!(
+        out,
+        "// Written by csgrt --export-pov. To match csgrt's image (linear 8-bit values):\n\
+         //   povray +IFILE.pov +OFILE.png +W{width} +H{height} +A0.3 File_Gamma=1.0\n\
+         // Parts a difference takes away are scaled by 1 ± {:?} about their box's centre\n\
+         // (`translate scale translate` after their matrix), clear of the faces they share.\n\
+         #version 3.7;",
+        2.0 * CLEARANCE
+    );
     let _ = writeln!(
         out,
         "global_settings {{ assumed_gamma 1.0 max_trace_level {} adc_bailout 1/512 ambient_light color rgb {} }}",
@@ -176,7 +224,7 @@ pub fn scene_sdl(
         }
     }
     if let Some(r) = scene.csg.root {
-        node(scene, &scene.csg, r, 0, &mut out);
+        node(scene, &scene.csg, r, 0, 0, &mut out);
     }
     out
 }

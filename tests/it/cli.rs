@@ -1253,3 +1253,60 @@ fn scad_messages_point_into_the_users_files() {
     std::fs::remove_dir_all(kept.parent().unwrap()).unwrap();
     assert_eq!(files(dir.path()), ["part.scad", "w.png"]);
 }
+
+/// The numbers of the `translate … scale k translate …` after the
+/// leaf's matrix on `line`: (k, the centre).
+fn clearance(line: &str) -> Option<(f64, f64)> {
+    let (_, tail) = line.split_once(" translate ")?;
+    let nums: Vec<f64> = tail
+        .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-' || c == 'e'))
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    // -cx -cy -cz k cx cy cz
+    Some((nums[3], nums[6]))
+}
+
+/// An extruded ring is a difference of two cylinders of one height: the
+/// one taken away must reach past both caps it shares (POV-Ray draws a
+/// solid disc where they coincide), and by no more than the clearance.
+#[test]
+fn a_part_taken_away_clears_the_caps_it_shares() {
+    let src = csgrt::Source::new(
+        "r.csg",
+        "linear_extrude(height = 4) difference() { circle(r = 25); circle(r = 23); }\n",
+    );
+    let scene = csgrt::load_csg(&src).unwrap();
+    let sdl = csgrt::export::pov::scene_sdl(&scene, &scene.view(80, 60), 80, 60, 5);
+    let cyl: Vec<&str> = sdl.lines().filter(|l| l.contains("cylinder {")).collect();
+    assert_eq!(cyl.len(), 2, "{sdl}");
+    assert!(clearance(cyl[0]).is_none(), "{sdl}");
+    let (k, cz) = clearance(cyl[1]).expect("a clearance on the part taken away");
+    // z from 0 to 4 about the centre 2, scaled by k.
+    let (lo, hi) = (cz - k * 2.0, cz + k * 2.0);
+    assert!(lo < 0.0 && hi > 4.0, "{lo} {hi}");
+    assert!(
+        (k - 1.0) <= 2.0 * csgrt::export::pov::CLEARANCE * (1.0 + 1e-12),
+        "{k}"
+    );
+    // Taken away from a part taken away: shrunk.
+    let src = csgrt::Source::new(
+        "n.csg",
+        "difference() { cube(10); difference() { cube([5, 5, 10]); cube([2, 2, 10]); } }\n",
+    );
+    let scene = csgrt::load_csg(&src).unwrap();
+    let sdl = csgrt::export::pov::scene_sdl(&scene, &scene.view(80, 60), 80, 60, 5);
+    let ks: Vec<f64> = sdl
+        .lines()
+        .filter(|l| l.contains("box {"))
+        .map(|l| clearance(l).map_or(1.0, |c| c.0))
+        .collect();
+    assert_eq!(
+        ks,
+        [
+            1.0,
+            1.0 + 2.0 * csgrt::export::pov::CLEARANCE,
+            1.0 - 2.0 * csgrt::export::pov::CLEARANCE
+        ],
+        "{sdl}"
+    );
+}

@@ -17,7 +17,7 @@ beside it at their own relative paths, so that the export reads them as
 OpenSCAD did), the licence to OUT/owner+name/LICENSE*, and one line a model
 to OUT/SOURCES.md (repository, commit, path, licence).
 
-Which repositories: those of the survey (README, "People's models") whose
+Which repositories: those of the survey (docs/DETAILS.md, "People's models") whose
 snapshot carries a licence that lets a copy be kept here.
 """
 

@@ -12,7 +12,7 @@ error line, with file names and positions taken out, is its reason. Prints
 the counts and the reasons, most frequent first; `--json` writes them.
 
 Needs `openscad` (Debian `openscad`) on PATH. The models are not part of
-csgrt: point it at any folder of people's models (the README says which
+csgrt: point it at any folder of people's models (docs/DETAILS.md says which
 public repositories the last survey used).
 """
 

@@ -2,7 +2,7 @@
 """Deliberately wrong builds of csgrt must fail the oracle and the accuracy
 tool; the real build must pass them (that is .ci/run's own oracle line).
 
-The POV-Ray export is read back by tools/oracle/pov_check.py for four of them.
+The POV-Ray export is read back by tools/oracle/pov_check.py for five of them.
 
 A mutant build (`cargo build --release --features mutants`, its binary
 copied to target/mutants/release/csgrt before the real build replaces it:
@@ -56,6 +56,8 @@ MUTANTS = {
     "ellipse_turned_back": (["tests/openscad/twisted_circles.csg"], ["twisted_ellipse"]),
     "svg_arcs_as_chords": (["tests/openscad/svg.csg"], False),
     "hull_gjk_normals": ([], ["hull_spheres", "rounded_box"]),
+    # (caught by pov_check.py alone: POV below)
+    "pov_clearance_wide": ([], False),
     "minkowski_moved_twice": (["tests/openscad/minkowski.csg"], False),
     "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
@@ -130,6 +132,7 @@ POV = {
     "sphere_small": "models/seed.ray",
     "color_ignored": "models/csg_ops.csg",
     "compose_reversed": "models/csg_ops.csg",
+    "pov_clearance_wide": "models/csg_ops.csg",
 }
 
 SIZE, SEGMENTS, RAYS = (160, 120), [64, 128, 256, 512], 400  # as .ci/run's oracle line
