@@ -77,8 +77,9 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
         Some("scad") => {
             let export = crate::import::scad::export(path, defines)?;
             let loaded = load_scad_frame(&export.frames[0], facets);
-            if loaded.is_err() {
-                // The message may point into the export: kept for it.
+            let name = &export.frames[0].source.name;
+            if loaded.as_ref().map_or(true, |s| s.mentions(name)) {
+                // A message points into the export (or may): kept for it.
                 export.keep();
             }
             loaded

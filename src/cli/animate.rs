@@ -80,13 +80,17 @@ fn model_frames(cli: &Cli, frames: &[Job]) -> Result<Vec<Result<()>>> {
     for s in said_once {
         eprintln!("{s}");
     }
+    let kept = told.iter().enumerate().any(|(i, t)| match t {
+        Ok((scene, _)) => scene.mentions(&export.frames[i].source.name),
+        Err(_) => true,
+    });
     let results: Vec<Result<()>> = told
         .into_par_iter()
         .zip(frames.par_iter())
         .map(|(scene, job)| scene.and_then(|(scene, _)| render_files(cli, job, &scene, false)))
         .collect();
-    if results.iter().any(|r| matches!(r, Err(Error::Scene(_)))) {
-        // A message may point into the export: kept for it.
+    if kept {
+        // A message points into the export (or may): kept for it.
         export.keep();
     }
     Ok(results)

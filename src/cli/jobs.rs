@@ -147,23 +147,31 @@ pub(super) fn scene_of(cli: &Cli, job: &Job) -> Result<Scene> {
 }
 
 /// [`scene_of`], and the files it was read from: the model, and for a
-/// `.scad` model what OpenSCAD says it read.
-pub(super) fn watched_scene(cli: &Cli, job: &Job) -> Result<(Scene, Vec<PathBuf>)> {
+/// `.scad` model what OpenSCAD says it read. A `.scad` model's export that
+/// a message points into is kept, in place of the one `kept` names (the
+/// last render's), which is removed.
+pub(super) fn watched_scene(
+    cli: &Cli,
+    job: &Job,
+    kept: &mut Option<PathBuf>,
+) -> Result<(Scene, Vec<PathBuf>)> {
     if !is_scad(&job.model) {
         return Ok((scene_of(cli, job)?, vec![job.model.clone()]));
     }
     let export = csgrt::import::scad::export_frames(&job.model, &job.defines, None, true)?;
-    let mut scene = match csgrt::load_scad_frame(&export.frames[0], cli.facets) {
-        Ok(s) => s,
-        Err(e) => {
-            export.keep();
-            return Err(e);
+    let loaded = csgrt::load_scad_frame(&export.frames[0], cli.facets);
+    let name = &export.frames[0].source.name;
+    let deps = export.deps.clone();
+    if loaded.as_ref().map_or(true, |s| s.mentions(name)) {
+        if let Some(old) = kept.replace(export.keep()) {
+            let _ = std::fs::remove_dir_all(old);
         }
-    };
+    }
+    let mut scene = loaded?;
     for said in finish_scene(cli, &mut scene, None)? {
         eprintln!("{said}");
     }
-    Ok((scene, export.deps))
+    Ok((scene, deps))
 }
 
 /// The command line's view and colours applied to a loaded scene (with

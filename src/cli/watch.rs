@@ -49,8 +49,10 @@ pub(crate) fn watch(cli: &Cli, job: &Job) -> Result<()> {
     let mut watcher = notify::recommended_watcher(tx).map_err(|e| failed("<file watcher>", e))?;
     let mut folders = HashSet::new();
     let mut files: HashSet<PathBuf> = HashSet::new();
+    // The last export kept for a message (one at a time).
+    let mut kept = None;
     loop {
-        let read = match watched_scene(cli, job) {
+        let read = match watched_scene(cli, job, &mut kept) {
             Ok((scene, deps)) => render_files(cli, job, &scene, true).map(|()| deps),
             Err(e) => Err(e),
         };

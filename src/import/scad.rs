@@ -5,7 +5,7 @@
 //! model names resolve against the model's own folder. Nothing is written
 //! beside the model.
 
-use crate::error::{Error, Result};
+use crate::error::{Error, Result, Severity};
 use crate::source::Source;
 use std::path::{Path, PathBuf};
 
@@ -138,8 +138,9 @@ pub fn export_frames(
             .map(|i| folder.path().join(format!("{stem}{i:05}.csg")))
             .collect(),
     };
-    let told = told(path, &said);
-    if !run.status.success() || !files.iter().all(|f| f.is_file()) {
+    let failed = !run.status.success() || !files.iter().all(|f| f.is_file());
+    let told = told(path, &said, failed);
+    if failed {
         // The first error OpenSCAD placed is the error, after what it
         // said before it; without one, all it said.
         if let Some(i) = told.iter().position(|t| t.stops) {
@@ -236,8 +237,11 @@ struct Told {
 /// What OpenSCAD said worth passing on (its warnings, errors, traces and
 /// deprecations; not its progress, nor csgrt's own echo, nor the viewall
 /// notice csgrt's own `--viewall` causes), each placed in the file and
-/// line it names when that file can be read.
-fn told(path: &Path, said: &str) -> Vec<Told> {
+/// line it names when that file can be read. An error stops csgrt only
+/// when the export `failed`; after an export that worked (OpenSCAD goes
+/// on past a failed `assert` with what it has), it is a warning; a trace is
+/// a note.
+fn told(path: &Path, said: &str, failed: bool) -> Vec<Told> {
     let mut out = Vec::new();
     for line in said.lines() {
         let Some((tag, rest)) = ["WARNING:", "DEPRECATED:", "ERROR:", "TRACE:"]
@@ -249,13 +253,27 @@ fn told(path: &Path, said: &str) -> Vec<Told> {
         if rest.contains("disabled in favor of $vp*") {
             continue;
         }
-        let stops = tag == "ERROR:";
-        let placed = placed(path, rest, stops);
+        let stops = failed && tag == "ERROR:";
+        let severity = match tag {
+            _ if stops => Severity::Error,
+            "TRACE:" => Severity::Note,
+            _ => Severity::Warning,
+        };
+        let says = if tag == "ERROR:" && !stops {
+            "OpenSCAD reports an error, and renders what it has"
+        } else {
+            "OpenSCAD says"
+        };
+        let placed = placed(path, rest, severity, says);
         let text = match &placed {
             Some(e) => e.to_string(),
             None => format!(
-                "{}: {}: OpenSCAD says: {}",
-                if stops { "error" } else { "warning" },
+                "{}: {}: {says}: {}",
+                match severity {
+                    Severity::Error => "error",
+                    Severity::Note => "note",
+                    _ => "warning",
+                },
                 crate::error::printable(&path.display().to_string()),
                 crate::error::printable(rest)
             ),
@@ -274,7 +292,7 @@ fn told(path: &Path, said: &str) -> Vec<Told> {
 /// F (found beside the program, or from the working folder), the whole
 /// line under the caret; `None` when it names no line or the file cannot
 /// be read.
-fn placed(path: &Path, said: &str, stops: bool) -> Option<Error> {
+fn placed(path: &Path, said: &str, severity: Severity, says: &str) -> Option<Error> {
     let (message, place) = said.rsplit_once(" in file ")?;
     let (file, line) = place.rsplit_once(", line ")?;
     let line: usize = line.trim().parse().ok()?;
@@ -301,15 +319,10 @@ fn placed(path: &Path, said: &str, stops: bool) -> Option<Error> {
     let body = text.split('\n').next().unwrap_or("").trim_end_matches('\r');
     let lead = body.len() - body.trim_start().len();
     let range = crate::error::TextRange::new(start + lead, start + body.trim_end().len());
-    let severity = if stops {
-        crate::error::Severity::Error
-    } else {
-        crate::error::Severity::Warning
-    };
     Some(Error::Scene(Box::new(src.diagnostic(
         severity,
         range,
-        format!("OpenSCAD says: {message}"),
+        format!("{says}: {message}"),
         "on this line (OpenSCAD gives no column)",
     ))))
 }

@@ -158,6 +158,15 @@ impl Approximation {
 }
 
 impl Scene {
+    /// Whether a warning or note of the scene points into the file `name`
+    /// (a `.scad` model's export, kept then for the message).
+    pub fn mentions(&self, name: &str) -> bool {
+        self.warnings
+            .iter()
+            .chain(self.approximations.iter().map(|a| &a.note))
+            .any(|d| d.file == name)
+    }
+
     /// OpenSCAD's colour scheme `scheme` where the file says nothing: its
     /// background, and its face colour on every solid without a colour.
     pub fn apply_color_scheme(&mut self, scheme: &defaults::ColorScheme) {

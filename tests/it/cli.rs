@@ -1251,6 +1251,33 @@ fn scad_messages_point_into_the_users_files() {
     assert!(kept.ends_with("part.csg") && kept.is_file(), "{said}");
     assert_eq!(std::fs::read_to_string(kept).unwrap(), "cube(sise = 2);\n");
     std::fs::remove_dir_all(kept.parent().unwrap()).unwrap();
+    // OpenSCAD goes on past a failed assert with what it has (nothing
+    // here): its error is a warning, its trace a note, and csgrt's own
+    // warning about the empty export names the export, kept for it.
+    let bin = common::fake_openscad(
+        "echo \"ERROR: Assertion 'false' failed in file part.scad, line 1\" >&2\n\
+         echo \"TRACE: called by 'assert' in file part.scad, line 1\" >&2\n\
+         printf '' > \"$2\"",
+    );
+    let (status, said) =
+        common::csgrt_with_path(dir.path(), bin.path(), &["part.scad", "-q", "-o", "w.png"]);
+    assert_eq!(status, 0, "{said}");
+    assert!(said.starts_with("warning: OpenSCAD reports an error, and renders what it has: Assertion 'false' failed\n --> part.scad:1:1\n"), "{said}");
+    assert!(
+        said.contains("\nnote: OpenSCAD says: called by 'assert'\n --> part.scad:1:1\n"),
+        "{said}"
+    );
+    let at = said
+        .lines()
+        .find(|l| l.contains("csgrt-export-"))
+        .expect(&said);
+    let kept = std::path::Path::new(
+        at.trim_start_matches(" --> ")
+            .strip_suffix(":1:1")
+            .expect(&said),
+    );
+    assert!(kept.is_file(), "{said}");
+    std::fs::remove_dir_all(kept.parent().unwrap()).unwrap();
     assert_eq!(files(dir.path()), ["part.scad", "w.png"]);
 }
 
