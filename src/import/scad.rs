@@ -234,8 +234,9 @@ struct Told {
     error: Option<Error>,
 }
 
-/// What OpenSCAD said worth passing on (its warnings, errors, traces and
-/// deprecations; not its progress, nor csgrt's own echo, nor the viewall
+/// What OpenSCAD said worth passing on (the program's echoes, OpenSCAD's
+/// warnings, errors, traces and deprecations; not its progress, nor
+/// csgrt's own echo, nor the viewall
 /// notice csgrt's own `--viewall` causes), each placed in the file and
 /// line it names when that file can be read. An error stops csgrt only
 /// when the export `failed`; after an export that worked (OpenSCAD goes
@@ -244,6 +245,17 @@ struct Told {
 fn told(path: &Path, said: &str, failed: bool) -> Vec<Told> {
     let mut out = Vec::new();
     for line in said.lines() {
+        // The program's own `echo` output, as OpenSCAD prints it (not
+        // csgrt's echo of the view).
+        if line.starts_with("ECHO: ") && !line.starts_with(&format!("ECHO: {VIEW_ECHO} ")) {
+            out.push(Told {
+                text: crate::error::printable(line).into_owned(),
+                said: line.to_string(),
+                stops: false,
+                error: None,
+            });
+            continue;
+        }
         let Some((tag, rest)) = ["WARNING:", "DEPRECATED:", "ERROR:", "TRACE:"]
             .iter()
             .find_map(|t| line.strip_prefix(t).map(|r| (*t, r.trim())))

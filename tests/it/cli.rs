@@ -1230,9 +1230,13 @@ fn scad_messages_point_into_the_users_files() {
         said,
         "error: OpenSCAD says: Parser error: syntax error\n --> part.scad:2:3\n  |\n2 |   sphere(r=;\n  |   ^^^^^^^^^^ on this line (OpenSCAD gives no column)\n"
     );
-    // A warning at a line is placed too, and the render goes on.
+    // A warning at a line is placed too, and the render goes on; the
+    // program's echoes are passed on as OpenSCAD prints them (not csgrt's
+    // own echo of the view).
     let bin = common::fake_openscad(
         "echo \"WARNING: Ignoring unknown variable 'q' in file part.scad, line 1\" >&2\n\
+         echo 'ECHO: \"width\", 20' >&2\n\
+         echo 'ECHO: __csgrt_view = [[0, 0, 0], [0, 0, 0], 500, 22.5]' >&2\n\
          printf 'cube(size = [10, 10, 10], center = false);\\n' > \"$2\"",
     );
     let (status, said) =
@@ -1240,7 +1244,7 @@ fn scad_messages_point_into_the_users_files() {
     assert_eq!(status, 0, "{said}");
     assert_eq!(
         said,
-        "warning: OpenSCAD says: Ignoring unknown variable 'q'\n --> part.scad:1:1\n  |\n1 | cube(10);\n  | ^^^^^^^^^ on this line (OpenSCAD gives no column)\n"
+        "warning: OpenSCAD says: Ignoring unknown variable 'q'\n --> part.scad:1:1\n  |\n1 | cube(10);\n  | ^^^^^^^^^ on this line (OpenSCAD gives no column)\nECHO: \"width\", 20\n"
     );
     // csgrt's own error in the export: the export is kept and named.
     let bin = common::fake_openscad("printf 'cube(sise = 2);\\n' > \"$2\"");
