@@ -52,6 +52,17 @@ pub enum Severity {
     Note,
 }
 
+impl Severity {
+    /// How a message of this severity begins (`error`, `warning`, `note`).
+    pub fn word(self) -> &'static str {
+        match self {
+            Severity::Error | Severity::Lenient => "error",
+            Severity::Warning => "warning",
+            Severity::Note => "note",
+        }
+    }
+}
+
 /// A message tied to a place in a source file.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Diagnostic {
@@ -68,11 +79,7 @@ pub struct Diagnostic {
 
 impl fmt::Display for Diagnostic {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let kind = match self.severity {
-            Severity::Error | Severity::Lenient => "error",
-            Severity::Warning => "warning",
-            Severity::Note => "note",
-        };
+        let kind = self.severity.word();
         let num = self.line.to_string();
         let pad = " ".repeat(num.len());
         writeln!(f, "{kind}: {}", printable(&self.message))?;

@@ -59,6 +59,12 @@ pub fn load_scad_frame(frame: &import::scad::Frame, facets: scene::Facets) -> Re
     Ok(scene)
 }
 
+/// Whether a frame's export must be kept: a message of its scene points
+/// into it, or loading it failed (`None`: its error may).
+pub fn keeps_export(loaded: Option<&Scene>, frame: &import::scad::Frame) -> bool {
+    loaded.map_or(true, |s| s.mentions(&frame.source.name))
+}
+
 /// Loads a model by its extension.
 pub fn load(path: &Path) -> Result<Scene> {
     load_with(path, crate::scene::Facets::default())
@@ -77,9 +83,7 @@ pub fn load_model(path: &Path, facets: crate::scene::Facets, defines: &[String])
         Some("scad") => {
             let export = crate::import::scad::export(path, defines)?;
             let loaded = load_scad_frame(&export.frames[0], facets);
-            let name = &export.frames[0].source.name;
-            if loaded.as_ref().map_or(true, |s| s.mentions(name)) {
-                // A message points into the export (or may): kept for it.
+            if keeps_export(loaded.as_ref().ok(), &export.frames[0]) {
                 export.keep();
             }
             loaded

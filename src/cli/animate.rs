@@ -50,19 +50,27 @@ fn model_frames(cli: &Cli, frames: &[Job]) -> Result<Vec<Result<()>>> {
         false,
     )?;
     let load = |i: usize| csgrt::load_scad_frame(&export.frames[i], cli.facets);
-    // What every frame frames, and what the frames say (each thing once,
-    // in the order first said).
-    let seen: Vec<Result<(Aabb, Aabb)>> = (0..frames.len())
+    // The box every frame frames: OpenSCAD's box of the result under its
+    // camera options, else csgrt's framing box (each found by casting rays:
+    // only the one used).
+    let openscad_view = cli.camera.is_some() || cli.viewall || cli.autocenter;
+    let seen: Vec<Result<Aabb>> = (0..frames.len())
         .into_par_iter()
-        .map(|i| load(i).map(|s| (s.framing_bounds(), s.result_bounds())))
+        .map(|i| {
+            load(i).map(|s| {
+                if openscad_view {
+                    s.result_bounds()
+                } else {
+                    s.framing_bounds()
+                }
+            })
+        })
         .collect();
-    let (mut framing, mut result) = (Aabb::EMPTY, Aabb::EMPTY);
-    for (f, r) in seen.iter().flatten() {
-        framing = framing.union(f);
-        result = result.union(r);
-    }
-    let both_views = cli.camera.is_some() || cli.viewall || cli.autocenter;
-    let whole = if both_views { result } else { framing };
+    let whole = seen
+        .iter()
+        .flatten()
+        .fold(Aabb::EMPTY, |all, b| all.union(b));
+    // What the frames say is said once (each thing in the order first said).
     let told: Vec<Result<(csgrt::Scene, Vec<String>)>> = (0..frames.len())
         .into_par_iter()
         .map(|i| {
@@ -80,10 +88,10 @@ fn model_frames(cli: &Cli, frames: &[Job]) -> Result<Vec<Result<()>>> {
     for s in said_once {
         eprintln!("{s}");
     }
-    let kept = told.iter().enumerate().any(|(i, t)| match t {
-        Ok((scene, _)) => scene.mentions(&export.frames[i].source.name),
-        Err(_) => true,
-    });
+    let kept = told
+        .iter()
+        .zip(&export.frames)
+        .any(|(t, frame)| csgrt::keeps_export(t.as_ref().ok().map(|(s, _)| s), frame));
     let results: Vec<Result<()>> = told
         .into_par_iter()
         .zip(frames.par_iter())

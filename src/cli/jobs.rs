@@ -160,9 +160,8 @@ pub(super) fn watched_scene(
     }
     let export = csgrt::import::scad::export_frames(&job.model, &job.defines, None, true)?;
     let loaded = csgrt::load_scad_frame(&export.frames[0], cli.facets);
-    let name = &export.frames[0].source.name;
     let deps = export.deps.clone();
-    if loaded.as_ref().map_or(true, |s| s.mentions(name)) {
+    if csgrt::keeps_export(loaded.as_ref().ok(), &export.frames[0]) {
         if let Some(old) = kept.replace(export.keep()) {
             let _ = std::fs::remove_dir_all(old);
         }

@@ -351,7 +351,12 @@ fn check_target(path: &Path, model: &Path) -> Result<()> {
     }
     // The rename would replace a device or a pipe (say `/dev/null`) with a
     // file, and a folder cannot be replaced at all: only regular files.
-    if let Ok(m) = std::fs::metadata(path) {
+    if let Ok(m) = std::fs::symlink_metadata(path) {
+        let m = if m.file_type().is_symlink() {
+            std::fs::metadata(path).unwrap_or(m)
+        } else {
+            m
+        };
         if m.is_dir() {
             return refuse("it is a folder");
         }

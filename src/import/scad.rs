@@ -169,11 +169,7 @@ pub fn export_frames(
         .map(view_of)
         .collect::<Vec<_>>();
     let sets_view = said.contains("disabled in favor of $vp*");
-    let folder_of_model = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."))
-        .to_path_buf();
+    let folder_of_model = path.parent().unwrap_or(Path::new(""));
     let mut out_frames = Vec::with_capacity(files.len());
     for (i, f) in files.iter().enumerate() {
         let text = crate::source::read_source(f)?.text;
@@ -183,7 +179,7 @@ pub fn export_frames(
             None
         };
         out_frames.push(Frame {
-            source: Source::new(f.display().to_string(), text).with_folder(&folder_of_model),
+            source: Source::new(f.display().to_string(), text).with_folder(folder_of_model),
             view: view.or(sets_view.then_some(ScadView::default())),
         });
     }
@@ -281,11 +277,7 @@ fn told(path: &Path, said: &str, failed: bool) -> Vec<Told> {
             Some(e) => e.to_string(),
             None => format!(
                 "{}: {}: {says}: {}",
-                match severity {
-                    Severity::Error => "error",
-                    Severity::Note => "note",
-                    _ => "warning",
-                },
+                severity.word(),
                 crate::error::printable(&path.display().to_string()),
                 crate::error::printable(rest)
             ),

@@ -167,12 +167,6 @@ impl Resolver<'_> {
         );
     }
 
-    /// Where a file the model names (`import`, `surface`) is read from:
-    /// joined to the model's folder (an absolute name stays as it is).
-    fn named_file(&self, file: &str) -> std::path::PathBuf {
-        self.src.beside(file)
-    }
-
     /// The bytes of a file the model names, or an error at `place` with
     /// the system's reason: "cannot read `what` `path`: …".
     fn read_named(

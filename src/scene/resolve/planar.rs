@@ -454,7 +454,7 @@ impl Resolver<'_> {
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase())
             .unwrap_or_default();
-        Ok((file, span, ext, self.named_file(file)))
+        Ok((file, span, ext, self.src.beside(file)))
     }
 
     /// `import()` of a drawing (DXF or SVG), under `m`.

@@ -464,7 +464,7 @@ fn surface(
     };
     let center = a.boolean("center")?.unwrap_or(false);
     let invert = a.boolean("invert")?.unwrap_or(false);
-    let path = res.named_file(file);
+    let path = res.src.beside(file);
     let label = "expected a .dat grid or a PNG image beside the scene";
     let bytes = res.read_named(span, &path, "heights", label)?;
     let (h, warning) = crate::import::meshfile::heights(&bytes, invert).map_err(|e| {
