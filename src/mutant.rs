@@ -70,6 +70,9 @@ pub const NAMES: &[&str] = &[
     "rounded_lathe_torus_thin",
     "hull_parts_coarse",
     "pov_clearance_wide",
+    "srgb_skipped",
+    "fill_shadowed",
+    "pov_shadows_kept",
 ];
 
 /// Whether the fault `name` is switched on.

@@ -57,12 +57,16 @@ fn node(csg: &Csg, id: u32) -> Value {
 
 pub fn scene_json(scene: &Scene, cam: &CameraSpec, width: u32, height: u32) -> Value {
     let lights: Vec<Value> = scene
-        .lights
+        .lights_seen_by(cam)
         .iter()
         .map(|l| match *l {
             Light::Ambient { color } => json!({"type": "ambient", "color": v3(color)}),
-            Light::Directional { color, direction } => {
-                json!({"type": "directional", "color": v3(color), "direction": v3(direction)})
+            Light::Directional {
+                color,
+                direction,
+                shadows,
+            } => {
+                json!({"type": "directional", "color": v3(color), "direction": v3(direction), "shadows": shadows})
             }
             Light::Point { color, position } => {
                 json!({"type": "point", "color": v3(color), "position": v3(position)})

@@ -11,10 +11,13 @@
 //!   `phong ks phong_size ns`, `reflection kr`; `transmit kt` with an
 //!   `interior { ior }`. POV weighs a transmitting surface's own colour by
 //!   1 − kt where the lecture's model adds both, so glass differs a little.
-//! * `assumed_gamma 1.0` and `max_trace_level`, `adc_bailout 1/512` as
-//!   csgrt's ray tree. csgrt's 8-bit images hold linear values, so POV-Ray
-//!   matches them only with `File_Gamma=1.0` (an INI option no scene can
-//!   set): the file's first lines give the command.
+//! * Colours: the scene's linear values (csgrt decodes the sRGB colours a
+//!   file gives) under `assumed_gamma 1.0`; POV-Ray encodes its 8-bit
+//!   output as sRGB by default, as csgrt does, so its plain command matches
+//!   (the file's first lines give it). `max_trace_level`, `adc_bailout
+//!   1/512` as csgrt's ray tree.
+//! * Lights: the picture's (csgrt's default rig, placed about the camera,
+//!   where the file gives none); a light without shadows is `shadowless`.
 //! * Coincident faces: where a difference takes away a part whose face lies
 //!   on a face of what it is taken from (an extruded ring: two cylinders of
 //!   one height), POV-Ray cannot tell which face is in front and draws
@@ -141,14 +144,15 @@ pub fn scene_sdl(
     max_depth: u32,
 ) -> String {
     let mut out = String::new();
-    let ambient = scene.lights.iter().fold(DVec3::ZERO, |a, l| match l {
+    let lights = scene.lights_seen_by(cam);
+    let ambient = lights.iter().fold(DVec3::ZERO, |a, l| match l {
         Light::Ambient { color } => a + *color,
         _ => a,
     });
     let _ = writeln!(
         out,
-        "// Written by csgrt --export-pov. To match csgrt's image (linear 8-bit values):\n\
-         //   povray +IFILE.pov +OFILE.png +W{width} +H{height} +A0.3 File_Gamma=1.0\n\
+        "// Written by csgrt --export-pov. To match csgrt's image (colours linear, the PNG sRGB):\n\
+         //   povray +IFILE.pov +OFILE.png +W{width} +H{height} +A0.3\n\
          // Parts a difference takes away are scaled by 1 ± {:?} about their box's centre\n\
          // (`translate scale translate` after their matrix), clear of the faces they share.\n\
          #version 3.7;",
@@ -202,7 +206,7 @@ pub fn scene_sdl(
         };
         (size.max(1.0)) * 1e4
     };
-    for l in &scene.lights {
+    for l in lights.iter() {
         match *l {
             Light::Ambient { .. } => {}
             Light::Point { color, position } => {
@@ -213,12 +217,21 @@ pub fn scene_sdl(
                     v(color)
                 );
             }
-            Light::Directional { color, direction } => {
+            Light::Directional {
+                color,
+                direction,
+                shadows,
+            } => {
                 let _ = writeln!(
                     out,
-                    "light_source {{ {} color rgb {} parallel point_at <0, 0, 0> }}",
+                    "light_source {{ {} color rgb {} parallel point_at <0, 0, 0>{} }}",
                     v(-direction * far),
-                    v(color)
+                    v(color),
+                    if shadows || crate::mutant::active("pov_shadows_kept") {
+                        ""
+                    } else {
+                        " shadowless"
+                    }
                 );
             }
         }

@@ -1,5 +1,10 @@
 //! Rendering: camera rays → CSG queries → shading → an 8-bit image.
 //!
+//! Shading adds light in linear values (the scene's colours were decoded
+//! from sRGB when it was built); each pixel's bytes are its linear colour
+//! encoded as sRGB ([`srgb::byte`]), and HDR and EXR files keep the linear
+//! radiance itself.
+//!
 //! Rows are rendered in parallel with rayon; every pixel depends only on
 //! its own coordinates, so the bytes are the same for any thread count.
 
@@ -8,6 +13,7 @@ pub mod probe;
 pub mod sampler;
 pub mod shade;
 
+use crate::math::srgb;
 use crate::scene::{Light, Scene};
 use crate::stats::Stats;
 use camera::Camera;
@@ -72,21 +78,6 @@ pub struct Rendered {
     pub stats: Stats,
 }
 
-/// A channel value in [0, 1] as a byte: round(255·v), halves away from
-/// zero, no gamma. (`f64::round` is a library call on the x86-64
-/// baseline, a tenth of a plain scene's instructions; x minus its integer
-/// part is exact, so this is the same rounding: a unit test compares them.
-/// The clamp by two selects, NaN to 0, and the conversion through `i32`
-/// of a number already in [0, 255]: `f64::clamp`, which keeps a NaN, and
-/// the saturating conversion to `u8` made the pixel's three bytes some 60
-/// instructions more, an eighth of a background pixel's.)
-pub fn to_byte(v: f64) -> u8 {
-    let v = if v > 0.0 { v } else { 0.0 };
-    let x = if v < 1.0 { v } else { 1.0 } * 255.0;
-    let whole = x as i32;
-    (whole + (x - whole as f64 >= 0.5) as i32) as u8
-}
-
 /// Whether every component of `a` and `b` is finite: each times zero is
 /// zero (NaN for ±∞ and NaN), and so is their sum — one test, not the six
 /// branches of `is_finite` on each (a unit test compares them).
@@ -108,18 +99,17 @@ pub enum Progress {
 
 /// Renders the scene, telling `progress` how far it is.
 pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync)) -> Rendered {
-    let cam = Camera::new(&scene.view(s.width, s.height), s.width, s.height);
+    let spec = scene.view(s.width, s.height);
+    let cam = Camera::new(&spec, s.width, s.height);
+    let lights = scene.lights_seen_by(&spec);
     // The line families the rays come in: through the eye, or along the
     // orthographic view; along each directional light's shadow rays.
-    let mut dirs: Vec<DVec3> = scene
-        .lights
-        .iter()
-        .filter_map(Light::shadow_direction)
-        .collect();
+    let mut dirs: Vec<DVec3> = lights.iter().filter_map(Light::shadow_direction).collect();
     dirs.extend(cam.parallel);
     let eye = cam.parallel.is_none().then_some(cam.eye);
     let viewed = scene.csg.viewed(eye, &dirs);
-    let shader = Shader::with_csg(scene, viewed.as_ref().unwrap_or(&scene.csg), s.max_depth);
+    let csg = viewed.as_ref().unwrap_or(&scene.csg);
+    let shader = Shader::new(scene, csg, &lights, s.max_depth);
     // The mean of a pixel's `n` samples (non-finite ones counted, not
     // summed): of their colours, and of their radiance before the last
     // clamp.
@@ -233,10 +223,17 @@ fn rows(
     }
 }
 
-/// Pixel `x` of a row: the bytes of colour `c`, and radiance `r` if the
-/// row keeps it.
+/// Pixel `x` of a row: the sRGB bytes of linear colour `c`, and radiance
+/// `r` if the row keeps it.
 fn put(row: &mut [u8], lrow: &mut [f32], x: usize, (c, r): (DVec3, DVec3)) {
-    row[3 * x..3 * x + 3].copy_from_slice(&[to_byte(c.x), to_byte(c.y), to_byte(c.z)]);
+    let byte = |v: f64| {
+        if crate::mutant::active("srgb_skipped") {
+            (v.clamp(0.0, 1.0) * 255.0).round() as u8
+        } else {
+            srgb::byte(v)
+        }
+    };
+    row[3 * x..3 * x + 3].copy_from_slice(&[byte(c.x), byte(c.y), byte(c.z)]);
     if !lrow.is_empty() {
         lrow[3 * x..3 * x + 3].copy_from_slice(&[r.x as f32, r.y as f32, r.z as f32]);
     }
@@ -290,51 +287,6 @@ pub fn mask(scene: &Scene, s: &Settings) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The byte by `f64::round`, as it was computed.
-    fn by_round(v: f64) -> u8 {
-        (v.clamp(0.0, 1.0) * 255.0).round() as u8
-    }
-
-    #[test]
-    fn a_byte_is_the_rounded_channel_to_the_last_ulp() {
-        // The halves between bytes, and the floats around them.
-        let mut vs = vec![
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            -0.0,
-            0.0,
-            1.0,
-            2.0,
-            -1.0,
-        ];
-        for k in 0..=256 {
-            for base in [(k as f64 + 0.5) / 255.0, k as f64 / 255.0] {
-                let mut v = base;
-                for _ in 0..40 {
-                    v = f64::from_bits(v.to_bits() - 1);
-                }
-                for _ in 0..80 {
-                    vs.push(v);
-                    v = f64::from_bits(v.to_bits() + 1);
-                }
-            }
-        }
-        // Channels whose 255·v is just under a half: 0.5 − 2⁻⁵⁴ rounds to
-        // 1 when 0.5 is added to it.
-        for x in [0.5f64, 1.5, 127.5, 254.5] {
-            let below = f64::from_bits(x.to_bits() - 1);
-            vs.push(below / 255.0);
-        }
-        let mut next = crate::plane::tests::uniform(12345);
-        for _ in 0..1_000_000 {
-            vs.push(next() * 1.2 - 0.1);
-        }
-        for v in vs {
-            assert_eq!(to_byte(v), by_round(v), "{v:e}");
-        }
-    }
 
     #[test]
     fn both_finite_is_every_component_finite() {

@@ -2,7 +2,8 @@
 //!
 //! For a hit with material (C, ka, kd, ks, ns, kr, kt, ior):
 //! * ambient: `ka·Ia·C`;
-//! * each directional or point light with `N·L > 0` that is not blocked:
+//! * each directional or point light with `N·L > 0` that is not blocked
+//!   (a directional light without shadows is never blocked):
 //!   `kd·(N·L)·C·Il + ks·(V·R)^ns·Il`, `R = 2(N·L)N − L`, only if `V·R > 0`;
 //!   a blocker dims the light by its transmission `kt` (slide 27's note),
 //!   an opaque one (kt = 0) blocks it;
@@ -11,6 +12,7 @@
 //!   internal reflection sending the ray back in; entering or leaving is
 //!   decided by the outward normal.
 //!
+//! Colours are linear (the scene decoded them from sRGB).
 //! Each channel is clamped to [0, 1] at every level, as slide 29 does (the
 //! camera ray's own radiance is also kept unclamped, for HDR and EXR). A
 //! secondary ray is cast only while the ray tree is shallower than
@@ -36,6 +38,8 @@ pub struct Shader<'a> {
     /// The scene's tree, or the copy of it prepared for this view
     /// ([`Csg::viewed`]).
     pub csg: &'a Csg,
+    /// The lights of this view ([`Scene::lights_seen_by`]).
+    pub lights: &'a [Light],
     pub max_depth: u32,
     /// Whether any material transmits: if none does, shadow rays need only
     /// find a blocker, not multiply transmissions.
@@ -43,16 +47,14 @@ pub struct Shader<'a> {
 }
 
 impl<'a> Shader<'a> {
-    pub fn new(scene: &'a Scene, max_depth: u32) -> Shader<'a> {
-        Shader::with_csg(scene, &scene.csg, max_depth)
-    }
-
-    /// A shader that queries `csg`, the scene's tree prepared for a view.
-    pub fn with_csg(scene: &'a Scene, csg: &'a Csg, max_depth: u32) -> Shader<'a> {
+    /// A shader of `scene` lit by `lights` that queries `csg`, the
+    /// scene's tree prepared for a view.
+    pub fn new(scene: &'a Scene, csg: &'a Csg, lights: &'a [Light], max_depth: u32) -> Shader<'a> {
         let any_transparent = scene.materials.iter().any(|m| m.kt > 0.0);
         Shader {
             scene,
             csg,
+            lights,
             max_depth,
             any_transparent,
         }
@@ -96,28 +98,34 @@ impl<'a> Shader<'a> {
         let ns = if n.dot(v) < 0.0 { -n } else { n };
         let err = point_error(p, ray.origin, hit.t * ray.dir);
         let mut color = DVec3::ZERO;
-        for light in &self.scene.lights {
-            let (l, dist, il) = match *light {
+        for light in self.lights {
+            let (l, dist, il, shadows) = match *light {
                 Light::Ambient { color: ia } => {
                     color += m.ka * ia * m.color;
                     continue;
                 }
-                Light::Directional { color, direction } => {
-                    (Light::towards(direction), f64::INFINITY, color)
-                }
+                Light::Directional {
+                    color,
+                    direction,
+                    shadows,
+                } => (Light::towards(direction), f64::INFINITY, color, shadows),
                 Light::Point { color, position } => {
                     let to = position - p;
                     let d = to.length();
-                    (to / d, d, color)
+                    (to / d, d, color, true)
                 }
             };
             let ndl = ns.dot(l);
             if ndl <= 0.0 || (m.kd <= 0.0 && m.ks <= 0.0) {
                 continue;
             }
-            let shadow = Ray::new(offset_origin(p, n, err, l), l);
-            st.shadow_rays += 1;
-            let pass = self.transmittance(&shadow, dist, st);
+            let pass = if shadows || crate::mutant::active("fill_shadowed") {
+                let shadow = Ray::new(offset_origin(p, n, err, l), l);
+                st.shadow_rays += 1;
+                self.transmittance(&shadow, dist, st)
+            } else {
+                1.0
+            };
             if pass <= 0.0 {
                 continue;
             }

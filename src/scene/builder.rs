@@ -1,13 +1,15 @@
 //! The one way a [`Scene`] is built, whatever file it comes from: the
 //! `.csg` resolver and the `.ray` loader both add leaves, combine them and
 //! finish here, so that material sharing, the empty-scene warning and every
-//! default (lights, material, background) are applied in one place.
+//! default (material, background) and the decoding of sRGB colours are
+//! applied in one place.
 
 use super::{defaults, CameraSpec, Light, Material, Scene};
 use crate::csg::{Csg, Primitive};
 use crate::error::{Diagnostic, Severity, TextRange};
 use crate::geometry::{Shape, Transform};
 use crate::math::boolean::Op;
+use crate::math::srgb;
 use crate::source::Source;
 
 #[derive(Default)]
@@ -78,15 +80,16 @@ impl SceneBuilder {
         if self.materials.is_empty() {
             self.materials.push(defaults::MATERIAL);
         }
+        // Light adds up in linear values: the colours written in sRGB are
+        // decoded here, once.
+        for m in &mut self.materials {
+            m.color = srgb::decode3(m.color);
+        }
         Scene {
             camera: self.camera,
-            background: self.background.unwrap_or(background),
+            background: srgb::decode3(self.background.unwrap_or(background)),
             background_given: self.background.is_some(),
-            lights: if self.lights.is_empty() {
-                defaults::lights()
-            } else {
-                self.lights
-            },
+            lights: self.lights,
             materials: self.materials,
             csg: self.csg,
             warnings: self.warnings,

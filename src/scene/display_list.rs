@@ -70,6 +70,7 @@ pub fn resolve_ray(src: &Source, statements: &[(RayStatement, TextRange)]) -> Re
                         Light::Directional {
                             color,
                             direction: d.normalize(),
+                            shadows: true,
                         }
                     }
                     RayLight::Point(position) => Light::Point { color, position },

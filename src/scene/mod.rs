@@ -29,11 +29,15 @@ pub enum Facets {
 use crate::csg::Csg;
 use crate::error::Diagnostic;
 use crate::geometry::Aabb;
+use crate::math::srgb;
 use glam::DVec3;
+use std::borrow::Cow;
 
 /// The seed's Surface model (slide 24).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
+    /// As the file gives it (sRGB) while the scene is built; linear in a
+    /// finished [`Scene`].
     pub color: DVec3,
     /// Ambient, diffuse and specular coefficients.
     pub ka: f64,
@@ -56,10 +60,12 @@ pub enum Light {
     Ambient {
         color: DVec3,
     },
-    /// `direction` is the unit direction the light travels in.
+    /// `direction` is the unit direction the light travels in; without
+    /// `shadows` it reaches every face turned to it (a fill light).
     Directional {
         color: DVec3,
         direction: DVec3,
+        shadows: bool,
     },
     Point {
         color: DVec3,
@@ -74,7 +80,11 @@ impl Light {
     /// own to the bit.
     pub fn shadow_direction(&self) -> Option<DVec3> {
         match *self {
-            Light::Directional { direction, .. } => Some(Light::towards(direction)),
+            Light::Directional {
+                direction,
+                shadows: true,
+                ..
+            } => Some(Light::towards(direction)),
             _ => None,
         }
     }
@@ -110,9 +120,13 @@ pub enum Projection {
 pub struct Scene {
     /// The camera the file asked for; `None` frames the scene's bounds.
     pub camera: Option<CameraSpec>,
+    /// Linear, as every colour of the scene (decoded from the sRGB values
+    /// the file gives).
     pub background: DVec3,
     /// The file gave the background (`--colorscheme` keeps it).
     pub background_given: bool,
+    /// The file's lights; none: csgrt's rig, turned with the camera
+    /// ([`Scene::lights_seen_by`]).
     pub lights: Vec<Light>,
     pub materials: Vec<Material>,
     pub csg: Csg,
@@ -171,10 +185,20 @@ impl Scene {
     /// background, and its face colour on every solid without a colour.
     pub fn apply_color_scheme(&mut self, scheme: &defaults::ColorScheme) {
         if !self.background_given {
-            self.background = scheme.background;
+            self.background = srgb::decode3(scheme.background);
         }
         for m in self.materials.iter_mut().filter(|m| m.scheme_color) {
-            m.color = scheme.face;
+            m.color = srgb::decode3(scheme.face);
+        }
+    }
+
+    /// The lights of a picture taken by `cam`: the file's, or without any
+    /// the default rig placed about that camera.
+    pub fn lights_seen_by(&self, cam: &CameraSpec) -> Cow<'_, [Light]> {
+        if self.lights.is_empty() {
+            Cow::Owned(defaults::lights(cam))
+        } else {
+            Cow::Borrowed(&self.lights)
         }
     }
 

@@ -1,7 +1,7 @@
 //! The command line: outputs, counters, determinism and whole error messages.
 
 use crate::common;
-use crate::common::{csgrt, csgrt_stdin, fails, files, scene, stats};
+use crate::common::{csgrt, csgrt_stdin, fails, files, scene, srgb_byte, srgb_decode, stats};
 
 const SPHERE: &str = "camera(eye = [0, -6, 0], lookat = [0, 0, 0]);\nsphere(1);\n";
 
@@ -186,7 +186,22 @@ fn dump_scene_gives_camera_lights_materials_and_world_matrices() {
         d["materials"][0]["color"],
         serde_json::json!([1.0, 0.0, 0.0])
     );
-    assert_eq!(d["lights"].as_array().unwrap().len(), 3);
+    // No lights in the file: the default rig about the camera, its key
+    // light the only one with shadows.
+    let lights = d["lights"].as_array().unwrap();
+    let shadows: Vec<_> = lights.iter().map(|l| l["shadows"].as_bool()).collect();
+    assert_eq!(shadows, [None, Some(true), Some(false), Some(false)]);
+    let v = common::json_vec3;
+    let cam = &d["camera"];
+    let back = (v(&cam["eye"]) - v(&cam["lookat"])).normalize();
+    let right = (-back).cross(v(&cam["up"])).normalize();
+    let up = right.cross(-back);
+    // The key comes from the upper left in front of the camera, as
+    // docs/LANGUAGE.md says: (-0.5, 0.5, 0.7) in (right, up, back).
+    let towards = -v(&lights[1]["direction"]);
+    let want = glam::DVec3::new(-0.5, 0.5, 0.7).normalize();
+    let got = glam::DVec3::new(towards.dot(right), towards.dot(up), towards.dot(back));
+    assert!((got - want).length() < 1e-12, "{got} vs {want}");
 }
 
 #[test]
@@ -975,15 +990,17 @@ fn a_color_scheme_colours_what_the_file_does_not() {
             &[&args[..], &["--colorscheme", scheme, "-o", "a.png"]].concat(),
         );
         assert_eq!(r.status, 0, "{}", r.stderr);
-        let face = |c: u32| (0.2 * c as f64).round() as u8;
+        // ka 0.2 of the face colour, in linear values, encoded as sRGB.
+        let face = |c: u32| srgb_byte(0.2 * srgb_decode(c as f64 / 255.0));
         assert_eq!(px("a.png", 20, 20), [face(0xff), face(0xff), face(0xe0)]);
-        assert_eq!(px("a.png", 60, 20), [51, 0, 0]);
+        assert_eq!(px("a.png", 60, 20), [face(0xff), 0, 0]);
         assert_eq!(px("a.png", 2, 2), [0, 0, 0]);
     }
     // Without the option, Cornfield: #ffffe5 behind, #f9d72c faces.
     let r = csgrt(dir.path(), &[&args[..], &["-o", "b.png"]].concat());
     assert_eq!(r.status, 0, "{}", r.stderr);
-    assert_eq!(px("b.png", 20, 20), [50, 43, 9]);
+    let face = |c: u32| srgb_byte(0.2 * srgb_decode(c as f64 / 255.0));
+    assert_eq!(px("b.png", 20, 20), [face(0xf9), face(0xd7), face(0x2c)]);
     assert_eq!(px("b.png", 2, 2), [0xff, 0xff, 0xe5]);
     // The file's own background stays.
     std::fs::write(

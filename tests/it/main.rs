@@ -8,6 +8,7 @@ mod camera;
 mod cli;
 mod common;
 mod csg_properties;
+mod default_look;
 mod docs;
 mod facets;
 mod formats;

@@ -7,7 +7,7 @@
 //! OpenSCAD's node text, which Debian does not package.
 
 use crate::common;
-use crate::common::{csgrt, stats};
+use crate::common::{csgrt, srgb_decode, srgb_decode_bytes, stats};
 use std::path::{Path, PathBuf};
 
 fn fixtures() -> PathBuf {
@@ -100,18 +100,25 @@ fn colours_become_materials_and_no_colour_inherits() {
         .iter()
         .map(|m| m["color"].clone())
         .collect();
-    let red = serde_json::json!([1.0, 0.0, 0.0]);
-    assert!(colors.contains(&red), "{colors:?}");
+    // The dump gives the linear values, decoded from the file's sRGB.
+    let near = |want: glam::DVec3| {
+        colors
+            .iter()
+            .any(|c| (0..3).all(|k| (c[k].as_f64().unwrap() - want[k]).abs() < 1e-12))
+    };
+    assert!(near(glam::DVec3::X), "{colors:?}");
     // color("nosuchcolour") was exported as [-1, -1, -1, 1]: the default.
-    let default = serde_json::json!([249.0 / 255.0, 215.0 / 255.0, 44.0 / 255.0]);
-    assert!(colors.contains(&default), "{colors:?}");
+    assert!(near(srgb_decode_bytes(0xf9d72c)), "{colors:?}");
     // color("green", 0.5) transmits half the light.
     let green = dump["materials"]
         .as_array()
         .unwrap()
         .iter()
         .find(|m| {
-            m["color"][1].as_f64().unwrap() > 0.4 && m["color"][0] == 0.0 && m["color"][2] == 0.0
+            // OpenSCAD's "green" is #008000, linear 0.2159.
+            (m["color"][1].as_f64().unwrap() - srgb_decode(128.0 / 255.0)).abs() < 1e-5
+                && m["color"][0] == 0.0
+                && m["color"][2] == 0.0
         })
         .expect("a green material");
     assert_eq!(green["kt"], 0.5);

@@ -1,6 +1,6 @@
 //! The default sampling (adaptive anti-aliasing) and the linear outputs
 //! (Radiance HDR, OpenEXR), checked against renders at fixed `--spp` and
-//! the 8-bit image, decoded by the `image` crate's readers.
+//! the 8-bit image (sRGB), decoded by the `image` crate's readers.
 
 use crate::common;
 use crate::common::csgrt;
@@ -29,8 +29,10 @@ const THRESHOLD: f64 = 0.3;
 /// Without `--spp`, each pixel is either the pixel centre's colour (as
 /// `--spp 1`) or the mean of the 16 samples `--spp 16` takes there; it is
 /// the latter wherever a neighbour's centre colour clearly differs by more
-/// than the threshold, the former where every neighbour is clearly within
-/// it (8-bit rounding leaves a band of 3/255 either way undecided).
+/// than the threshold (in linear values: the PNG's sRGB bytes decoded),
+/// the former where every neighbour is clearly within it (8-bit rounding
+/// leaves a band of 7/255 either way undecided: half a byte is at most
+/// 0.0045 linear, times two pixels and three channels).
 #[test]
 fn adaptive_refines_exactly_where_neighbours_differ() {
     let (dir, _) = common::scene("s.csg", SCENE);
@@ -51,8 +53,9 @@ fn adaptive_refines_exactly_where_neighbours_differ() {
             for ny in y.saturating_sub(1)..(y + 2).min(h) {
                 for nx in x.saturating_sub(1)..(x + 2).min(w) {
                     let n = one.get_pixel(nx, ny).0;
-                    let d: i32 = (0..3).map(|k| (c[k] as i32 - n[k] as i32).abs()).sum();
-                    diff = diff.max(d as f64 / 255.0);
+                    let lin = |b: u8| common::srgb_decode(b as f64 / 255.0);
+                    let d: f64 = (0..3).map(|k| (lin(c[k]) - lin(n[k])).abs()).sum();
+                    diff = diff.max(d);
                 }
             }
             let got = a.get_pixel(x, y).0;
@@ -60,11 +63,11 @@ fn adaptive_refines_exactly_where_neighbours_differ() {
                 got == c || got == many.get_pixel(x, y).0,
                 "pixel {x},{y} is neither the centre's nor the 16 samples' colour"
             );
-            if diff > THRESHOLD + 3.0 / 255.0 {
+            if diff > THRESHOLD + 7.0 / 255.0 {
                 assert_eq!(got, many.get_pixel(x, y).0, "pixel {x},{y} not refined");
                 refined += 1;
                 decided += 1;
-            } else if diff < THRESHOLD - 3.0 / 255.0 {
+            } else if diff < THRESHOLD - 7.0 / 255.0 {
                 assert_eq!(got, c, "pixel {x},{y} refined without cause");
                 decided += 1;
             }
@@ -130,19 +133,27 @@ fn hdr_and_exr_hold_the_linear_radiance() {
                     let v = p[k] as f64;
                     assert!(v.is_finite() && v >= 0.0);
                     over += (v > 1.0) as usize;
-                    let byte = q[k] as f64 / 255.0;
-                    // Rounded to bytes, the radiance is the PNG, up to
-                    // the format's own precision (relative for RGBE).
+                    // The linear values the PNG's sRGB byte stands for.
+                    let b = q[k] as f64;
+                    let lo = common::srgb_decode(((b - 0.5) / 255.0).max(0.0));
+                    let hi = common::srgb_decode((b + 0.5) / 255.0);
+                    // Encoded as sRGB and rounded to bytes, the radiance
+                    // is the PNG, up to the format's own precision
+                    // (relative for RGBE).
                     let want = v.clamp(0.0, 1.0);
-                    let slack = 0.5 / 255.0 + tol * top + 1e-9;
+                    let slack = tol * top + 1e-9;
                     if out == "1" {
-                        assert!((want - byte).abs() <= slack, "{ext}: {v} against {}", q[k]);
+                        assert!(
+                            want >= lo - slack && want <= hi + slack,
+                            "{ext}: {v} against {}",
+                            q[k]
+                        );
                     } else {
                         // The mean of clamped samples is at most the
                         // clamped mean.
-                        assert!(byte <= want + slack, "{ext} {out}: {v} against {}", q[k]);
+                        assert!(lo <= want + slack, "{ext} {out}: {v} against {}", q[k]);
                     }
-                    exact += ((want * 255.0).round() as u8 == q[k]) as usize;
+                    exact += (common::srgb_byte(want) == q[k]) as usize;
                 }
             }
             let n = 3 * f.pixels().len();

@@ -124,8 +124,8 @@ def silhouette_mismatch(a, scene):
         mask, img, pov, pimg, dump = (os.path.join(work, f) for f in ("m.png", "c.png", "s.pov", "p.png", "s.json"))
         subprocess.run([a.csgrt, scene, "--size", a.size, "--spp", "1", "--mask", mask,
                         "-o", img, "--export-pov", pov, "--dump-scene", dump, "-q"], check=True)
-        subprocess.run(["povray", f"+I{pov}", f"+O{pimg}", f"+W{w}", f"+H{h}", "+FN", "-D", "-A",
-                        "File_Gamma=1.0"], check=True, capture_output=True)
+        subprocess.run(["povray", f"+I{pov}", f"+O{pimg}", f"+W{w}", f"+H{h}", "+FN", "-D", "-A"],
+                       check=True, capture_output=True)
         # The oracle's own reading of the file: its camera, background, mesh.
         sc = reader.read(scene)
         bg = np.round(np.clip(np.array(sc.background, dtype=float), 0, 1) * 255)
@@ -177,8 +177,7 @@ def sweep(a):
             out = os.path.join(work, f"p{depth}.png")
             aa = ["-A"] if depth is None else ["+A0.0", f"+R{depth}"]
             t = statistics.median(
-                timed(["povray", f"+I{pov}", f"+O{out}", f"+W{w}", f"+H{h}", "+FN", "-D",
-                       "File_Gamma=1.0", *aa])[0]
+                timed(["povray", f"+I{pov}", f"+O{out}", f"+W{w}", f"+H{h}", "+FN", "-D", *aa])[0]
                 for _ in range(a.runs)
             )
             rows.append(("POV-Ray", " ".join(aa), t, rmse(out, ref)))
@@ -288,7 +287,7 @@ def main():
                         cr.append(render)
                         out = os.path.join(work, peer_png(peer))
                         pwall, err = timed(["povray", f"+I{peer_pov}", f"+O{out}", f"+W{w}", f"+H{h}",
-                                            "+FN", "-D", "-A", f"+WT{threads}", "File_Gamma=1.0"])
+                                            "+FN", "-D", "-A", f"+WT{threads}"])
                         pw.append(pwall)
                         pr.append(pov_trace_seconds(err))
             for peer, _ in peers:

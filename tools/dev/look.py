@@ -23,7 +23,7 @@ a colour science claim. Judge by looking, too: the sheet is the evidence.
 Needs `openscad` (Debian: apt-get install -y openscad xvfb). Not in the CI line.
 
 Usage: look.py [--csgrt BIN] [--out DIR] [--only NAME,...] [MODEL.scad ...]
-Writes DIR/look.md and DIR/look.png (default: a temporary folder, printed).
+Writes DIR/look.md and DIR/look.jpg (default: a temporary folder, printed).
 """
 
 import argparse
@@ -99,7 +99,7 @@ def sheet(rows, path, per_row=2):
         y = (k // per_row) * ch
         out.paste(t.resize((cw, ch)), (x, y))
         out.paste(o.resize((cw, ch)), (x + cw, y))
-    out.save(path)
+    out.save(path, quality=90)
 
 
 def main():
@@ -129,7 +129,7 @@ def main():
             print(f"{name}: brightest 1 % {ta['p99'].round().astype(int).tolist()} | {tb['p99'].round().astype(int).tolist()}; "
                   f"darkest 5 % {ta['dark5']:.0f} | {tb['dark5']:.0f}; mean {ta['mean']:.0f} | {tb['mean']:.0f}; "
                   f"spread {ta['spread']:.0f} | {tb['spread']:.0f}", flush=True)
-        sheet(rows, os.path.join(out, "look.png"))
+        sheet(rows, os.path.join(out, "look.jpg"))
     ratio = lambda k: np.exp(np.mean([np.log(max(g[1][k], 1e-9) / max(g[0][k], 1e-9)) for _, g in rows]))
     p99 = lambda g, i: float(np.mean(g[i]["p99"]))
     lines = [
@@ -138,7 +138,9 @@ def main():
         f"Written by `python -m tools.dev.look --out DIR` ({len(rows)} of OpenSCAD 2021.01's examples, {W}x{H},",
         "`--viewall --autocenter` for csgrt; OpenSCAD's PNG export as it is). Per model, OpenSCAD | csgrt,",
         "over the pixels both show as the model: the brightest 1 % (99th percentile, mean of R, G, B),",
-        "the darkest 5 % of luminance, the mean luminance and its spread (8-bit values).",
+        "the darkest 5 % of luminance, the mean luminance and its spread (8-bit values). OpenSCAD's",
+        "default face colour, Cornfield #f9d72c, is 169 as a mean of R, G, B; the pictures, OpenSCAD's",
+        "left of csgrt's, are `look.jpg`.",
         "",
         "| model | brightest 1 % | darkest 5 % | mean | spread |",
         "|---|---|---|---|---|",
@@ -158,7 +160,7 @@ def main():
     with open(os.path.join(out, "look.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     print("\n".join(lines[-3:]))
-    print(f"wrote {out}/look.md and {out}/look.png")
+    print(f"wrote {out}/look.md and {out}/look.jpg")
 
 
 if __name__ == "__main__":

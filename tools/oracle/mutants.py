@@ -2,7 +2,7 @@
 """Deliberately wrong builds of csgrt must fail the oracle and the accuracy
 tool; the real build must pass them (that is .ci/run's own oracle line).
 
-The POV-Ray export is read back by tools/oracle/pov_check.py for five of them.
+The POV-Ray export is read back by tools/oracle/pov_check.py for six of them.
 
 A mutant build (`cargo build --release --features mutants`, its binary
 copied to target/mutants/release/csgrt before the real build replaces it:
@@ -58,6 +58,9 @@ MUTANTS = {
     "hull_gjk_normals": ([], ["hull_spheres", "rounded_box"]),
     # (caught by pov_check.py alone: POV below)
     "pov_clearance_wide": ([], False),
+    "pov_shadows_kept": ([], False),
+    "srgb_skipped": (["tests/scenes/cube_on_plate.csg"], False),
+    "fill_shadowed": (["tests/scenes/cube_on_plate.csg"], False),
     "minkowski_moved_twice": (["tests/openscad/minkowski.csg"], False),
     "offset_one_side": (["tests/openscad/offset_text.csg"], ["offset_glyph"]),
     "hull_arc_caps_dropped": (["tests/openscad/hull_arcs.csg"], False),
@@ -133,6 +136,7 @@ POV = {
     "color_ignored": "models/csg_ops.csg",
     "compose_reversed": "models/csg_ops.csg",
     "pov_clearance_wide": "models/csg_ops.csg",
+    "pov_shadows_kept": "tests/scenes/cube_on_plate.csg",
 }
 
 SIZE, SEGMENTS, RAYS = (160, 120), [64, 128, 256, 512], 400  # as .ci/run's oracle line

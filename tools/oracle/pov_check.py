@@ -21,9 +21,11 @@ compares:
   transmission and its finish (ambient, diffuse, phong, phong_size,
   reflection) the file's material;
 * the camera: location, look_at, sky and angle the file's view, `right`
-  the image's aspect; the lights: their colours, positions, and for a
-  directional light its direction (point_at minus location); the
-  background and the summed ambient light.
+  the image's aspect; the lights (the file's, or csgrt's rig about the
+  camera): their colours, positions, shadows, and for a directional light
+  its direction (point_at minus location); the background and the summed
+  ambient light. Colours are compared as linear values (the file's sRGB
+  decoded).
 
 Usage: pov_check.py [--csgrt BIN] SCENE...   (exit 1 if any differs)
 """
@@ -623,6 +625,8 @@ def read_sdl(text):
                     light["color"] = s.vector()
                 elif k == "parallel":
                     light["parallel"] = True
+                elif k == "shadowless":
+                    light["shadowless"] = True
                 elif k == "point_at":
                     light["point_at"] = s.vector()
             s.take("}")
@@ -787,7 +791,7 @@ def texture_problems(pl, mat):
     """How the exported leaf's texture differs from material mat."""
     out = []
     tex = pl.texture
-    want_t = dict(rgbt=[*mat["color"], mat["kt"]], ambient=mat["ka"], diffuse=mat["kd"], phong=mat["ks"],
+    want_t = dict(rgbt=[*reader.srgb_decode(mat["color"]), mat["kt"]], ambient=mat["ka"], diffuse=mat["kd"], phong=mat["ks"],
                   phong_size=mat["ns"], reflection=mat["kr"])
     if mat["kt"] > 0:
         want_t["ior"] = mat["ior"]
@@ -840,20 +844,26 @@ def check(path, binary):
         sdl = read_sdl(text)
     bad = []
     # Camera, lights, background.
-    eye, lookat, up, fov = sc.view(WIDTH, HEIGHT, framed)
+    view = sc.view(WIDTH, HEIGHT, framed)
+    eye, lookat, up, fov = view
     cam = sdl["camera"]
     for k, want in (("location", eye), ("look_at", lookat), ("sky", up), ("angle", fov), ("right", WIDTH / HEIGHT)):
         if not close(cam[k], want):
             bad.append(f"camera {k} is {cam[k]}, the file says {want}")
-    if not close(sdl["background"], sc.background):
-        bad.append(f"background {sdl['background']}, the file says {sc.background}")
-    ambient = sum((c for kind, c, _ in sc.lights if kind == "ambient"), np.zeros(3))
+    # Colours in linear values, decoded from the file's sRGB.
+    background = reader.srgb_decode(sc.background)
+    if not close(sdl["background"], background):
+        bad.append(f"background {sdl['background']}, the file says {background} (linear)")
+    seen = sc.lights_seen_by(view)
+    ambient = sum((c for kind, c, _, _ in seen if kind == "ambient"), np.zeros(3))
     if not close(sdl.get("ambient", np.zeros(3)), ambient):
         bad.append(f"ambient light {sdl.get('ambient')}, the file says {ambient}")
-    lights = [(kind, c, x) for kind, c, x in sc.lights if kind != "ambient"]
+    lights = [(kind, c, x, shadows) for kind, c, x, shadows in seen if kind != "ambient"]
     if len(lights) != len(sdl["lights"]):
         bad.append(f"{len(sdl['lights'])} light sources, the file has {len(lights)}")
-    for (kind, c, x), got in zip(lights, sdl["lights"]):
+    for (kind, c, x, shadows), got in zip(lights, sdl["lights"]):
+        if got.get("shadowless", False) == shadows:
+            bad.append(f"a light {'without' if got.get('shadowless') else 'with'} shadows, the file's {'casts' if shadows else 'casts none'}")
         if not close(got["color"], c):
             bad.append(f"a light's colour is {got['color']}, the file says {c}")
         if kind == "point" and (got.get("parallel") or not close(got["at"], x)):

@@ -77,7 +77,7 @@ impl Resolver<'_> {
                 self.b.lights.push(Light::Ambient { color });
             }
             "directional_light" => {
-                let a = Args::bind(self.src, s, &["color", "direction"])?;
+                let a = Args::bind(self.src, s, &["color", "direction", "shadows"])?;
                 let color = a.scalar_or_vec3("color", 0.0)?.unwrap_or(DVec3::ONE);
                 let d = a.vec3("direction", 0.0)?;
                 let d = a.require("direction", d)?;
@@ -88,9 +88,11 @@ impl Resolver<'_> {
                         "expected a non-zero vector",
                     ));
                 }
+                let shadows = a.boolean("shadows")?.unwrap_or(true);
                 self.b.lights.push(Light::Directional {
                     color,
                     direction: d.normalize(),
+                    shadows,
                 });
             }
             "point_light" => {

@@ -507,3 +507,43 @@ pub fn support_distance(p: glam::DVec2, support: impl Fn(glam::DVec2) -> f64) ->
         .map(|&u| p.dot(u) - support(u))
         .fold(f64::NEG_INFINITY, f64::max)
 }
+
+/// IEC 61966-2-1's decoding of an sRGB value (as a file gives a colour)
+/// to a linear one, written out here from the standard, not taken from the
+/// crate.
+pub fn srgb_decode(c: f64) -> f64 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+/// The 8-bit sRGB value of a linear channel: round(255·encode(v)), from
+/// the standard's formula.
+pub fn srgb_byte(v: f64) -> u8 {
+    let v = v.clamp(0.0, 1.0);
+    let e = if v <= 0.0031308 {
+        12.92 * v
+    } else {
+        1.055 * v.powf(1.0 / 2.4) - 0.055
+    };
+    (255.0 * e).round() as u8
+}
+
+/// [`srgb_decode`] of each channel of a colour given in bytes.
+pub fn srgb_decode_bytes(rgb: u32) -> DVec3 {
+    let ch = |s: u32| srgb_decode(((rgb >> s) & 255) as f64 / 255.0);
+    DVec3::new(ch(16), ch(8), ch(0))
+}
+
+/// A JSON array of three numbers (a `--dump-scene` vector) as a vector.
+pub fn json_vec3(x: &serde_json::Value) -> DVec3 {
+    let a: Vec<f64> = x
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_f64().unwrap())
+        .collect();
+    DVec3::new(a[0], a[1], a[2])
+}

@@ -85,7 +85,9 @@ class Side:
         self.rays = [self.caster.cast(o, v) for o, v in rays]
 
 
-def compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced, out_dir, colour):
+def compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced, out_dir, lights):
+    """One n's row; lights (the picture's, or None) asks for the colour
+    check too."""
     n, hit, edge = side.n, side.hit, side.edge
     bad = np.zeros((h, w), dtype=bool)
     worst_depth, worst_angle, worst_ratio = 0.0, 0.0, 0.0
@@ -125,8 +127,8 @@ def compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced
         "colour_bad": 0,
         "colour_first": None,
     }
-    if colour:
-        colour_check(sc, side.caster, w, h, img, pix_rays, pix_traced, side.pixels, edge, n, row)
+    if lights is not None:
+        colour_check(sc, lights, side.caster, w, h, img, pix_rays, pix_traced, side.pixels, edge, n, row)
     if out_dir and (off_edge or row["colour_bad"]):
         diff = np.zeros((h, w, 3), dtype=np.uint8) + 255
         diff[hit & ~bad] = (200, 200, 200)
@@ -151,11 +153,14 @@ def off_surface(p, nrm, ldir, delta, scale):
     return p + (nrm if nrm @ ldir > 0 else -nrm) * (4 * delta + 1e-7 * scale)
 
 
-def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row):
-    """Shade every opaque, non-reflective pixel off the edges; first pass
-    the shadow maps (to find ambiguous shadows), then the colours."""
+def colour_check(sc, all_lights, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row):
+    """Shade every opaque, non-reflective pixel off the edges with
+    all_lights (the scene's as csgrt's picture has them); first pass the
+    shadow maps of the lights that cast shadows (to find ambiguous
+    shadows), then the colours: linear sums of the decoded colours,
+    encoded as sRGB."""
     transparent = any(x.material["kt"] > 0 for x in sc.leaves)
-    lights = [k for k, (kind, _, _) in enumerate(sc.lights) if kind != "ambient"]
+    lights = [k for k, (kind, _, _, shadows) in enumerate(all_lights) if kind != "ambient" and shadows]
     todo = []
     for k, ((o, v), c) in enumerate(zip(pix_rays, pix_traced)):
         j, i = divmod(k, w)
@@ -176,7 +181,7 @@ def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row
         scale = float(np.abs(o).max() + tc)
         info[k] = (p, nc, leaf, delta, scale)
         for li, L in enumerate(lights):
-            kind, _, x = sc.lights[L]
+            kind, _, x, _ = all_lights[L]
             ldir, dist = towards(kind, x, p)
             shadow[li, j, i] = 1 if caster.blocked(off_surface(p, nc, ldir, delta, scale), ldir, dist) else 0
     shadow_edge = np.zeros((len(lights), h, w), dtype=bool)
@@ -188,35 +193,37 @@ def colour_check(sc, caster, w, h, img, pix_rays, pix_traced, mesh, edge, n, row
         v = pix_rays[k][1]
         mat = leaf.material
         ns = -nc if nc @ v > 0 else nc
+        colour = reader.srgb_decode(mat["color"])
         col = np.zeros(3)
         options = [np.zeros(3)]
-        for li_all, (kind, il, x) in enumerate(sc.lights):
+        for li_all, (kind, il, x, shadows) in enumerate(all_lights):
             if kind == "ambient":
-                col += mat["ka"] * il * mat["color"]
+                col += mat["ka"] * il * colour
                 continue
-            li = lights.index(li_all)
             ldir, dist = towards(kind, x, p)
             ndl = float(ns @ ldir)
             if ndl <= 0 or (mat["kd"] <= 0 and mat["ks"] <= 0):
                 continue
-            term = mat["kd"] * ndl * mat["color"] * il
+            term = mat["kd"] * ndl * colour * il
             if mat["ks"] > 0:
                 r = 2 * ndl * ns - ldir
                 vr = float(-v @ r)
                 if vr > 0:
                     term = term + mat["ks"] * vr ** mat["ns"] * il
-            if transparent:
+            if not shadows:
+                pass_ = 1.0
+            elif transparent:
                 pass_ = 1.0
                 for t, hn, hl in caster.cast_all(off_surface(p, nc, ldir, delta, scale), ldir, dist):
                     if hn @ ldir < 0:
                         pass_ *= hl.material["kt"] if hl else 0.0
             else:
-                pass_ = 0.0 if shadow[li, j, i] else 1.0
+                pass_ = 0.0 if shadow[lights.index(li_all), j, i] else 1.0
             choices = {pass_}
-            if shadow_edge[li, j, i] or ndl < 0.02:
+            if shadows and (shadow_edge[lights.index(li_all), j, i] or ndl < 0.02):
                 choices |= {0.0, 1.0}
             options = [o + q * term for o in options for q in sorted(choices)]
-        want = [np.round(np.clip(col + o, 0, 1) * 255) for o in options]
+        want = [np.floor(reader.srgb_encode(col + o) * 255 + 0.5) for o in options]
         got = img[j, i]
         row["colour_checked"] += 1
         if min(np.abs(got - x).max() for x in want) > bounds.COLOUR_TOLERANCE:
@@ -296,7 +303,9 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_faul
         try:
             cmask, img, framed = ray_sets.render_csgrt(cmd, path, work, w, h, env)
             # The pixels of csgrt's own framing, whose box is checked below.
-            pix_rays = ray_sets.camera_rays(sc.view(w, h, framed), w, h)
+            view = sc.view(w, h, framed)
+            pix_rays = ray_sets.camera_rays(view, w, h)
+            lights = sc.lights_seen_by(view)
             traced = ray_sets.trace_csgrt(cmd, path, work, pix_rays + rays, env)
         except (subprocess.CalledProcessError, RuntimeError, ValueError, KeyError) as e:
             return [], [f"csgrt failed: {e}"]
@@ -309,7 +318,7 @@ def check_scene(path, cmd, w, h, segs, nrays, out_dir=None, env=None, first_faul
             SIDES[key] = Side(sc, n, w, h, pix_rays, rays)
         side = SIDES[key]
         rows.append(
-            compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced, out_dir, n == segs[-1])
+            compare(name, sc, side, w, h, cmask, img, pix_rays, pix_traced, rays, traced, out_dir, lights if n == segs[-1] else None)
         )
         if first_fault and rows[-1]["off_edge"]:
             break

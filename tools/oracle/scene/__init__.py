@@ -22,8 +22,10 @@ A solid of zero or negative size, or flattened by a singular transform, is
 empty.
 
 csgrt's documented defaults: OpenSCAD's Cornfield colours (faces #f9d72c,
-background #ffffe5) and, without lights, an ambient term with a key and a
-fill light; without a camera, the frame of the scene's box from OpenSCAD's
+background #ffffe5), sRGB-encoded as every colour a file gives (decoded
+to linear values for shading, the 8-bit image encoded again); without
+lights, an ambient term, a key light and two shadowless fills placed about
+the camera (meaning.default_lights); without a camera, the frame of the scene's box from OpenSCAD's
 default view direction (rotation [55, 0, 25]), the eye pulled back until
 the box's eight corners lie in the central 90 % of a 30 degree view.
 

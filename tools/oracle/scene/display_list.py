@@ -60,12 +60,12 @@ def read_ray(path, text):
             kind = words[i][0]
             i += 1
             if kind == "ambient":
-                sc.lights.append(("ambient", c, None))
+                sc.lights.append(("ambient", c, None, False))
             elif kind == "directional":
                 d = nums(3)
-                sc.lights.append(("directional", c, d / np.linalg.norm(d)))
+                sc.lights.append(("directional", c, d / np.linalg.norm(d), True))
             elif kind == "point":
-                sc.lights.append(("point", c, nums(3)))
+                sc.lights.append(("point", c, nums(3), True))
             else:
                 raise syntax.ReadError(path, ln, col, f"unknown light kind {kind!r}")
         elif w == "surface":
@@ -82,6 +82,4 @@ def read_ray(path, text):
             raise syntax.ReadError(path, ln, col, f"unknown statement {w!r}")
     sc.camera = (eye, lookat, up, fov)
     sc.root = meaning.Reader.union(spheres)
-    if not sc.lights:
-        sc.lights = meaning.default_lights()
     return sc

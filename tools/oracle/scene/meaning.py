@@ -13,7 +13,7 @@ from . import solids
 from . import syntax
 from . import text
 
-__all__ = ['BACKGROUND', 'CORNFIELD', 'EXTRUSIONS', 'Leaf', 'Op', 'PARAMS', 'Reader', 'SCENE', 'SHAPES_2D', 'SOLIDS', 'Scene', 'TRANSFORMS', 'affine', 'axis_rotation', 'bind', 'default_lights', 'num', 'read', 'sin_cos_deg', 'union_leaves', 'vec']
+__all__ = ['BACKGROUND', 'CORNFIELD', 'EXTRUSIONS', 'Leaf', 'Op', 'PARAMS', 'Reader', 'SCENE', 'SHAPES_2D', 'SOLIDS', 'Scene', 'TRANSFORMS', 'affine', 'axis_rotation', 'bind', 'default_lights', 'srgb_decode', 'srgb_encode', 'num', 'read', 'sin_cos_deg', 'union_leaves', 'vec']
 
 
 # --------------------------------------------------------------------------
@@ -26,15 +26,44 @@ CORNFIELD = dict(
 BACKGROUND = np.array([1.0, 1.0, 0.898])
 
 
-def default_lights():
+def srgb_decode(c):
+    """IEC 61966-2-1: an sRGB-encoded value (as files give colours) as a
+    linear one; docs/LANGUAGE.md says csgrt shades in linear values."""
+    c = np.asarray(c, dtype=float)
+    a = np.abs(c)
+    return np.sign(c) * np.where(a <= 0.04045, a / 12.92, ((a + 0.055) / 1.055) ** 2.4)
+
+
+def srgb_encode(x):
+    """A linear value in [0, 1] as sRGB (the 8-bit image holds these)."""
+    x = np.clip(np.asarray(x, dtype=float), 0.0, 1.0)
+    return np.where(x <= 0.0031308, 12.92 * x, 1.055 * x ** (1 / 2.4) - 0.055)
+
+
+def default_lights(view):
+    """csgrt's rig where a scene gives no lights (docs/LANGUAGE.md), placed
+    about the camera view = (eye, lookat, up, fov): ambient 1; a key of 0.85
+    from (-0.5, 0.5, 0.7) in the camera's (right, up, back) axes, casting
+    shadows; shadowless lights of 0.15 from (0.9, -0.1, 0.45) and 0.25 from
+    (0, 1, 0.2). Tuples (kind, colour, x, shadows)."""
+    eye, lookat, up, _ = view
+
     def unit(v):
         v = np.array(v, dtype=float)
         return v / np.linalg.norm(v)
 
+    fwd = unit(np.asarray(lookat, float) - np.asarray(eye, float))
+    right = unit(np.cross(fwd, up))
+    upv = np.cross(right, fwd)
+
+    def travel(i, r, u, b, shadows):
+        return ("directional", np.full(3, i), -unit(r * right + u * upv - b * fwd), shadows)
+
     return [
-        ("ambient", np.ones(3), None),
-        ("directional", np.full(3, 0.8), -unit([-0.35, -0.6, 0.72])),
-        ("directional", np.full(3, 0.35), -unit([1.0, -0.25, 0.15])),
+        ("ambient", np.ones(3), None, False),
+        travel(0.85, -0.5, 0.5, 0.7, True),
+        travel(0.15, 0.9, -0.1, 0.45, False),
+        travel(0.25, 0.0, 1.0, 0.2, False),
     ]
 
 
@@ -73,7 +102,7 @@ PARAMS = {
     "camera": ["eye", "lookat", "up", "fov"],
     "background": ["color"],
     "ambient_light": ["color"],
-    "directional_light": ["color", "direction"],
+    "directional_light": ["color", "direction", "shadows"],
     "point_light": ["color", "position"],
 }
 SOLIDS = ("cube", "sphere", "cylinder", "torus", "halfspace", "polyhedron", "surface")
@@ -126,6 +155,11 @@ class Scene:
         default camera framed, checked by the oracle against its own mesh)
         or, without it, of the tree's box."""
         return self.camera if self.camera else bounds.framing(self, width, height, framed)
+
+    def lights_seen_by(self, view):
+        """The lights of a picture taken from view: the file's, or the
+        default rig about that camera."""
+        return self.lights if self.lights else default_lights(view)
 
 
 def bind(path, s):
@@ -236,8 +270,6 @@ class Reader:
             if n is not None:
                 kids.append(n)
         self.scene.root = self.union(kids)
-        if not self.scene.lights:
-            self.scene.lights = default_lights()
 
     def walk_bang(self, stmts):
         for s in stmts:
@@ -832,12 +864,15 @@ class Reader:
         else:
             c = vec(self.path, s, a, "color", 1.0, scalar=True)
             if s.name == "ambient_light":
-                sc.lights.append(("ambient", c, None))
+                sc.lights.append(("ambient", c, None, False))
             elif s.name == "directional_light":
                 d = vec(self.path, s, a, "direction")
-                sc.lights.append(("directional", c, d / np.linalg.norm(d)))
+                shadows = a.get("shadows", True)
+                if not isinstance(shadows, bool):
+                    raise self.err(s, "shadows must be true or false")
+                sc.lights.append(("directional", c, d / np.linalg.norm(d), shadows))
             else:
-                sc.lights.append(("point", c, vec(self.path, s, a, "position")))
+                sc.lights.append(("point", c, vec(self.path, s, a, "position"), True))
 
 
 def read(path):
