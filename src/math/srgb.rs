@@ -88,12 +88,12 @@ fn searched(v: f64) -> u8 {
 /// and no search per pixel.
 #[inline]
 pub fn byte(v: f64) -> u8 {
-    if !(v < 1.0) {
-        return if v >= 1.0 { 255 } else { 0 };
+    if v >= 1.0 {
+        return 255;
     }
     let k = (v.to_bits() >> SHIFT).wrapping_sub(first_bucket());
-    // Negative values and those below 2^−14 (k wraps or is past the table
-    // through the sign bit) are byte 0.
+    // Negative values, NaN and values below 2^−14 (k wraps, or is past
+    // the table through the sign bit or NaN's exponent) are byte 0.
     match buckets().get(k as usize) {
         Some(&b) => b + (v >= steps()[b as usize]) as u8,
         None => 0,
