@@ -191,14 +191,10 @@ fn dump_scene_gives_camera_lights_materials_and_world_matrices() {
     let lights = d["lights"].as_array().unwrap();
     let shadows: Vec<_> = lights.iter().map(|l| l["shadows"].as_bool()).collect();
     assert_eq!(shadows, [None, Some(true), Some(false), Some(false)]);
-    let v = common::json_vec3;
-    let cam = &d["camera"];
-    let back = (v(&cam["eye"]) - v(&cam["lookat"])).normalize();
-    let right = (-back).cross(v(&cam["up"])).normalize();
-    let up = right.cross(-back);
+    let [right, up, back] = common::DumpCamera::of(&d["camera"]).axes();
     // The key comes from the upper left in front of the camera, as
     // docs/LANGUAGE.md says: (-0.5, 0.5, 0.7) in (right, up, back).
-    let towards = -v(&lights[1]["direction"]);
+    let towards = -common::json_vec3(&lights[1]["direction"]);
     let want = glam::DVec3::new(-0.5, 0.5, 0.7).normalize();
     let got = glam::DVec3::new(towards.dot(right), towards.dot(up), towards.dot(back));
     assert!((got - want).length() < 1e-12, "{got} vs {want}");

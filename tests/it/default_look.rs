@@ -3,7 +3,7 @@
 //! a cube on a plate, lit faces reaching the base colour, no face turned
 //! from the light or in the key's shadow going dark.
 
-use crate::common::{csgrt, json_vec3 as v3, scene, srgb_byte, srgb_decode_bytes, stats};
+use crate::common::{csgrt, scene, srgb_byte, srgb_decode_bytes, stats, DumpCamera};
 use glam::DVec3;
 
 /// The rig as the documentation gives it: (intensity, towards the light in
@@ -14,60 +14,23 @@ const RIG: [(f64, [f64; 3], bool); 3] = [
     (0.25, [0.0, 1.0, 0.2], false),
 ];
 
-/// The camera's pixel ray (slide 6) through the centre of pixel (i, j).
-struct View {
-    eye: DVec3,
-    du: DVec3,
-    dv: DVec3,
-    vp: DVec3,
-    right: DVec3,
-    up: DVec3,
-    back: DVec3,
-}
-
-impl View {
-    fn of(cam: &serde_json::Value) -> View {
-        let (eye, lookat, up) = (v3(&cam["eye"]), v3(&cam["lookat"]), v3(&cam["up"]));
-        let (w, h) = (
-            cam["width"].as_f64().unwrap(),
-            cam["height"].as_f64().unwrap(),
-        );
-        let look = lookat - eye;
-        let du = look.cross(up).normalize();
-        let dv = look.cross(du).normalize();
-        let fl = w / (2.0 * (cam["fov"].as_f64().unwrap() * 0.5).to_radians().tan());
-        let vp = look.normalize() * fl - 0.5 * (w * du + h * dv);
-        let back = -look.normalize();
-        let right = (-back).cross(up).normalize();
-        View {
-            eye,
-            du,
-            dv,
-            vp,
-            right,
-            up: right.cross(-back),
-            back,
-        }
-    }
-
-    fn ray(&self, i: u32, j: u32) -> DVec3 {
-        ((i as f64 + 0.5) * self.du + (j as f64 + 0.5) * self.dv + self.vp).normalize()
-    }
-
-    fn towards(&self, l: [f64; 3]) -> DVec3 {
-        (l[0] * self.right + l[1] * self.up + l[2] * self.back).normalize()
-    }
+/// The direction towards a light given in the camera's right, up and back
+/// axes.
+fn towards(cam: &DumpCamera, l: [f64; 3]) -> DVec3 {
+    let [right, up, back] = cam.axes();
+    (l[0] * right + l[1] * up + l[2] * back).normalize()
 }
 
 /// The Whitted colour (linear) of a point with normal `n` seen along
 /// `dir`, colour `c` (linear), the default material (ka 0.2, kd 0.8, ks
 /// 0.3, ns 30), the key light blocked or not.
-fn shade(view: &View, c: DVec3, n: DVec3, dir: DVec3, key_blocked: bool) -> DVec3 {
+fn shade(view: &DumpCamera, c: DVec3, n: DVec3, dir: DVec3, key_blocked: bool) -> DVec3 {
     let mut out = 0.2 * c;
-    for (k, &(i, l, shadows)) in RIG.iter().enumerate() {
-        let l = view.towards(l);
+    for &(i, l, shadows) in &RIG {
+        let l = towards(view, l);
         let ndl = n.dot(l);
-        if ndl <= 0.0 || (k == 0 && shadows && key_blocked) {
+        // Only the key casts shadows.
+        if ndl <= 0.0 || (shadows && key_blocked) {
             continue;
         }
         out += 0.8 * ndl * i * c;
@@ -103,10 +66,10 @@ fn a_cube_on_a_plate_is_shaded_as_documented_with_soft_shadows() {
     );
     assert_eq!(r.status, 0, "{}", r.stderr);
     let d = stats(dir.path(), "d.json");
-    let view = View::of(&d["camera"]);
+    let view = DumpCamera::of(&d["camera"]);
     let img = image::open(dir.path().join("p.png")).unwrap().to_rgb8();
     let base = srgb_decode_bytes(0xf9d72c);
-    let key = view.towards(RIG[0].1);
+    let key = towards(&view, RIG[0].1);
     // The nearest hit of a ray with an axis-aligned box, and its normal.
     let hit_box = |o: DVec3, dir: DVec3, lo: DVec3, hi: DVec3| -> Option<(f64, DVec3)> {
         let (mut t0, mut t1, mut n) = (0.0f64, f64::INFINITY, DVec3::ZERO);
@@ -135,7 +98,7 @@ fn a_cube_on_a_plate_is_shaded_as_documented_with_soft_shadows() {
     let (mut checked, mut shadowed, mut worst) = (0, 0, 0);
     let (mut top, mut darkest) = ([0u8; 3], 255u8);
     for (i, j, px) in img.enumerate_pixels() {
-        let dir = view.ray(i, j);
+        let dir = view.ray(i as f64 + 0.5, j as f64 + 0.5);
         let Some((t, n)) = first(view.eye, dir) else {
             continue;
         };
@@ -143,8 +106,7 @@ fn a_cube_on_a_plate_is_shaded_as_documented_with_soft_shadows() {
         // Pixels near an edge of a face, or of the shadow, are left out:
         // the exact answer there turns on a hair.
         let probe = |di: f64, dj: f64| {
-            let q = ((i as f64 + 0.5 + di) * view.du + (j as f64 + 0.5 + dj) * view.dv + view.vp)
-                .normalize();
+            let q = view.ray(i as f64 + 0.5 + di, j as f64 + 0.5 + dj);
             first(view.eye, q).map(|(_, m)| m)
         };
         if [(-1.0, 0.0), (1.0, 0.0), (0.0, -1.0), (0.0, 1.0)]

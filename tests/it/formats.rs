@@ -80,32 +80,6 @@ fn an_unknown_extension_is_refused() {
     assert_eq!(files(dir.path()), ["part.stl"]);
 }
 
-/// Where a world point lands in the image of the default camera.
-fn project(cam: &serde_json::Value, p: DVec3) -> (u32, u32) {
-    let v = |k: &str| {
-        DVec3::new(
-            cam[k][0].as_f64().unwrap(),
-            cam[k][1].as_f64().unwrap(),
-            cam[k][2].as_f64().unwrap(),
-        )
-    };
-    let (eye, lookat, up) = (v("eye"), v("lookat"), v("up"));
-    let (w, h) = (
-        cam["width"].as_f64().unwrap(),
-        cam["height"].as_f64().unwrap(),
-    );
-    let look = (lookat - eye).normalize();
-    let du = look.cross(up).normalize();
-    let dv = look.cross(du).normalize();
-    let fl = w / (2.0 * (cam["fov"].as_f64().unwrap() * 0.5).to_radians().tan());
-    let d = p - eye;
-    let s = fl / d.dot(look);
-    (
-        (w / 2.0 + s * d.dot(du)) as u32,
-        (h / 2.0 + s * d.dot(dv)) as u32,
-    )
-}
-
 #[test]
 fn default_lights_give_each_visible_face_of_a_cube_its_own_shade() {
     let (dir, _) = scene("c.csg", "cube(10);\n");
@@ -134,7 +108,7 @@ fn default_lights_give_each_visible_face_of_a_cube_its_own_shade() {
     let shades: Vec<[u8; 3]> = faces
         .iter()
         .map(|&p| {
-            let (x, y) = project(&d["camera"], p);
+            let (x, y) = common::DumpCamera::of(&d["camera"]).project(p);
             img.get_pixel(x, y).0
         })
         .collect();
@@ -156,7 +130,7 @@ fn default_lights_give_each_visible_face_of_a_cube_its_own_shade() {
             ((i >> 1) & 1) as f64 * 10.0,
             ((i >> 2) & 1) as f64 * 10.0,
         );
-        let (x, y) = project(&d["camera"], c);
+        let (x, y) = common::DumpCamera::of(&d["camera"]).project(c);
         assert!(x < 200 && y < 150, "corner {c} at {x},{y}");
     }
 }

@@ -547,3 +547,70 @@ pub fn json_vec3(x: &serde_json::Value) -> DVec3 {
         .collect();
     DVec3::new(a[0], a[1], a[2])
 }
+
+/// The seed's pinhole camera (slide 6, docs/LANGUAGE.md) of a
+/// `--dump-scene` camera, computed here from its eye, lookat, up, fov and
+/// size: `du = normalize(look × up)`, `dv = normalize(look × du)`,
+/// `fl = width / (2·tan(fov/2))`, `vp = normalize(look)·fl − ½(width·du +
+/// height·dv)`.
+pub struct DumpCamera {
+    pub eye: DVec3,
+    /// `normalize(lookat − eye)`.
+    pub look: DVec3,
+    pub du: DVec3,
+    pub dv: DVec3,
+    pub vp: DVec3,
+    pub fl: f64,
+    pub width: f64,
+    pub height: f64,
+}
+
+impl DumpCamera {
+    pub fn of(cam: &serde_json::Value) -> DumpCamera {
+        let (eye, lookat, up) = (
+            json_vec3(&cam["eye"]),
+            json_vec3(&cam["lookat"]),
+            json_vec3(&cam["up"]),
+        );
+        let (width, height) = (
+            cam["width"].as_f64().unwrap(),
+            cam["height"].as_f64().unwrap(),
+        );
+        let look = (lookat - eye).normalize();
+        let du = look.cross(up).normalize();
+        let dv = look.cross(du).normalize();
+        let fl = width / (2.0 * (cam["fov"].as_f64().unwrap() * 0.5).to_radians().tan());
+        DumpCamera {
+            eye,
+            look,
+            du,
+            dv,
+            vp: look * fl - 0.5 * (width * du + height * dv),
+            fl,
+            width,
+            height,
+        }
+    }
+
+    /// The unit direction of the ray through image point (x, y); pixel
+    /// (i, j)'s centre is (i + ½, j + ½).
+    pub fn ray(&self, x: f64, y: f64) -> DVec3 {
+        (x * self.du + y * self.dv + self.vp).normalize()
+    }
+
+    /// The pixel a world point lands in.
+    pub fn project(&self, p: DVec3) -> (u32, u32) {
+        let d = p - self.eye;
+        let s = self.fl / d.dot(self.look);
+        (
+            (self.width / 2.0 + s * d.dot(self.du)) as u32,
+            (self.height / 2.0 + s * d.dot(self.dv)) as u32,
+        )
+    }
+
+    /// The camera's right, up and back axes (`du`, `−dv`, `−look`): the
+    /// axes csgrt's default lights are given in.
+    pub fn axes(&self) -> [DVec3; 3] {
+        [self.du, -self.dv, -self.look]
+    }
+}

@@ -200,6 +200,8 @@ def colour_check(sc, all_lights, caster, w, h, img, pix_rays, pix_traced, mesh, 
             if kind == "ambient":
                 col += mat["ka"] * il * colour
                 continue
+            # The light's shadow map, when it casts shadows.
+            li = lights.index(li_all) if shadows else None
             ldir, dist = towards(kind, x, p)
             ndl = float(ns @ ldir)
             if ndl <= 0 or (mat["kd"] <= 0 and mat["ks"] <= 0):
@@ -218,9 +220,9 @@ def colour_check(sc, all_lights, caster, w, h, img, pix_rays, pix_traced, mesh, 
                     if hn @ ldir < 0:
                         pass_ *= hl.material["kt"] if hl else 0.0
             else:
-                pass_ = 0.0 if shadow[lights.index(li_all), j, i] else 1.0
+                pass_ = 0.0 if shadow[li, j, i] else 1.0
             choices = {pass_}
-            if shadows and (shadow_edge[lights.index(li_all), j, i] or ndl < 0.02):
+            if li is not None and (shadow_edge[li, j, i] or ndl < 0.02):
                 choices |= {0.0, 1.0}
             options = [o + q * term for o in options for q in sorted(choices)]
         want = [np.floor(reader.srgb_encode(col + o) * 255 + 0.5) for o in options]
