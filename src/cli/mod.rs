@@ -78,8 +78,9 @@ pub struct Cli {
     pub imgsize: Option<(u32, u32)>,
     /// Samples per pixel, stratified and jittered inside the pixel (1: the
     /// pixel centre). Without it, adaptive anti-aliasing: one sample at
-    /// each pixel centre, then 16 where a neighbour differs by more than
-    /// 0.3 (POV-Ray's default threshold, summed over red, green and blue).
+    /// each pixel centre, then 16 where an edge crosses the pixel: a
+    /// neighbour's centre and a corner differ by more than 0.3 (POV-Ray's
+    /// default threshold, summed over red, green and blue).
     #[arg(long, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..=MAX_SPP as i64))]
     pub spp: Option<u32>,

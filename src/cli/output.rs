@@ -194,13 +194,10 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
         };
         let sampling = match settings.adaptive {
             None => format!("{} spp", settings.spp),
-            Some(_) => {
-                let again = (image.stats.primary_rays - image.stats.pixels) / settings.spp as u64;
-                format!(
-                    "adaptive: {again} of {} pixels at {} spp",
-                    image.stats.pixels, settings.spp
-                )
-            }
+            Some(_) => format!(
+                "adaptive: {} of {} pixels at {} spp",
+                image.refined, image.stats.pixels, settings.spp
+            ),
         };
         eprintln!("csgrt: wrote {name} ({width}x{height}, {sampling}) in {seconds:.3} s");
     }

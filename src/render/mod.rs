@@ -8,6 +8,7 @@
 //! Rows are rendered in parallel with rayon; every pixel depends only on
 //! its own coordinates, so the bytes are the same for any thread count.
 
+pub mod adaptive;
 pub mod camera;
 pub mod probe;
 pub mod sampler;
@@ -16,6 +17,7 @@ pub mod shade;
 use crate::math::srgb;
 use crate::scene::{Light, Scene};
 use crate::stats::Stats;
+pub use adaptive::{Adaptive, ADAPTIVE_SPP, ADAPTIVE_THRESHOLD};
 use camera::Camera;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -48,24 +50,6 @@ impl Default for Settings {
     }
 }
 
-/// Adaptive anti-aliasing, as POV-Ray's `+AM1` with `+A0.3`: every pixel
-/// gets one sample at its centre; a pixel whose centre colour differs from
-/// any of its eight neighbours' by more than `threshold` (the sum of the
-/// absolute differences of red, green and blue, in [0, 1]) is sampled
-/// again with [`Settings::spp`] stratified samples, exactly the samples
-/// `--spp` of that number takes there, and gets their mean. Which pixels
-/// are refined depends on the first pass only, so the image is the same
-/// for any thread count.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Adaptive {
-    pub threshold: f64,
-}
-
-/// POV-Ray's default `Antialias_Threshold`.
-pub const ADAPTIVE_THRESHOLD: f64 = 0.3;
-/// The samples of a refined pixel by default.
-pub const ADAPTIVE_SPP: u32 = 16;
-
 /// An 8-bit RGB image, row-major from the top left, and on request the
 /// linear radiance it was rounded from.
 pub struct Rendered {
@@ -75,6 +59,8 @@ pub struct Rendered {
     /// Linear RGB per pixel (three `f32` each), when
     /// [`Settings::radiance`] asked for it; else empty.
     pub radiance: Vec<f32>,
+    /// The pixels adaptive anti-aliasing sampled again.
+    pub refined: u64,
     pub stats: Stats,
 }
 
@@ -160,22 +146,28 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
         progress(Progress::Done(s.width as u64 * first as u64));
         st
     });
+    let mut refined = 0;
     if let Some(a) = s.adaptive {
-        let again = refine(&lin, w, s.height as usize, a.threshold);
-        let count = again.iter().filter(|&&f| f).count() as u64;
-        progress(Progress::Planned(count * s.spp as u64));
-        stats.add(&rows(&mut rgb, &mut lin, w, |y, row, lrow| {
-            let mut st = Stats::default();
-            let flags = &again[y as usize * w..][..w];
-            let mut n = 0;
-            for (x, _) in flags.iter().enumerate().filter(|(_, &f)| f) {
-                let c = pixel(x as u32, y, s.spp, &mut st);
-                put(row, lrow, x, c);
-                n += 1;
-            }
-            progress(Progress::Done(n * s.spp as u64));
-            st
-        }));
+        let h = s.height as usize;
+        let corner = |x: u32, y: u32, st: &mut Stats| {
+            sample(x as f64, y as f64, st).map(|(c, _)| adaptive::shown(c))
+        };
+        let (again, st) = adaptive::crossed(&lin, w, h, a.threshold, corner, progress);
+        stats.add(&st);
+        refined = again.iter().map(Vec::len).sum::<usize>() as u64;
+        if refined > 0 {
+            progress(Progress::Planned(refined * s.spp as u64));
+            stats.add(&rows(&mut rgb, &mut lin, w, |y, row, lrow| {
+                let mut st = Stats::default();
+                let xs = &again[y as usize];
+                for &x in xs {
+                    let c = pixel(x, y, s.spp, &mut st);
+                    put(row, lrow, x as usize, c);
+                }
+                progress(Progress::Done(xs.len() as u64 * s.spp as u64));
+                st
+            }));
+        }
         if !s.radiance {
             lin = Vec::new();
         }
@@ -186,6 +178,7 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
         height: s.height,
         rgb,
         radiance: lin,
+        refined,
         stats,
     }
 }
@@ -237,29 +230,6 @@ fn put(row: &mut [u8], lrow: &mut [f32], x: usize, (c, r): (DVec3, DVec3)) {
     if !lrow.is_empty() {
         lrow[3 * x..3 * x + 3].copy_from_slice(&[r.x as f32, r.y as f32, r.z as f32]);
     }
-}
-
-/// Which pixels adaptive anti-aliasing samples again: those whose colour
-/// (clamped to [0, 1], as it is shown) differs from an 8-neighbour's by
-/// more than `threshold`, summed over red, green and blue.
-fn refine(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
-    let at = |x: usize, y: usize| {
-        let p = &lin[3 * (y * w + x)..][..3];
-        [p[0], p[1], p[2]].map(|v| (v as f64).clamp(0.0, 1.0))
-    };
-    (0..w * h)
-        .into_par_iter()
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            let c = at(x, y);
-            (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
-                (x.saturating_sub(1)..(x + 2).min(w)).any(|nx| {
-                    let n = at(nx, ny);
-                    (0..3).map(|k| (c[k] - n[k]).abs()).sum::<f64>() > threshold
-                })
-            })
-        })
-        .collect()
 }
 
 /// 255 where the ray through the pixel centre hits the scene, else 0.

@@ -27,55 +27,96 @@ fn run(dir: &Path, args: &[&str]) -> String {
 const THRESHOLD: f64 = 0.3;
 
 /// Without `--spp`, each pixel is either the pixel centre's colour (as
-/// `--spp 1`) or the mean of the 16 samples `--spp 16` takes there; it is
-/// the latter wherever a neighbour's centre colour clearly differs by more
-/// than the threshold (in linear values: the PNG's sRGB bytes decoded),
-/// the former where every neighbour is clearly within it (8-bit rounding
-/// leaves a band of 7/255 either way undecided: half a byte is at most
-/// 0.0045 linear, times two pixels and three channels).
+/// `--spp 1`) or the mean of the 16 samples `--spp 16` takes there. It is
+/// the latter exactly where a neighbour's centre colour differs by more
+/// than the threshold *and* an edge crosses the pixel: one of its corners
+/// differs from its centre or another corner by more than the threshold.
+/// The corners are sampled independently here, as the pixel centres of a
+/// render one pixel wider and higher whose horizontal field of view keeps
+/// the focal length (tan(fov′/2) = tan(15°)·97/96). Colours are compared
+/// in linear values (the PNG's sRGB bytes decoded); 8-bit rounding leaves a
+/// band of 7/255 either way undecided (half a byte is at most 0.0045
+/// linear, times two pixels and three channels).
 #[test]
-fn adaptive_refines_exactly_where_neighbours_differ() {
+fn adaptive_refines_exactly_where_edges_cross() {
     let (dir, _) = common::scene("s.csg", SCENE);
     let said = run(dir.path(), &["-o", "a.png"]);
     run(dir.path(), &["-q", "--spp", "1", "-o", "one.png"]);
     run(dir.path(), &["-q", "--spp", "16", "-o", "many.png"]);
-    let (a, one, many) = (
+    let fov = 2.0 * (15f64.to_radians().tan() * 97.0 / 96.0).atan().to_degrees();
+    let wider = SCENE.replace(
+        "lookat = [0, 0, 0]",
+        &format!("lookat = [0, 0, 0], fov = {fov}"),
+    );
+    std::fs::write(dir.path().join("c.csg"), wider).unwrap();
+    let r = csgrt(
+        dir.path(),
+        &[
+            "c.csg",
+            "--size",
+            "97x73",
+            "--spp",
+            "1",
+            "-q",
+            "-o",
+            "corners.png",
+        ],
+    );
+    assert_eq!(r.status, 0, "{}", r.stderr);
+    let (a, one, many, corners) = (
         rgb(dir.path(), "a.png"),
         rgb(dir.path(), "one.png"),
         rgb(dir.path(), "many.png"),
+        rgb(dir.path(), "corners.png"),
     );
+    let lin = |p: &image::Rgb<u8>| p.0.map(|b| common::srgb_decode(b as f64 / 255.0));
+    let differ = |p: [f64; 3], q: [f64; 3]| -> f64 { (0..3).map(|k| (p[k] - q[k]).abs()).sum() };
     let (w, h) = a.dimensions();
-    let (mut refined, mut decided) = (0, 0);
+    let (mut refined, mut kept, mut decided) = (0, 0, 0);
+    let band = 7.0 / 255.0;
     for y in 0..h {
         for x in 0..w {
-            let c = one.get_pixel(x, y).0;
-            let mut diff: f64 = 0.0;
+            let c = lin(one.get_pixel(x, y));
+            let mut near: f64 = 0.0;
             for ny in y.saturating_sub(1)..(y + 2).min(h) {
                 for nx in x.saturating_sub(1)..(x + 2).min(w) {
-                    let n = one.get_pixel(nx, ny).0;
-                    let lin = |b: u8| common::srgb_decode(b as f64 / 255.0);
-                    let d: f64 = (0..3).map(|k| (lin(c[k]) - lin(n[k])).abs()).sum();
-                    diff = diff.max(d);
+                    near = near.max(differ(c, lin(one.get_pixel(nx, ny))));
+                }
+            }
+            let mut five = vec![c];
+            for (cx, cy) in [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)] {
+                five.push(lin(corners.get_pixel(cx, cy)));
+            }
+            let mut crossed: f64 = 0.0;
+            for i in 0..5 {
+                for j in 0..i {
+                    crossed = crossed.max(differ(five[i], five[j]));
                 }
             }
             let got = a.get_pixel(x, y).0;
+            let (centre, mean) = (one.get_pixel(x, y).0, many.get_pixel(x, y).0);
             assert!(
-                got == c || got == many.get_pixel(x, y).0,
+                got == centre || got == mean,
                 "pixel {x},{y} is neither the centre's nor the 16 samples' colour"
             );
-            if diff > THRESHOLD + 7.0 / 255.0 {
-                assert_eq!(got, many.get_pixel(x, y).0, "pixel {x},{y} not refined");
+            if near > THRESHOLD + band && crossed > THRESHOLD + band {
+                assert_eq!(got, mean, "pixel {x},{y} not refined");
                 refined += 1;
                 decided += 1;
-            } else if diff < THRESHOLD - 7.0 / 255.0 {
-                assert_eq!(got, c, "pixel {x},{y} refined without cause");
+            } else if near < THRESHOLD - band || crossed < THRESHOLD - band {
+                assert_eq!(got, centre, "pixel {x},{y} refined without cause");
+                if near > THRESHOLD + band && centre != mean {
+                    kept += 1;
+                }
                 decided += 1;
             }
         }
     }
+    // Many pixels are refined, and many near an edge keep their centre
+    // (the corners' saving) though their 16 samples' mean differs.
     assert!(
-        refined > 100 && decided > (w * h) as usize * 9 / 10,
-        "{refined} {decided}"
+        refined > 100 && kept > 30 && decided > (w * h) as usize * 9 / 10,
+        "{refined} {kept} {decided}"
     );
     // The summary says how many pixels were sampled again.
     assert!(

@@ -165,8 +165,8 @@ def sweep(a):
             )
             rows.append(("csgrt", f"--spp {spp}", t, rmse(out, ref)))
             print(rows[-1], flush=True)
-        # csgrt's default: adaptive anti-aliasing (1 sample, 16 where
-        # neighbours differ by more than 0.3), as POV-Ray's +AM1 +A0.3.
+        # csgrt's default: adaptive anti-aliasing (1 sample; corners where
+        # neighbours differ by more than 0.3; 16 where corners differ).
         out = os.path.join(work, "cadaptive.png")
         t = statistics.median(
             timed([a.csgrt, a.sweep, "--size", a.size, "-o", out, "-q"])[0] for _ in range(a.runs)

@@ -1,0 +1,159 @@
+//! Adaptive anti-aliasing: which pixels are sampled again, from the first
+//! pass's pixel centres and the corners of the pixels near an edge.
+
+use crate::stats::Stats;
+use glam::DVec3;
+use rayon::prelude::*;
+
+/// Adaptive anti-aliasing, after POV-Ray's `+AM1` and `+AM2` with
+/// `+A0.3`: every pixel gets one sample at its centre. A pixel whose
+/// centre colour differs from one of its eight neighbours' by more than
+/// `threshold` (the sum of the absolute differences of red, green and
+/// blue, shown values in [0, 1]) is near an edge; its four corners are
+/// sampled (once each, shared with its neighbours). If a corner differs
+/// from the centre or from another corner by more than `threshold` (or
+/// gives no finite colour), an edge crosses the pixel — a straight edge
+/// through a square leaves corners on both its sides — and the pixel is
+/// sampled again with [`super::Settings::spp`] stratified samples, exactly the
+/// samples `--spp` of that number takes there, and gets their mean; else
+/// it keeps its centre's colour. Every decision depends on samples fixed
+/// by the pixel coordinates only, so the image is the same for any thread
+/// count.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Adaptive {
+    pub threshold: f64,
+}
+
+/// POV-Ray's default `Antialias_Threshold`.
+pub const ADAPTIVE_THRESHOLD: f64 = 0.3;
+/// The samples of a refined pixel by default.
+pub const ADAPTIVE_SPP: u32 = 16;
+
+/// The pixels adaptive anti-aliasing samples again, as each row's
+/// columns in ascending order, from the first pass's radiance `lin` (three
+/// values a pixel, `w`×`h`, row-major) and `corner(x, y)`, the shown colour
+/// at image point (x, y) (`None` where it is not finite), asked once for
+/// each corner of a pixel near an edge; with the counters of those
+/// samples. `progress` hears of the corners as [`super::render`]'s passes
+/// tell theirs. Only the corners asked for are stored.
+pub fn crossed(
+    lin: &[f32],
+    w: usize,
+    h: usize,
+    threshold: f64,
+    corner: impl Fn(u32, u32, &mut Stats) -> Option<[f64; 3]> + Sync,
+    progress: &(dyn Fn(super::Progress) + Sync),
+) -> (Vec<Vec<u32>>, Stats) {
+    let near = edges(lin, w, h, threshold);
+    let near_at = |x: usize, y: usize| x < w && y < h && near[y * w + x];
+    // Each row of corners: the columns of the corners of pixels near an
+    // edge (a corner is pixel (x, y)'s top left), each sampled once.
+    let columns: Vec<Vec<u32>> = (0..=h)
+        .into_par_iter()
+        .map(|y| {
+            let rows = [y.wrapping_sub(1), y];
+            if !rows
+                .iter()
+                .any(|&r| r < h && near[r * w..][..w].contains(&true))
+            {
+                return Vec::new();
+            }
+            (0..=w)
+                .filter(|&x| {
+                    rows.iter()
+                        .any(|&r| near_at(x, r) || near_at(x.wrapping_sub(1), r))
+                })
+                .map(|x| x as u32)
+                .collect()
+        })
+        .collect();
+    let count = columns.iter().map(Vec::len).sum::<usize>() as u64;
+    if count == 0 {
+        return (vec![Vec::new(); h], Stats::default());
+    }
+    progress(super::Progress::Planned(count));
+    let (colours, stats) = columns
+        .par_iter()
+        .enumerate()
+        .with_max_len(1)
+        .map(|(y, xs)| {
+            let mut st = Stats::default();
+            let row: Vec<_> = xs.iter().map(|&x| corner(x, y as u32, &mut st)).collect();
+            progress(super::Progress::Done(xs.len() as u64));
+            (row, st)
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .fold(
+            (Vec::new(), Stats::default()),
+            |(mut all, mut sum), (row, st)| {
+                all.push(row);
+                sum.add(&st);
+                (all, sum)
+            },
+        );
+    let at = |x: usize, y: usize| {
+        let k = columns[y].partition_point(|&c| (c as usize) < x);
+        colours[y][k]
+    };
+    // Sampled again: a pixel near an edge one of whose corners differs
+    // from its centre or from another corner by more than the threshold,
+    // or gave no finite colour.
+    let again = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            (0..w)
+                .filter(|&x| {
+                    if !near[y * w + x] {
+                        return false;
+                    }
+                    let mut seen = [shown_at(lin, 3 * (y * w + x)); 5];
+                    let four = [at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)];
+                    for (k, c) in four.into_iter().enumerate() {
+                        let Some(c) = c else { return true };
+                        if seen[..=k].iter().any(|o| differ(o, &c) > threshold) {
+                            return true;
+                        }
+                        seen[k + 1] = c;
+                    }
+                    false
+                })
+                .map(|x| x as u32)
+                .collect()
+        })
+        .collect();
+    (again, stats)
+}
+
+/// The pixels near an edge: those whose colour (clamped to [0, 1], as it
+/// is shown) differs from an 8-neighbour's by more than `threshold`,
+/// summed over red, green and blue.
+fn edges(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
+    (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let c = shown_at(lin, 3 * i);
+            (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
+                (x.saturating_sub(1)..(x + 2).min(w))
+                    .any(|nx| differ(&c, &shown_at(lin, 3 * (ny * w + nx))) > threshold)
+            })
+        })
+        .collect()
+}
+
+/// A colour as it is shown: each value clamped to [0, 1].
+pub fn shown(c: DVec3) -> [f64; 3] {
+    c.to_array().map(|v| v.clamp(0.0, 1.0))
+}
+
+/// The shown colour of the radiance at `lin[i..i + 3]`.
+fn shown_at(lin: &[f32], i: usize) -> [f64; 3] {
+    [lin[i], lin[i + 1], lin[i + 2]].map(|v| (v as f64).clamp(0.0, 1.0))
+}
+
+/// How far two shown colours differ: the sum of the absolute differences
+/// of red, green and blue.
+fn differ(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).abs()).sum()
+}
