@@ -275,6 +275,15 @@ impl Csg {
                 })
                 .collect();
         }
+        if op == Op::Intersection {
+            // Later children are asked only where the earlier ones leave
+            // something: the cheaper first lets a small part cut a large
+            // one's query short (a bevel gear: one cone intersected with a
+            // union of a cone and 205 teeth). Cheaper: fewer leaves by a
+            // power of four (1–3, 4–15, 16–63, …); within one such class
+            // the file's order.
+            children.sort_by_cached_key(|&c| self.leaves(c, LEAF_COUNT_CAP).ilog(4));
+        }
         if op == Op::Difference && children.len() > 2 {
             let rest = children.split_off(1);
             let u = self.add_op(Op::Union, rest);
@@ -291,6 +300,24 @@ impl Csg {
             lanes: Vec::new(),
             pretest: false,
         })
+    }
+
+    /// How many leaves node `node` has, counted up to `cap`.
+    fn leaves(&self, node: u32, cap: usize) -> usize {
+        match &self.nodes[node as usize].kind {
+            NodeKind::Leaf(_) => 1,
+            NodeKind::Section(c, _) => self.leaves(*c, cap),
+            NodeKind::Op(_, ch) => {
+                let mut n = 0;
+                for &c in ch {
+                    n += self.leaves(c, cap - n);
+                    if n >= cap {
+                        return cap;
+                    }
+                }
+                n
+            }
+        }
     }
 
     /// Adds the section of node `child` (built with its primitives placed
@@ -929,6 +956,10 @@ fn op_bounds(op: Op, mut boxes: impl Iterator<Item = Aabb>) -> Aabb {
         Op::Difference => boxes.next().unwrap_or(Aabb::EMPTY),
     }
 }
+
+/// How far [`Csg::add_op`] counts an intersection's children's leaves
+/// to order them: a bound on the work of one node's count.
+const LEAF_COUNT_CAP: usize = 256;
 
 /// From how many children a union's first-hit query walks its hierarchy,
 /// nearer subtrees first, instead of sorting every child the ray meets.

@@ -215,3 +215,26 @@ fn a_union_met_by_a_small_box_looks_only_at_what_lies_in_it() {
     let tests = s["primitive_tests"].as_u64().unwrap();
     assert!(tests < 3 * rays, "{tests} primitive tests for {rays} rays");
 }
+
+#[test]
+fn an_intersection_asks_its_cheap_child_first() {
+    // A slab intersected with a column of 64 spheres that runs along the
+    // view, the slab written last: every ray through the slab meets the
+    // boxes of the spheres in front of and behind it, but only those the
+    // slab leaves need their spans. Asked in the file's order, a ray
+    // tested every sphere on its line (64 a ray); the slab first, the one
+    // or two in the slab.
+    let balls: String = (0..64)
+        .map(|i| format!("translate([0, 0, {}]) sphere(1);\n", i as f64 * 1.5 - 48.0))
+        .collect();
+    let text = format!(
+        "camera(eye = [0, 0, 60], lookat = [0, 0, 0], up = [0, 1, 0], fov = 4);\n\
+         directional_light([1, 1, 1], [0, 0, -1]);\n\
+         intersection() {{ union() {{\n{balls}}} translate([-5, -5, -0.5]) cube([10, 10, 1]); }}\n"
+    );
+    let s = counters(&text, "40x40");
+    let rays = s["primary_rays"].as_u64().unwrap() + s["shadow_rays"].as_u64().unwrap();
+    assert!(s["mask_hits"].as_u64().unwrap() > 100, "{text}");
+    let tests = s["primitive_tests"].as_u64().unwrap();
+    assert!(tests < 4 * rays, "{tests} primitive tests for {rays} rays");
+}
