@@ -48,6 +48,10 @@ pub struct MeshData {
     /// they name (two loads, the second waiting on the first); the values,
     /// and so every answer, are the same.
     flat: Vec<[f32; 9]>,
+    /// For a small closed convex mesh ([`face_planes`]): its faces' planes,
+    /// against which a line is clipped instead of crossing its triangles;
+    /// empty otherwise.
+    planes: Vec<FacePlane>,
     /// For a convex mesh ([`MeshData::convex`]): each vertex's neighbours,
     /// so that its support point is found by climbing along edges.
     neighbours: Option<Vec<Vec<u32>>>,
@@ -102,12 +106,14 @@ impl MeshData {
         } else {
             Vec::new()
         };
+        let planes = face_planes(&verts, &tris, &bounds);
         MeshData {
             verts,
             tris,
             bvh,
             bounds,
             flat,
+            planes,
             neighbours: None,
         }
     }
@@ -464,6 +470,112 @@ fn part_of((_, i, along): (f64, u32, bool), entering: bool) -> Part {
     (i << 1) | u32::from(along == entering)
 }
 
+/// The most triangles of a mesh clipped by its faces' planes rather than
+/// crossed triangle by triangle through its hierarchy (a gear's tooth, a
+/// hand-written wedge); a larger convex mesh (a hull of many points)
+/// keeps the hierarchy, which tests only the triangles near the line.
+pub const PLANES_MAX_TRIANGLES: usize = 64;
+
+/// A face's plane: inside where `n·x ≤ h`, `n` the outward normal that
+/// `part`'s triangle gives ([`Mesh::normal`]), not unit.
+#[derive(Clone, Copy, Debug)]
+struct FacePlane {
+    n: DVec3,
+    h: f64,
+    part: Part,
+}
+
+/// The planes of a closed convex mesh of at most [`PLANES_MAX_TRIANGLES`]
+/// triangles, one a face (its first triangle's), or none. Closed: every
+/// edge joins exactly two triangles. Convex: every vertex lies inside
+/// every triangle's plane, oriented away from the vertices' centroid, or
+/// within 10⁻⁹ of the box's diagonal of it (and the rounding of points at
+/// the box's distance from the origin: 64 ε of it), and the centroid
+/// farther than that inside; a hull made with a coarser thickness far
+/// from the origin keeps its triangles;
+/// such a closed surface bounds exactly the intersection of the planes'
+/// half-spaces, so parity and clipping agree. Triangles without area are
+/// never crossed and give no plane.
+fn face_planes(verts: &[DVec3], tris: &[[u32; 3]], bounds: &Aabb) -> Vec<FacePlane> {
+    if tris.len() > PLANES_MAX_TRIANGLES || tris.len() < 4 {
+        return Vec::new();
+    }
+    let mut edges: Vec<(u32, u32)> = tris
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
+    edges.sort_unstable();
+    let closed = edges.chunks(2).all(|p| p.len() == 2 && p[0] == p[1])
+        && edges.windows(3).all(|w| w[0] != w[2]);
+    if !closed {
+        return Vec::new();
+    }
+    let far = bounds.min.abs().max(bounds.max.abs()).max_element();
+    let tol = 1e-9 * (bounds.max - bounds.min).length() + 64.0 * f64::EPSILON * far;
+    let centroid = verts.iter().sum::<DVec3>() / verts.len() as f64;
+    let mut planes: Vec<FacePlane> = Vec::new();
+    for (i, t) in tris.iter().enumerate() {
+        let [a, b, c] = t.map(|k| verts[k as usize]);
+        let raw = (b - a).cross(c - a);
+        let len = raw.length();
+        if len == 0.0 || !len.is_finite() {
+            continue;
+        }
+        // Outward: away from the centroid (`Mesh::normal` flips the
+        // triangle's normal for a part whose low bit is set).
+        let inward = raw.dot(centroid - a) > 0.0;
+        let n = if inward { -raw } else { raw };
+        let h = n.dot(a);
+        let unit = n / len;
+        if unit.dot(centroid) - h / len > -tol || verts.iter().any(|v| unit.dot(*v) - h / len > tol)
+        {
+            return Vec::new();
+        }
+        let same = |p: &FacePlane| {
+            let l = p.n.length();
+            (p.n / l - unit).length() < 1e-12 && (p.h / l - h / len).abs() < tol
+        };
+        if !planes.iter().any(same) {
+            planes.push(FacePlane {
+                n,
+                h,
+                part: ((i as u32) << 1) | u32::from(inward),
+            });
+        }
+    }
+    planes
+}
+
+/// The line `o + t·d` clipped by `planes`: the one span inside them all,
+/// entered through the last plane it crosses inwards and left through the
+/// first it crosses outwards; none where it runs along or outside one.
+fn clip(planes: &[FacePlane], o: DVec3, d: DVec3, emit: &mut impl FnMut(RawSpan)) {
+    let (mut t0, mut t1) = (f64::NEG_INFINITY, f64::INFINITY);
+    let (mut p0, mut p1) = (NO_PART, NO_PART);
+    for p in planes {
+        let (along, gap) = (p.n.dot(d), p.h - p.n.dot(o));
+        if along == 0.0 {
+            if gap <= 0.0 {
+                return;
+            }
+            continue;
+        }
+        let t = gap / along;
+        if along < 0.0 {
+            if t > t0 {
+                t0 = t;
+                p0 = p.part;
+            }
+        } else if t < t1 {
+            t1 = t;
+            p1 = p.part;
+        }
+    }
+    if t0 < t1 {
+        emit((t0, p0, t1, p1));
+    }
+}
+
 /// The line along which a point's inside is counted, and POV-Ray's
 /// `inside_vector` for the same parity: no special direction.
 const INSIDE: DVec3 = DVec3::new(0.573_462_1, 0.614_379_3, 0.542_058_7);
@@ -479,6 +591,12 @@ impl Solid for Mesh {
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         let m = &self.data;
+        if !m.planes.is_empty() {
+            // A small convex mesh: the line clipped by its faces' planes,
+            // one span, whatever the caller reads of it.
+            q.st.triangle_tests += m.planes.len() as u64;
+            return clip(&m.planes, q.o, q.d, emit);
+        }
         if q.need != Need::Spans {
             // Every crossing of a closed mesh is a boundary: the first after
             // tmin is the nearest hit, found nearest first; its side is
@@ -752,5 +870,117 @@ mod tests {
             }
         }
         assert!(crossings > 20_000, "{crossings}");
+    }
+
+    /// A small convex mesh is clipped by its faces' planes: the same span
+    /// as its triangles' crossings (the exact watertight test, brute force,
+    /// paired in order), entered and left through faces whose normals are
+    /// the crossed triangles' (outward), on random hulls of 4 to 12 random
+    /// points (quickhull) at several places and scales, along random lines.
+    #[test]
+    fn a_small_convex_mesh_is_clipped_as_its_triangles_are_crossed() {
+        let mut rng = Lcg(11);
+        let (mut checked, mut clipped) = (0, 0);
+        for (offset, scale) in [
+            (DVec3::ZERO, 1.0),
+            (DVec3::new(1353.5, -12.7, 231.0), 10.0),
+            (DVec3::new(-3e5, 2e5, 1e5), 1e-3),
+        ] {
+            for k in 0..200 {
+                let n = 4 + k % 9;
+                let pts: Vec<DVec3> = (0..n)
+                    .map(|_| offset + scale * DVec3::new(rng.next(), rng.next(), rng.next()))
+                    .collect();
+                let Some(hull) = crate::geometry::polytope::hull_mesh(&pts) else {
+                    continue;
+                };
+                let m = &hull.data;
+                if m.tris.len() > PLANES_MAX_TRIANGLES {
+                    continue;
+                }
+                // A hull made convex only within the far place's coarser
+                // thickness keeps its triangles.
+                if m.planes.is_empty() {
+                    continue;
+                }
+                clipped += 1;
+                for _ in 0..50 {
+                    let o = offset
+                        + scale
+                            * DVec3::new(
+                                3.0 * rng.next() - 1.0,
+                                3.0 * rng.next() - 1.0,
+                                3.0 * rng.next() - 1.0,
+                            );
+                    let target = offset + scale * DVec3::new(rng.next(), rng.next(), rng.next());
+                    let d = target - o;
+                    let xs = brute(m, o, d, f64::INFINITY);
+                    let mut got = Vec::new();
+                    clip(&m.planes, o, d, &mut |s| got.push(s));
+                    if xs.is_empty() {
+                        assert!(got.is_empty(), "{got:?} for no crossing");
+                        continue;
+                    }
+                    assert_eq!(xs.len(), 2, "a line crosses a convex surface twice");
+                    assert_eq!(got.len(), 1);
+                    let (t0, p0, t1, p1) = got[0];
+                    // Rounding at the points' magnitude, along `d`.
+                    let room = 2e-9 * scale + 1e-13 * offset.abs().max_element();
+                    let tol = room / d.length();
+                    assert!(
+                        (t0 - xs[0].0).abs() < tol && (t1 - xs[1].0).abs() < tol,
+                        "{got:?} {xs:?}"
+                    );
+                    let mesh = Mesh {
+                        data: hull.data.clone(),
+                    };
+                    for (part, x, entering) in [(p0, xs[0], true), (p1, xs[1], false)] {
+                        let n = mesh.normal(DVec3::ZERO, part).normalize();
+                        let want = mesh.normal(DVec3::ZERO, part_of(x, entering)).normalize();
+                        assert!((n - want).length() < room / scale, "{n} {want}");
+                        assert_eq!(n.dot(d) < 0.0, entering, "outward normal");
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(clipped > 500 && checked > 5000, "{clipped} {checked}");
+    }
+
+    /// A mesh that is open, or not convex, keeps its triangles.
+    #[test]
+    fn an_open_or_concave_mesh_gets_no_planes() {
+        let v = DVec3::new;
+        // A square pyramid (apex 5) whose base is four triangles meeting
+        // at point 4, under the base (a convex bipyramid) or pushed up
+        // into the pyramid (a dent: closed, not convex).
+        let tris = vec![
+            [0, 1, 5],
+            [1, 2, 5],
+            [2, 3, 5],
+            [3, 0, 5],
+            [0, 4, 1],
+            [1, 4, 2],
+            [2, 4, 3],
+            [3, 4, 0],
+        ];
+        let with = |z: f64| {
+            vec![
+                v(0.0, 0.0, 0.0),
+                v(2.0, 0.0, 0.0),
+                v(2.0, 2.0, 0.0),
+                v(0.0, 2.0, 0.0),
+                v(1.0, 1.0, z),
+                v(1.0, 1.0, 2.0),
+            ]
+        };
+        assert_eq!(MeshData::new(with(-0.5), tris.clone()).planes.len(), 8);
+        assert!(MeshData::new(with(0.5), tris.clone()).planes.is_empty());
+        // Flat at 4: the base's four triangles are one face.
+        assert_eq!(MeshData::new(with(0.0), tris.clone()).planes.len(), 5);
+        // A face missing: open.
+        assert!(MeshData::new(with(-0.5), tris[..7].to_vec())
+            .planes
+            .is_empty());
     }
 }

@@ -37,6 +37,41 @@ fn cube() -> Mesh {
     mesh(&v, &tris)
 }
 
+/// The unit cube with each face an n×n grid of squares, two triangles
+/// each: more triangles than a mesh is clipped by planes for
+/// (`PLANES_MAX_TRIANGLES`), so lines cross its triangles one by one.
+fn fine_cube(n: u32) -> Mesh {
+    let mut index = std::collections::HashMap::new();
+    let mut v: Vec<[f64; 3]> = Vec::new();
+    let mut at = |p: [u32; 3]| {
+        *index.entry(p).or_insert_with(|| {
+            v.push(p.map(|c| c as f64 / n as f64));
+            v.len() as u32 - 1
+        })
+    };
+    let mut tris = Vec::new();
+    for axis in 0..3 {
+        for side in [0, n] {
+            for i in 0..n {
+                for j in 0..n {
+                    let mut p = |a: u32, b: u32| {
+                        let mut c = [0; 3];
+                        c[axis] = side;
+                        c[(axis + 1) % 3] = a;
+                        c[(axis + 2) % 3] = b;
+                        at(c)
+                    };
+                    let q = [p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)];
+                    tris.push([q[0], q[1], q[2]]);
+                    tris.push([q[0], q[2], q[3]]);
+                }
+            }
+        }
+    }
+    assert!(tris.len() > csgrt::geometry::mesh::PLANES_MAX_TRIANGLES);
+    mesh(&v, &tris)
+}
+
 /// Every span of the whole line, with the parts of its ends.
 fn raw_spans(m: &Mesh, o: DVec3, d: DVec3) -> Vec<csgrt::geometry::solid::RawSpan> {
     let mut st = Stats::default();
@@ -76,7 +111,14 @@ fn slab(o: DVec3, d: DVec3) -> Option<(f64, f64)> {
 
 #[test]
 fn a_cube_mesh_has_the_spans_of_the_cube() {
-    let m = cube();
+    // Clipped by its planes (12 triangles) and crossed triangle by
+    // triangle (the fine cube).
+    for m in [cube(), fine_cube(3)] {
+        cube_spans(&m);
+    }
+}
+
+fn cube_spans(m: &Mesh) {
     let mut rng = Rng(11);
     let mut met = 0;
     for _ in 0..2000 {
@@ -91,7 +133,7 @@ fn a_cube_mesh_has_the_spans_of_the_cube() {
             rng.range(-0.2, 1.2),
         );
         let d = (at - o).normalize();
-        let got = spans(&m, o, d);
+        let got = spans(m, o, d);
         match slab(o, d) {
             None => assert!(got.is_empty(), "{o} {d}: {got:?}"),
             Some((lo, hi)) => {
@@ -111,8 +153,15 @@ fn a_cube_mesh_has_the_spans_of_the_cube() {
 fn lines_through_shared_edges_and_vertices_cross_exactly_once_each_way() {
     // Aimed exactly at the cube mesh's corners, its edges, and the
     // diagonals its faces are cut along (each shared by two triangles),
-    // from outside and on into the inside: one span, the cube's.
-    let m = cube();
+    // from outside and on into the inside: one span, the cube's. The fine
+    // cube's triangles share those lines too (its squares are cut along
+    // the same diagonals), and are crossed one by one.
+    for m in [cube(), fine_cube(3)] {
+        through_edges(&m);
+    }
+}
+
+fn through_edges(m: &Mesh) {
     let mut rng = Rng(5);
     let mut aims = Vec::new();
     for i in 0..8 {
@@ -140,7 +189,7 @@ fn lines_through_shared_edges_and_vertices_cross_exactly_once_each_way() {
         );
         let d = (inner - *aim).normalize();
         let o = *aim - d * rng.range(1.0, 5.0);
-        let got = spans(&m, o, d);
+        let got = spans(m, o, d);
         let want = slab(o, d).expect("the line goes through the inside");
         assert_eq!(got.len(), 1, "aim {k} {aim}: {got:?} want {want:?}");
         assert!(
@@ -156,8 +205,14 @@ fn lines_through_shared_edges_and_vertices_cross_exactly_once_each_way() {
 fn a_mesh_wound_either_way_or_both_is_the_same_solid() {
     // Parity needs no orientation: the cube with every triangle reversed,
     // and with every other one reversed, has the same spans and outward
-    // normals.
-    let base = cube();
+    // normals; clipped by planes (12 triangles) and crossed one by one
+    // (the fine cube).
+    for base in [cube(), fine_cube(3)] {
+        wound(&base);
+    }
+}
+
+fn wound(base: &Mesh) {
     let flip = |keep: &dyn Fn(usize) -> bool| {
         let d = &base.data;
         let tris: Vec<[u32; 3]> = d
@@ -222,7 +277,14 @@ fn lines_along_a_face_or_an_edge_never_leave_a_span_open() {
     // edges: the edge functions are exactly zero, and the ownership rule
     // must count the way in and the way out alike — the span is the
     // cube's, or (grazing) nothing, never one that runs on to infinity.
-    let m = cube();
+    // The cube of 12 triangles is clipped by its faces' planes (a line in
+    // one is outside); the fine cube's triangles are crossed one by one.
+    for (m, least) in [(cube(), 100), (fine_cube(4), 500)] {
+        lines_along_faces(&m, least);
+    }
+}
+
+fn lines_along_faces(m: &Mesh, least: usize) {
     let mut rng = Rng(3);
     let mut seen = 0;
     for _ in 0..300 {
@@ -237,7 +299,7 @@ fn lines_along_a_face_or_an_edge_never_leave_a_span_open() {
                 o[axis] = -2.0 * sign + 0.5;
                 let mut d = DVec3::ZERO;
                 d[axis] = sign;
-                let got = spans(&m, o, d);
+                let got = spans(m, o, d);
                 assert!(got.iter().all(|s| s.1.is_finite()), "{o} {d}: {got:?}");
                 if let Some(s) = got.first() {
                     let want = slab(o, d).unwrap();
@@ -248,7 +310,7 @@ fn lines_along_a_face_or_an_edge_never_leave_a_span_open() {
             }
         }
     }
-    assert!(seen > 500, "{seen}");
+    assert!(seen > least, "{seen}");
 }
 
 /// Runs `import("NAME")` of a file holding `bytes`; (status, stderr, the
