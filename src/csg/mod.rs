@@ -282,7 +282,7 @@ impl Csg {
             // union of a cone and 205 teeth). Cheaper: fewer leaves by a
             // power of four (1–3, 4–15, 16–63, …); within one such class
             // the file's order.
-            children.sort_by_cached_key(|&c| self.leaves(c, LEAF_COUNT_CAP).ilog(4));
+            children.sort_by_cached_key(|&c| self.leaf_count(c, LEAF_COUNT_CAP).ilog(4));
         }
         if op == Op::Difference && children.len() > 2 {
             let rest = children.split_off(1);
@@ -303,14 +303,14 @@ impl Csg {
     }
 
     /// How many leaves node `node` has, counted up to `cap`.
-    fn leaves(&self, node: u32, cap: usize) -> usize {
+    fn leaf_count(&self, node: u32, cap: usize) -> usize {
         match &self.nodes[node as usize].kind {
             NodeKind::Leaf(_) => 1,
-            NodeKind::Section(c, _) => self.leaves(*c, cap),
+            NodeKind::Section(c, _) => self.leaf_count(*c, cap),
             NodeKind::Op(_, ch) => {
                 let mut n = 0;
                 for &c in ch {
-                    n += self.leaves(c, cap - n);
+                    n += self.leaf_count(c, cap - n);
                     if n >= cap {
                         return cap;
                     }

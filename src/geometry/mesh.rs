@@ -487,7 +487,8 @@ struct FacePlane {
 
 /// The planes of a closed convex mesh of at most [`PLANES_MAX_TRIANGLES`]
 /// triangles, one a face (its first triangle's), or none. Closed: every
-/// edge joins exactly two triangles. Convex: every vertex lies inside
+/// edge joins exactly two triangles ([`edge_use`], as the warning about
+/// open meshes counts them). Convex: every vertex lies inside
 /// every triangle's plane, oriented away from the vertices' centroid, or
 /// within 10⁻⁹ of the box's diagonal of it (and the rounding of points at
 /// the box's distance from the origin: 64 ε of it), and the centroid
@@ -500,14 +501,7 @@ fn face_planes(verts: &[DVec3], tris: &[[u32; 3]], bounds: &Aabb) -> Vec<FacePla
     if tris.len() > PLANES_MAX_TRIANGLES || tris.len() < 4 {
         return Vec::new();
     }
-    let mut edges: Vec<(u32, u32)> = tris
-        .iter()
-        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
-        .collect();
-    edges.sort_unstable();
-    let closed = edges.chunks(2).all(|p| p.len() == 2 && p[0] == p[1])
-        && edges.windows(3).all(|w| w[0] != w[2]);
-    if !closed {
+    if edge_use(tris) != (0, 0) {
         return Vec::new();
     }
     let far = bounds.min.abs().max(bounds.max.abs()).max_element();
@@ -931,12 +925,9 @@ mod tests {
                         (t0 - xs[0].0).abs() < tol && (t1 - xs[1].0).abs() < tol,
                         "{got:?} {xs:?}"
                     );
-                    let mesh = Mesh {
-                        data: hull.data.clone(),
-                    };
                     for (part, x, entering) in [(p0, xs[0], true), (p1, xs[1], false)] {
-                        let n = mesh.normal(DVec3::ZERO, part).normalize();
-                        let want = mesh.normal(DVec3::ZERO, part_of(x, entering)).normalize();
+                        let n = hull.normal(DVec3::ZERO, part).normalize();
+                        let want = hull.normal(DVec3::ZERO, part_of(x, entering)).normalize();
                         assert!((n - want).length() < room / scale, "{n} {want}");
                         assert_eq!(n.dot(d) < 0.0, entering, "outward normal");
                     }
