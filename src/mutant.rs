@@ -63,6 +63,7 @@ pub const NAMES: &[&str] = &[
     "convex_slab_shrunk",
     "coaxial_axis_dropped",
     "twist_reach_shrunk",
+    "twist_discs_unturned",
     "trig_roots_early",
     "twist_far_point_untwisted",
     "disc_push_short",

@@ -103,6 +103,17 @@ impl TwistSection {
         }
     }
 
+    /// Points whose hull holds the section: a region's corners, the
+    /// corners of an ellipse's parallelogram.
+    fn corners(&self) -> Vec<DVec2> {
+        match self {
+            TwistSection::Region(r) => r.edges.iter().map(|&(a, _)| a).collect(),
+            TwistSection::Ellipse(e) => [(1.0, 1.0), (1.0, -1.0), (-1.0, -1.0), (-1.0, 1.0)]
+                .map(|(u, v)| e.transform_point2(DVec2::new(u, v)))
+                .to_vec(),
+        }
+    }
+
     /// The box of the section.
     fn box2(&self) -> (DVec2, DVec2) {
         match self {
@@ -117,6 +128,30 @@ impl TwistSection {
             }
         }
     }
+}
+
+/// The box of the arc v turns through by R(a·z), z from 0 to 1: its
+/// ends, and its points on the axes that it passes.
+fn arc_box(v: DVec2, a: f64) -> (DVec2, DVec2) {
+    let r = v.length();
+    if a.abs() >= std::f64::consts::TAU {
+        return (DVec2::splat(-r), DVec2::splat(r));
+    }
+    let a0 = v.y.atan2(v.x);
+    let (from, to) = (a0 + a.min(0.0), a0 + a.max(0.0));
+    let end = DMat2::from_angle(a) * v;
+    let (mut lo, mut hi) = (v.min(end), v.max(end));
+    for k in 0..4 {
+        let axis = k as f64 * std::f64::consts::FRAC_PI_2;
+        // The first angle axis + 2πn at or after `from`.
+        let n = ((from - axis) / std::f64::consts::TAU).ceil();
+        if axis + n * std::f64::consts::TAU <= to {
+            let p = [DVec2::X, DVec2::Y, DVec2::NEG_X, DVec2::NEG_Y][k] * r;
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    }
+    (lo, hi)
 }
 
 /// The distance from the origin to the segment a–b.
@@ -229,26 +264,46 @@ impl Twisted {
             TwistSection::Region(region) => {
                 // The whole section's reach first: a line that passes
                 // inside its nearest edge's distance or beyond its farthest
-                // corner, scaled, crosses no side.
-                let reach: SmallVec<[(f64, f64); 16]> = region
-                    .edges
-                    .iter()
-                    .map(|&(a, b)| (segment_distance(a, b), a.length().max(b.length())))
-                    .collect();
-                let (rho0, rho1) = reach
-                    .iter()
-                    .fold((f64::INFINITY, 0.0f64), |(l, h), &(r0, r1)| {
-                        (l.min(r0), h.max(r1))
-                    });
+                // corner, scaled, crosses no side. Above SCAN_EDGES edges,
+                // from its box (0 to its farthest corner) rather than from
+                // every edge.
+                let reach =
+                    |&(a, b): &(DVec2, DVec2)| (segment_distance(a, b), a.length().max(b.length()));
+                let (lo, hi) = (region.lo, region.hi);
+                let (rho0, rho1) = if region.tree.is_some() {
+                    (0.0, lo.abs().max(hi.abs()).length())
+                } else {
+                    region
+                        .edges
+                        .iter()
+                        .map(reach)
+                        .fold((f64::INFINITY, 0.0f64), |(l, h), (r0, r1)| {
+                            (l.min(r0), h.max(r1))
+                        })
+                };
                 let rho1 = if crate::mutant::active("twist_reach_shrunk") {
                     0.9 * rho1
                 } else {
                     rho1
                 };
-                if !path.reaches(rho0, rho1) {
+                let Some((l, h)) = path.reaches(rho0, rho1) else {
+                    return cuts;
+                };
+                // The path over that range, in pieces, near the section's
+                // own disc (the box's centre and half diagonal).
+                let discs = path.discs(l, h, 0.5 * (lo + hi), 0.5 * (hi - lo).length());
+                if discs.kept == 0 {
                     return cuts;
                 }
-                for (e, &(a, b)) in region.edges.iter().enumerate() {
+                let mut edge = |e: usize| {
+                    let (a, b) = region.edges[e];
+                    // The pieces of the path that may pass over the edge
+                    // itself; none: no root on the edge's line is on it.
+                    let near = discs.near(a, b);
+                    if near == 0 {
+                        return;
+                    }
+                    let may = |l: f64, h: f64| discs.may(near, l, h);
                     let n = region.normals[e];
                     let c = n.dot(a);
                     let comb = Pol::comb;
@@ -260,8 +315,8 @@ impl Twisted {
                         phi: path.phi,
                     };
                     roots.clear();
-                    let (rho0, rho1) = reach[e];
-                    path.roots(&side, rho0, rho1, 1.0, &mut roots);
+                    let (rho0, rho1) = reach(&(a, b));
+                    path.roots(&side, rho0, rho1, 1.0, &may, &mut roots);
                     let (ed, len2) = (b - a, (b - a).length_squared());
                     for &t in &roots {
                         let x = o + d * t;
@@ -271,6 +326,14 @@ impl Twisted {
                             cuts.push((t, SIDE + e as Part));
                         }
                     }
+                };
+                match &region.tree {
+                    // The edges in boxes some piece's disc meets.
+                    Some(tree) => tree
+                        .visit_boxes(|blo, bhi| discs.meets_box(blo, bhi), &mut |e| {
+                            edge(e as usize)
+                        }),
+                    None => (0..region.edges.len()).for_each(edge),
                 }
             }
             TwistSection::Ellipse(e) => {
@@ -278,7 +341,13 @@ impl Twisted {
                 let rho1 = self.section.reach();
                 let rho0 = (e.translation.length() - largest_stretch(e.matrix2)).max(0.0);
                 let turns = if side.second.is_some() { 2.0 } else { 1.0 };
-                path.roots(&side, rho0, rho1, turns, &mut roots);
+                // The pieces whose discs meet the ellipse's own disc.
+                let Some((l, h)) = path.reaches(rho0, rho1) else {
+                    return cuts;
+                };
+                let discs = path.discs(l, h, e.translation, largest_stretch(e.matrix2));
+                let may = |l: f64, h: f64| discs.may(discs.kept, l, h);
+                path.roots(&side, rho0, rho1, turns, &may, &mut roots);
                 for &t in &roots {
                     if self.frame(o.z + d.z * t).is_some() {
                         cuts.push((t, SIDE));
@@ -372,6 +441,52 @@ impl Twisted {
     }
 }
 
+/// How many pieces [`TwistPath::discs`] cuts a path into.
+const DISCS: usize = 8;
+
+/// A twisted extrusion's path in its section's plane cut into pieces,
+/// piece i (τ from `cuts[i]` to `cuts[i + 1]`) within `radius[i]` of
+/// `centre[i]`: a root of an edge's line over a piece whose disc misses
+/// the edge is not on the edge.
+struct Discs {
+    cuts: [f64; DISCS + 1],
+    centre: [DVec2; DISCS],
+    radius: [f64; DISCS],
+    /// The pieces near the section, one bit each.
+    kept: u32,
+}
+
+impl Discs {
+    /// Whether a piece near the section has a disc that meets the box
+    /// [lo, hi].
+    fn meets_box(&self, lo: DVec2, hi: DVec2) -> bool {
+        (0..DISCS).any(|i| {
+            self.kept & (1 << i) != 0
+                && (self.radius[i] == f64::INFINITY
+                    || (self.centre[i].clamp(lo, hi) - self.centre[i]).length() <= self.radius[i])
+        })
+    }
+
+    /// The pieces near the section whose discs meet the segment a–b, one
+    /// bit each.
+    fn near(&self, a: DVec2, b: DVec2) -> u32 {
+        let mut bits = 0;
+        for i in (0..DISCS).filter(|i| self.kept & (1 << i) != 0) {
+            if self.radius[i] == f64::INFINITY
+                || segment_distance(a - self.centre[i], b - self.centre[i]) <= self.radius[i]
+            {
+                bits |= 1 << i;
+            }
+        }
+        bits
+    }
+
+    /// Whether [l, h] meets one of the pieces in `bits`.
+    fn may(&self, bits: u32, l: f64, h: f64) -> bool {
+        (0..DISCS).any(|i| bits & (1 << i) != 0 && self.cuts[i] <= h && self.cuts[i + 1] >= l)
+    }
+}
+
 /// The line o + t·d in a twisted extrusion's terms (see the module
 /// comment): σ, w, σ̄ and φ as polynomials in t.
 struct TwistPath {
@@ -385,8 +500,9 @@ struct TwistPath {
     r2: Pol,
     sx2: Pol,
     sy2: Pol,
-    /// σx, and x and y, as linear functions of t.
+    /// σx and σy, and x and y, as linear functions of t.
     sx: [f64; 2],
+    sy: [f64; 2],
     x: [f64; 2],
     y: [f64; 2],
     /// The range of τ, and the t where τ = 0.
@@ -416,6 +532,7 @@ impl TwistPath {
             sx2: Pol::mul_lin(sx, sx),
             sy2: Pol::mul_lin(sy, sy),
             sx,
+            sy,
             x: [o.x, d.x],
             y: [o.y, d.y],
             t0: t0 - tc,
@@ -472,6 +589,77 @@ impl TwistPath {
         }
     }
 
+    /// The path p(τ) = R(φ)·S⁻¹·x in the section's plane from τ = t0 to
+    /// t1 cut into [`DISCS`] pieces of equal length, each within a disc
+    /// (see [`Discs`]); a piece whose disc misses the disc of `centre` and
+    /// `radius` (one that holds the section) is left out.
+    fn discs(&self, t0: f64, t1: f64, centre: DVec2, radius: f64) -> Discs {
+        let lin = |c: [f64; 2], t: f64| c[0] + c[1] * t;
+        // S⁻¹·x at τ: each component (x/σx, y/σy) a ratio of linear
+        // functions, monotone where σ > 0.
+        let q = |t: f64| {
+            DVec2::new(
+                lin(self.x, t) / lin(self.sx, t),
+                lin(self.y, t) / lin(self.sy, t),
+            )
+        };
+        let at = |i: usize| {
+            if i == DISCS {
+                t1
+            } else {
+                t0 + (t1 - t0) * (i as f64 / DISCS as f64)
+            }
+        };
+        let mut out = Discs {
+            cuts: [0.0; DISCS + 1],
+            centre: [DVec2::ZERO; DISCS],
+            radius: [f64::INFINITY; DISCS],
+            kept: 0,
+        };
+        let mut kept = 0;
+        for i in 0..=DISCS {
+            out.cuts[i] = at(i);
+        }
+        let (mut ql, mut sl) = (q(t0), lin(self.sx, t0).min(lin(self.sy, t0)));
+        // R(φ) at the pieces' middles, each the last turned by one piece's
+        // φ (its rounding, some ulps a turn, well within the discs' room).
+        let mut turn_m = DMat2::from_angle(lin(self.phi, 0.5 * (out.cuts[0] + out.cuts[1])));
+        let step = DMat2::from_angle(self.phi[1] * (t1 - t0) / DISCS as f64);
+        for i in 0..DISCS {
+            let (l, h) = (out.cuts[i], out.cuts[i + 1]);
+            let m = 0.5 * (l + h);
+            let (qh, sh) = (q(h), lin(self.sx, h).min(lin(self.sy, h)));
+            let qm = q(m);
+            // |R(φ)q − R(φm)qm| ≤ |q − qm| + |R(φ) − R(φm)|·|qm|, the
+            // first within the box of the ends' q (each component
+            // monotone), the second at most 2|sin(Δφ/2)| ≤ |Δφ|.
+            let far = (ql - qm).abs().max((qh - qm).abs()).length();
+            let turn = if crate::mutant::active("twist_discs_unturned") {
+                0.0
+            } else {
+                (self.phi[1] * (h - l) * 0.5).abs().min(2.0)
+            };
+            let r = far + turn * qm.length();
+            out.centre[i] = turn_m * qm;
+            turn_m = step * turn_m;
+            // Where σ reaches zero (a scale of 0 at the top) the path
+            // leaves for infinity: no bound.
+            if sl > 0.0 && sh > 0.0 && r.is_finite() && out.centre[i].is_finite() {
+                // Room for the rounding of the roots and of the edge test
+                // that keeps them.
+                out.radius[i] = r + 1e-9 * (r + qm.length());
+            }
+            if out.centre[i].distance(centre) <= out.radius[i] + radius * (1.0 + 1e-9)
+                || out.radius[i] == f64::INFINITY
+            {
+                kept |= 1 << i;
+            }
+            (ql, sl) = (qh, sh);
+        }
+        out.kept = kept;
+        out
+    }
+
     /// Where the path can be within ρ₁ of the axis (scaled by σ), and
     /// where it can be at least ρ₀ from it: where ρ₀·min σ ≤ r(t) ≤ ρ₁·max
     /// σ, from r² − ρ₁²σ² ≤ 0 for σx or σy and ρ₀²σ² − r² ≤ 0 for σx or σy
@@ -500,17 +688,33 @@ impl TwistPath {
 
     /// Whether the path can be anywhere between ρ₀ and ρ₁ from the axis
     /// (see [`TwistPath::reach`]).
-    fn reaches(&self, rho0: f64, rho1: f64) -> bool {
+    /// (the range from the first such τ to the last, if any).
+    fn reaches(&self, rho0: f64, rho1: f64) -> Option<(f64, f64)> {
         let (upper, lower) = self.reach(rho0, rho1);
-        upper
-            .iter()
-            .any(|&(ul, uh)| lower.iter().any(|&(ll, lh)| ul.max(ll) <= uh.min(lh)))
+        let mut out: Option<(f64, f64)> = None;
+        for &(ul, uh) in &upper {
+            for &(ll, lh) in &lower {
+                let (l, h) = (ul.max(ll), uh.min(lh));
+                if l <= h {
+                    out = Some(out.map_or((l, h), |(a, b)| (a.min(l), b.max(h))));
+                }
+            }
+        }
+        out
     }
 
     /// The roots of `side` in [t0, t1] where the path can reach distances
     /// ρ₀ to ρ₁ from the axis, over pieces in which φ (`turns` times it)
     /// turns by at most a radian.
-    fn roots(&self, side: &Trig, rho0: f64, rho1: f64, turns: f64, out: &mut SmallVec<[f64; 8]>) {
+    fn roots(
+        &self,
+        side: &Trig,
+        rho0: f64,
+        rho1: f64,
+        turns: f64,
+        may: &impl Fn(f64, f64) -> bool,
+        out: &mut SmallVec<[f64; 8]>,
+    ) {
         let (upper, lower) = self.reach(rho0, rho1);
         let w = self.phi[1] * turns;
         for &(ul, uh) in &upper {
@@ -527,7 +731,7 @@ impl TwistPath {
                     } else {
                         l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
                     };
-                    side.roots(l, h, out);
+                    side.roots_where(l, h, may, out);
                 }
             }
         }
@@ -636,16 +840,31 @@ impl Solid for Twisted {
     }
 
     /// Without twist, the section's box and that box scaled at the top;
-    /// with it, the disc of the section's farthest point, scaled by the
-    /// larger of 1 and the top scale in each direction.
+    /// with it, the box of the paths its corners take (a section is
+    /// within the hull of its corners; an ellipse within its box's, a
+    /// parallelogram's): the arc each turns through, scaled by σ.
     fn object_bounds(&self) -> Aabb {
-        let grow = DVec2::ONE.max(self.scale);
         let (lo, hi) = if self.twist == 0.0 {
             let (lo, hi) = self.section.box2();
             (lo.min(lo * self.scale), hi.max(hi * self.scale))
         } else {
-            let rho = self.section.reach();
-            (-grow * rho, grow * rho)
+            let (s0, s1) = (DVec2::ONE.min(self.scale), DVec2::ONE.max(self.scale));
+            let mut lo = DVec2::INFINITY;
+            let mut hi = DVec2::NEG_INFINITY;
+            for v in self.section.corners() {
+                // R(−θz)·v for z in [0, 1], then times σ(z), which lies
+                // between s0 and s1 (≥ 0) in each direction.
+                let (ulo, uhi) = arc_box(v, -self.twist);
+                for s in [s0, s1] {
+                    for u in [ulo, uhi] {
+                        lo = lo.min(s * u);
+                        hi = hi.max(s * u);
+                    }
+                }
+            }
+            // Room for the rounding of the arcs' sines and cosines.
+            let pad = DVec2::splat(1e-9 * lo.abs().max(hi.abs()).max_element());
+            (lo - pad, hi + pad)
         };
         let z = self.z_lo();
         Aabb::new(lo.extend(z), hi.extend(z + 1.0))
@@ -699,4 +918,113 @@ fn line_ellipse(f: &Form, o: DVec2, d: DVec2) -> Option<(f64, f64)> {
     let k = -(qb + disc.sqrt().copysign(qb));
     let (x0, x1) = (k / qa, qc / k);
     Some((x0.min(x1), x0.max(x1)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::solid::Solid;
+
+    /// A deterministic stream in [0, 1).
+    fn stream(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A pentagon away from the axis, so that it sweeps a horn.
+    fn horn(twist: f64, scale: DVec2) -> Twisted {
+        let pts = (0..5)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / 5.0;
+                DVec2::new(3.0 + a.cos(), 0.5 + 1.5 * a.sin())
+            })
+            .collect();
+        let region = Region::new(crate::plane::Outlines::polygons(vec![pts]));
+        Twisted {
+            section: TwistSection::Region(Arc::new(region)),
+            twist,
+            scale,
+            centered: false,
+        }
+    }
+
+    #[test]
+    fn every_piece_of_a_path_lies_within_its_disc() {
+        let mut rnd = stream(7);
+        let mut checked = 0;
+        for k in 0..600 {
+            let scale = match k % 3 {
+                0 => DVec2::ONE,
+                1 => DVec2::splat(0.05 + rnd()),
+                _ => DVec2::new(2.0 * rnd(), 2.0 * rnd()),
+            };
+            let tw = horn(12.0 * (rnd() - 0.5), scale);
+            let o = DVec3::new(8.0 * rnd() - 4.0, 8.0 * rnd() - 4.0, 4.0 * rnd() - 2.0);
+            let d = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            if d.z.abs() < 1e-3 {
+                continue;
+            }
+            let (tb, tt) = (-o.z / d.z, (1.0 - o.z) / d.z);
+            let (t0, t1) = (tb.min(tt), tb.max(tt));
+            let tc = t0 + (t1 - t0) * rnd();
+            let path = TwistPath::new(&tw, o, d, t0, t1, tc);
+            let discs = path.discs(path.t0, path.t1, DVec2::ZERO, f64::INFINITY);
+            for i in 0..DISCS {
+                for j in 0..=40 {
+                    let (l, h) = (discs.cuts[i], discs.cuts[i + 1]);
+                    let tau = l + (h - l) * (j as f64 / 40.0);
+                    let x = o + d * (tau + tc);
+                    let Some(f) = tw.frame(x.z.clamp(0.0, 1.0)) else {
+                        continue;
+                    };
+                    let p = f * x.truncate();
+                    let off = (p - discs.centre[i]).length();
+                    assert!(
+                        off <= discs.radius[i],
+                        "{k}: piece {i} at {tau}: {off} > {}",
+                        discs.radius[i]
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 100_000, "{checked}");
+    }
+
+    #[test]
+    fn the_box_of_a_twist_holds_it_and_untapered_touches_it() {
+        let mut rnd = stream(11);
+        for k in 0..200 {
+            let scale = if k % 2 == 0 {
+                DVec2::ONE
+            } else {
+                DVec2::new(2.0 * rnd(), 2.0 * rnd())
+            };
+            let tw = horn(20.0 * (rnd() - 0.5), scale);
+            let b = tw.object_bounds();
+            for (axis, sign) in [
+                (DVec3::X, 1.0),
+                (DVec3::Y, 1.0),
+                (DVec3::X, -1.0),
+                (DVec3::Y, -1.0),
+            ] {
+                let far = tw.far_point(axis * sign).dot(axis);
+                let side = if sign > 0.0 {
+                    b.max.dot(axis)
+                } else {
+                    b.min.dot(axis)
+                };
+                // The box reaches at least the far point; without a taper,
+                // the corners' arcs are the solid's own extremes.
+                assert!(sign * (side - far) >= -1e-12, "{k}: {side} inside {far}");
+                if scale == DVec2::ONE {
+                    assert!((side - far).abs() <= 1e-7, "{k}: {side} vs {far}");
+                }
+            }
+        }
+    }
 }

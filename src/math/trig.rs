@@ -226,9 +226,28 @@ impl Trig {
 
     /// The roots of G in [l, h) where it changes sign, appended to `out`.
     pub fn roots(&self, l: f64, h: f64, out: &mut SmallVec<[f64; 8]>) {
+        self.roots_where(l, h, &|_, _| true, out)
+    }
+
+    /// [`Trig::roots`] of the intervals `may` says may hold a root wanted
+    /// (the caller's own bound: where a twisted side's point may lie on
+    /// its edge). An interval `may` refuses is dropped with what lies in
+    /// it, before G is evaluated there; the others are halved and bisected
+    /// exactly as [`Trig::roots`] would, so every root found in them has
+    /// the same bits.
+    pub fn roots_where(
+        &self,
+        l: f64,
+        h: f64,
+        may: &impl Fn(f64, f64) -> bool,
+        out: &mut SmallVec<[f64; 8]>,
+    ) {
+        if !may(l, h) {
+            return;
+        }
         let (gl, gh) = (self.g(l), self.g(h));
         let mut budget = ISOLATE_BUDGET;
-        self.isolate(l, h, gl, gh, 0, &mut budget, out);
+        self.isolate(l, h, gl, gh, 0, &mut budget, may, out);
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -240,8 +259,12 @@ impl Trig {
         gh: f64,
         depth: u32,
         budget: &mut u32,
+        may: &impl Fn(f64, f64) -> bool,
         out: &mut SmallVec<[f64; 8]>,
     ) {
+        if !may(l, h) {
+            return;
+        }
         *budget = budget.saturating_sub(1);
         let (m, r) = (0.5 * (l + h), 0.5 * (h - l));
         let gm = self.g(m);
@@ -264,8 +287,8 @@ impl Trig {
             }
             return;
         }
-        self.isolate(l, m, gl, gm, depth + 1, budget, out);
-        self.isolate(m, h, gm, gh, depth + 1, budget, out);
+        self.isolate(l, m, gl, gm, depth + 1, budget, may, out);
+        self.isolate(m, h, gm, gh, depth + 1, budget, may, out);
     }
 
     /// The sign change of G in [l, h] (G(l) = `gl`, G(h) = `gh`, of
