@@ -33,7 +33,7 @@ use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
 use crate::math::trig::{Pol, Trig};
 use crate::plane::flat::largest_stretch;
-use crate::plane::Region;
+use crate::plane::{segment_distance, Region};
 use glam::{DAffine2, DMat2, DVec2, DVec3};
 use smallvec::SmallVec;
 use std::sync::Arc;
@@ -154,17 +154,6 @@ fn arc_box(v: DVec2, a: f64) -> (DVec2, DVec2) {
     (lo, hi)
 }
 
-/// The distance from the origin to the segment a–b.
-fn segment_distance(a: DVec2, b: DVec2) -> f64 {
-    let e = b - a;
-    let u = if e == DVec2::ZERO {
-        0.0
-    } else {
-        (-a.dot(e) / e.length_squared()).clamp(0.0, 1.0)
-    };
-    (a + e * u).length()
-}
-
 type Spans = smallvec::SmallVec<[(f64, f64); 2]>;
 
 /// Where q ≤ 0 in [l, h], as at most two intervals, each widened by a
@@ -264,23 +253,9 @@ impl Twisted {
             TwistSection::Region(region) => {
                 // The whole section's reach first: a line that passes
                 // inside its nearest edge's distance or beyond its farthest
-                // corner, scaled, crosses no side. Above SCAN_EDGES edges,
-                // from its box (0 to its farthest corner) rather than from
-                // every edge.
-                let reach =
-                    |&(a, b): &(DVec2, DVec2)| (segment_distance(a, b), a.length().max(b.length()));
+                // corner, scaled, crosses no side.
                 let (lo, hi) = (region.lo, region.hi);
-                let (rho0, rho1) = if region.tree.is_some() {
-                    (0.0, lo.abs().max(hi.abs()).length())
-                } else {
-                    region
-                        .edges
-                        .iter()
-                        .map(reach)
-                        .fold((f64::INFINITY, 0.0f64), |(l, h), (r0, r1)| {
-                            (l.min(r0), h.max(r1))
-                        })
-                };
+                let (rho0, rho1) = region.chord_range;
                 let rho1 = if crate::mutant::active("twist_reach_shrunk") {
                     0.9 * rho1
                 } else {
@@ -315,7 +290,7 @@ impl Twisted {
                         phi: path.phi,
                     };
                     roots.clear();
-                    let (rho0, rho1) = reach(&(a, b));
+                    let (rho0, rho1) = region.chord_reach[e];
                     path.roots(&side, rho0, rho1, 1.0, &may, &mut roots);
                     let (ed, len2) = (b - a, (b - a).length_squared());
                     for &t in &roots {

@@ -281,6 +281,22 @@ pub struct Region {
     pub hi: DVec2,
     /// Above [`SCAN_EDGES`] edges, the tree over them.
     pub tree: Option<EdgeTree>,
+    /// Each edge's chord's nearest and farthest distance from the origin
+    /// (of a straight edge, the edge's own: what a twist's path must reach
+    /// to cross it), and the least and the greatest of them.
+    pub chord_reach: Vec<(f64, f64)>,
+    pub chord_range: (f64, f64),
+}
+
+/// The distance from the origin to the segment a–b.
+pub fn segment_distance(a: DVec2, b: DVec2) -> f64 {
+    let e = b - a;
+    let u = if e == DVec2::ZERO {
+        0.0
+    } else {
+        (-a.dot(e) / e.length_squared()).clamp(0.0, 1.0)
+    };
+    (a + e * u).length()
 }
 
 impl Region {
@@ -299,6 +315,15 @@ impl Region {
                 .collect();
             EdgeTree::new(&boxes)
         });
+        let chord_reach: Vec<(f64, f64)> = edges
+            .iter()
+            .map(|&(a, b)| (segment_distance(a, b), a.length().max(b.length())))
+            .collect();
+        let chord_range = chord_reach
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(l, h), &(r0, r1)| {
+                (l.min(r0), h.max(r1))
+            });
         let mut region = Region {
             outlines,
             edges,
@@ -307,6 +332,8 @@ impl Region {
             lo,
             hi,
             tree,
+            chord_reach,
+            chord_range,
         };
         // Each edge's side by the region's own inside test, through its
         // tree where it has one (the same answers as every edge's, without
