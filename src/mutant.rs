@@ -64,6 +64,7 @@ pub const NAMES: &[&str] = &[
     "coaxial_axis_dropped",
     "twist_reach_shrunk",
     "twist_discs_unturned",
+    "pieces_last_dropped",
     "trig_roots_early",
     "twist_far_point_untwisted",
     "disc_push_short",

@@ -900,16 +900,6 @@ mod tests {
     use super::*;
     use crate::geometry::solid::Solid;
 
-    /// A deterministic stream in [0, 1).
-    fn stream(mut seed: u64) -> impl FnMut() -> f64 {
-        move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
-
     /// A pentagon away from the axis, so that it sweeps a horn.
     fn horn(twist: f64, scale: DVec2) -> Twisted {
         let pts = (0..5)
@@ -929,7 +919,7 @@ mod tests {
 
     #[test]
     fn every_piece_of_a_path_lies_within_its_disc() {
-        let mut rnd = stream(7);
+        let mut rnd = crate::math::test_stream(7);
         let mut checked = 0;
         for k in 0..600 {
             let scale = match k % 3 {
@@ -972,7 +962,7 @@ mod tests {
 
     #[test]
     fn the_box_of_a_twist_holds_it_and_untapered_touches_it() {
-        let mut rnd = stream(11);
+        let mut rnd = crate::math::test_stream(11);
         for k in 0..200 {
             let scale = if k % 2 == 0 {
                 DVec2::ONE
