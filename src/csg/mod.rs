@@ -438,7 +438,7 @@ impl Csg {
         let pieces: Vec<Pieces> = children
             .iter()
             .zip(&boxes)
-            .map(|(&c, b)| self.pieces(c, b))
+            .map(|(&c, b)| self.pieces(c, b, 0))
             .collect();
         let index = union_index(children, &boxes, &pieces);
         let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
@@ -457,15 +457,16 @@ impl Csg {
     /// union's hierarchy: a primitive's slices ([`leaf_pieces`]), a
     /// union's children's pieces, a difference's first child's; `whole`
     /// itself where that is all there is, where they would be more than
-    /// [`PIECES_CAP`], or where they hold more than half its volume.
-    fn pieces(&self, n: u32, whole: &Aabb) -> Pieces {
+    /// [`PIECES_CAP`], where they hold more than half its volume, or
+    /// below [`PIECES_DEPTH`] levels (`level` is this node's).
+    fn pieces(&self, n: u32, whole: &Aabb, level: usize) -> Pieces {
         let alone = smallvec::smallvec![*whole];
-        if whole.is_empty() || !whole.is_bounded() {
+        if whole.is_empty() || !whole.is_bounded() || level > PIECES_DEPTH {
             return alone;
         }
         let out: Pieces = match &self.nodes[n as usize].kind {
             NodeKind::Leaf(p) => return leaf_pieces(&self.prims[*p as usize], whole),
-            NodeKind::Op(Op::Difference, ch) => self.pieces(ch[0], whole),
+            NodeKind::Op(Op::Difference, ch) => self.pieces(ch[0], whole, level + 1),
             NodeKind::Op(Op::Union, ch) => {
                 let mut all = Pieces::new();
                 for &c in ch {
@@ -473,7 +474,7 @@ impl Csg {
                     if b.is_empty() {
                         continue;
                     }
-                    all.extend(self.pieces(c, &b));
+                    all.extend(self.pieces(c, &b, level + 1));
                     if all.len() > PIECES_CAP {
                         return alone;
                     }
@@ -1008,6 +1009,10 @@ pub const PIECES_MAX: usize = 8;
 /// The most boxes [`Csg::pieces`] holds a union's child by.
 pub const PIECES_CAP: usize = 32;
 
+/// How deep below a union's child [`Csg::pieces`] looks (a tree may nest
+/// 4,096 levels: the walk stays well within a thread's stack).
+pub const PIECES_DEPTH: usize = 32;
+
 /// A node's boxes for a union's hierarchy.
 type Pieces = SmallVec<[Aabb; PIECES_MAX]>;
 
@@ -1281,7 +1286,7 @@ mod tests {
         use super::{Csg, NodeKind, Op, Primitive};
         use crate::geometry::{Cone, Cuboid, Shape, Sphere, Transform};
         use glam::{DAffine3, DQuat, DVec3};
-        let mut rnd = crate::math::test_stream(3);
+        let mut rnd = crate::plane::tests::uniform(3);
         let mut split = 0;
         for round in 0..40 {
             let mut csg = Csg::default();
@@ -1314,7 +1319,7 @@ mod tests {
             csg.root = Some(root);
             for n in 0..csg.nodes.len() as u32 {
                 let whole = csg.nodes[n as usize].bounds;
-                let pieces = csg.pieces(n, &whole);
+                let pieces = csg.pieces(n, &whole, 0);
                 if pieces.len() > 1 {
                     split += 1;
                 }

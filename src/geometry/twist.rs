@@ -919,7 +919,7 @@ mod tests {
 
     #[test]
     fn every_piece_of_a_path_lies_within_its_disc() {
-        let mut rnd = crate::math::test_stream(7);
+        let mut rnd = crate::plane::tests::uniform(7);
         let mut checked = 0;
         for k in 0..600 {
             let scale = match k % 3 {
@@ -962,7 +962,7 @@ mod tests {
 
     #[test]
     fn the_box_of_a_twist_holds_it_and_untapered_touches_it() {
-        let mut rnd = crate::math::test_stream(11);
+        let mut rnd = crate::plane::tests::uniform(11);
         for k in 0..200 {
             let scale = if k % 2 == 0 {
                 DVec2::ONE

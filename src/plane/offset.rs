@@ -724,13 +724,7 @@ mod tests {
                 vec![Figure::disc(z, 2.0), square(DVec2::new(1.0, 0.0), 1.5)],
             ),
         ];
-        let mut seed = 1u64;
-        let mut rand = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rand = crate::plane::tests::uniform(1);
         for x in &cases {
             let mut edge: Vec<DVec2> = Vec::new();
             let mut leaves = vec![x];

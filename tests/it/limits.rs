@@ -271,8 +271,32 @@ fn statements_nest_at_most_4096_deep_with_or_without_braces() {
     );
     // 4096 levels are fine: read, framed and rendered (a people's model
     // nests 269 deep), with and without braces, and as a chain of
-    // differences each level of which the rays walk.
+    // differences each level of which the rays walk, alone and as one of
+    // a union's eight children (whose hierarchy looks down into it).
+    let chain = "difference() {\n".repeat(4093)
+        + "cube(10, center = true);\n"
+        + &(0..4093)
+            .map(|i| {
+                format!(
+                    "translate([{}, {}, 5]) sphere(0.3);\n}}\n",
+                    i % 20 - 10,
+                    i / 20 % 20 - 10
+                )
+            })
+            .collect::<String>();
+    let wide = "union() {\n".to_string()
+        + &chain
+        + &(1..8)
+            .map(|i| {
+                format!(
+                    "translate([{}, 0, 0]) rotate([0, 40, 30]) cube([1, 1, 30]);\n",
+                    12 * i
+                )
+            })
+            .collect::<String>()
+        + "}\n";
     for text in [
+        wide,
         "translate([0.001, 0, 0])\n".repeat(4095) + "cube();\n",
         "group() {\n".repeat(4095) + "cube();\n" + &"}\n".repeat(4095),
         "difference() {\n".repeat(4094)
