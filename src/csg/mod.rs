@@ -435,12 +435,7 @@ impl Csg {
             .collect();
         // A long primitive lying across the axes (a tilted rod, a beam)
         // fills its box thinly: it is indexed by the boxes of its slices.
-        let pieces: Vec<Pieces> = children
-            .iter()
-            .zip(&boxes)
-            .map(|(&c, b)| self.pieces(c, b, 0))
-            .collect();
-        let index = union_index(children, &boxes, &pieces);
+        let index = union_index(children, &boxes, |c, b| self.pieces(c, b, 0));
         let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
         let lanes = if sorts && children.len() >= LANES_MIN {
             boxes.chunks(4).map(AabbLanes::of).collect()
@@ -465,7 +460,7 @@ impl Csg {
             return alone;
         }
         let out: Pieces = match &self.nodes[n as usize].kind {
-            NodeKind::Leaf(p) => return leaf_pieces(&self.prims[*p as usize], whole),
+            NodeKind::Leaf(p) => leaf_pieces(&self.prims[*p as usize], whole),
             NodeKind::Op(Op::Difference, ch) => self.pieces(ch[0], whole, level + 1),
             NodeKind::Op(Op::Union, ch) => {
                 let mut all = Pieces::new();
@@ -483,11 +478,9 @@ impl Csg {
             }
             _ => return alone,
         };
-        let vol = |b: &Aabb| {
-            let e = b.max - b.min;
-            e.x * e.y * e.z
-        };
-        if out.len() <= PIECES_CAP && out.iter().map(vol).sum::<f64>() <= 0.5 * vol(whole) {
+        if out.len() <= PIECES_CAP
+            && out.iter().map(Aabb::volume).sum::<f64>() <= 0.5 * whole.volume()
+        {
             out
         } else {
             alone
@@ -962,23 +955,19 @@ impl Csg {
 /// The hierarchy of a union over `children`, whose boxes (cut to where
 /// the union matters) are `boxes`: none for fewer than
 /// [`UNION_INDEX_MIN`] bounded ones. A child whose box is empty there is
-/// left out; one whose box is unbounded is always looked at.
-fn union_index(children: &[u32], boxes: &[Aabb], pieces: &[Pieces]) -> Option<Box<UnionIndex>> {
+/// left out; one whose box is unbounded is always looked at. The
+/// hierarchy holds each bounded child by the boxes `pieces` gives it.
+fn union_index(
+    children: &[u32],
+    boxes: &[Aabb],
+    pieces: impl Fn(u32, &Aabb) -> Pieces,
+) -> Option<Box<UnionIndex>> {
     let met = children.iter().zip(boxes).filter(|(_, b)| !b.is_empty());
     let items: Vec<(u32, Aabb)> = met
         .clone()
         .filter(|(_, b)| b.is_bounded())
         .map(|(&c, &b)| (c, b))
         .collect();
-    // The hierarchy's items: each bounded child's pieces.
-    let refs: Vec<(u32, Aabb)> = children
-        .iter()
-        .zip(boxes)
-        .zip(pieces)
-        .filter(|((_, b), _)| !b.is_empty() && b.is_bounded())
-        .flat_map(|((&c, _), ps)| ps.iter().map(move |&p| (c, p)))
-        .collect();
-    let split = refs.len() > items.len();
     let unbounded: Vec<u32> = met
         .filter(|(_, b)| !b.is_bounded())
         .map(|(&c, _)| c)
@@ -986,14 +975,17 @@ fn union_index(children: &[u32], boxes: &[Aabb], pieces: &[Pieces]) -> Option<Bo
     if items.len() < UNION_INDEX_MIN {
         return None;
     }
+    // The hierarchy's items: each bounded child by its pieces.
+    let (mut refs, mut split) = (Vec::with_capacity(items.len()), false);
+    for &(c, b) in &items {
+        let ps = pieces(c, &b);
+        split |= ps.len() > 1;
+        refs.extend(ps.into_iter().map(|p| (c, p)));
+    }
     let bvh = Bvh::build(&refs, UNION_LEAF);
-    let vol = |b: &Aabb| {
-        let e = b.max - b.min;
-        e.x * e.y * e.z
-    };
     let root = items.iter().fold(Aabb::EMPTY, |a, x| a.union(&x.1));
     // (A flat union's box has no volume: ∞ or NaN, never below.)
-    let fill: f64 = items.iter().map(|x| vol(&x.1)).sum::<f64>() / vol(&root);
+    let fill: f64 = items.iter().map(|x| x.1.volume()).sum::<f64>() / root.volume();
     let near_first = items.len() > BEST_FIRST_MIN || fill < FILL_MAX;
     Some(Box::new(UnionIndex {
         near_first,
@@ -1016,18 +1008,17 @@ pub const PIECES_DEPTH: usize = 32;
 /// A node's boxes for a union's hierarchy.
 type Pieces = SmallVec<[Aabb; PIECES_MAX]>;
 
-/// The boxes a union's hierarchy holds primitive `p` by, within its box
-/// `whole`: `whole` itself, or, for a primitive whose object box is long
-/// in the world (its longest side at least twice its others) and turned
-/// so that its box is mostly empty, the world boxes of its object box cut
-/// across that side into as many slices as it is times longer (at most
-/// [`PIECES_MAX`]), each met with `whole` — kept where together they hold
-/// at most half of `whole`'s volume. Every point of the primitive lies in
-/// one of them.
+/// The boxes a union's hierarchy may hold primitive `p` by, within its
+/// box `whole` (bounded, not empty): for a primitive whose object box is
+/// long in the world (its longest side at least twice its others), the
+/// world boxes of its object box cut across that side into as many slices
+/// as it is times longer (at most [`PIECES_MAX`]), each met with `whole`;
+/// else `whole` itself. Every point of the primitive lies in one of them;
+/// [`Csg::pieces`] keeps them where they pay.
 fn leaf_pieces(p: &Primitive, whole: &Aabb) -> Pieces {
     let alone = smallvec::smallvec![*whole];
     let ob = p.shape.object_bounds();
-    if p.section.is_some() || whole.is_empty() || !whole.is_bounded() || !ob.is_bounded() {
+    if p.section.is_some() || !ob.is_bounded() {
         return alone;
     }
     let m = &p.xf.to_world;
@@ -1064,15 +1055,7 @@ fn leaf_pieces(p: &Primitive, whole: &Aabb) -> Pieces {
             out.push(w);
         }
     }
-    let vol = |b: &Aabb| {
-        let e = b.max - b.min;
-        e.x * e.y * e.z
-    };
-    if out.iter().map(vol).sum::<f64>() <= 0.5 * vol(whole) {
-        out
-    } else {
-        alone
-    }
+    out
 }
 
 /// Whether a node's box is tested before its spans (a bounded one whose

@@ -49,6 +49,12 @@ impl Aabb {
         0.5 * (self.min + self.max)
     }
 
+    /// The box's volume (0 for an empty one).
+    pub fn volume(&self) -> f64 {
+        let e = (self.max - self.min).max(DVec3::ZERO);
+        e.x * e.y * e.z
+    }
+
     /// Whether the ray meets the box for some `t` in `[tmin, tmax]`.
     ///
     /// NaN-safe: a zero direction component gives ±∞ slab distances, and a

@@ -200,6 +200,22 @@ fn nonpositive(q: Pol, l: f64, h: f64) -> Spans {
     out
 }
 
+/// Where the path is both within reach of the far distance and beyond the
+/// near one: the overlaps of [`TwistPath::reach`]'s two lists.
+fn reach_overlaps((upper, lower): &(Spans, Spans)) -> impl Iterator<Item = (f64, f64)> + '_ {
+    upper.iter().flat_map(move |&(ul, uh)| {
+        lower
+            .iter()
+            .map(move |&(ll, lh)| (ul.max(ll), uh.min(lh)))
+            .filter(|(l, h)| l <= h)
+    })
+}
+
+/// The range from the first τ of [`reach_overlaps`] to the last, if any.
+fn reach_range(reach: &(Spans, Spans)) -> Option<(f64, f64)> {
+    reach_overlaps(reach).reduce(|(a, b), (l, h)| (a.min(l), b.max(h)))
+}
+
 /// The union of two sorted interval lists, merged.
 fn union2(a: Spans, b: Spans) -> Spans {
     let mut all: smallvec::SmallVec<[(f64, f64); 4]> = a.into_iter().chain(b).collect();
@@ -261,7 +277,7 @@ impl Twisted {
                 } else {
                     rho1
                 };
-                let Some((l, h)) = path.reaches(rho0, rho1) else {
+                let Some((l, h)) = reach_range(&path.reach(rho0, rho1)) else {
                     return cuts;
                 };
                 // The path over that range, in pieces, near the section's
@@ -291,7 +307,7 @@ impl Twisted {
                     };
                     roots.clear();
                     let (rho0, rho1) = region.chord_reach[e];
-                    path.roots(&side, rho0, rho1, 1.0, &may, &mut roots);
+                    path.roots(&side, &path.reach(rho0, rho1), 1.0, &may, &mut roots);
                     let (ed, len2) = (b - a, (b - a).length_squared());
                     for &t in &roots {
                         let x = o + d * t;
@@ -317,12 +333,13 @@ impl Twisted {
                 let rho0 = (e.translation.length() - largest_stretch(e.matrix2)).max(0.0);
                 let turns = if side.second.is_some() { 2.0 } else { 1.0 };
                 // The pieces whose discs meet the ellipse's own disc.
-                let Some((l, h)) = path.reaches(rho0, rho1) else {
+                let reach = path.reach(rho0, rho1);
+                let Some((l, h)) = reach_range(&reach) else {
                     return cuts;
                 };
                 let discs = path.discs(l, h, e.translation, largest_stretch(e.matrix2));
                 let may = |l: f64, h: f64| discs.may(discs.kept, l, h);
-                path.roots(&side, rho0, rho1, turns, &may, &mut roots);
+                path.roots(&side, &reach, turns, &may, &mut roots);
                 for &t in &roots {
                     if self.frame(o.z + d.z * t).is_some() {
                         cuts.push((t, SIDE));
@@ -591,7 +608,6 @@ impl TwistPath {
             radius: [f64::INFINITY; DISCS],
             kept: 0,
         };
-        let mut kept = 0;
         for i in 0..=DISCS {
             out.cuts[i] = at(i);
         }
@@ -627,11 +643,10 @@ impl TwistPath {
             if out.centre[i].distance(centre) <= out.radius[i] + radius * (1.0 + 1e-9)
                 || out.radius[i] == f64::INFINITY
             {
-                kept |= 1 << i;
+                out.kept |= 1 << i;
             }
             (ql, sl) = (qh, sh);
         }
-        out.kept = kept;
         out
     }
 
@@ -661,53 +676,28 @@ impl TwistPath {
         (upper, lower)
     }
 
-    /// Whether the path can be anywhere between ρ₀ and ρ₁ from the axis
-    /// (see [`TwistPath::reach`]).
-    /// (the range from the first such τ to the last, if any).
-    fn reaches(&self, rho0: f64, rho1: f64) -> Option<(f64, f64)> {
-        let (upper, lower) = self.reach(rho0, rho1);
-        let mut out: Option<(f64, f64)> = None;
-        for &(ul, uh) in &upper {
-            for &(ll, lh) in &lower {
-                let (l, h) = (ul.max(ll), uh.min(lh));
-                if l <= h {
-                    out = Some(out.map_or((l, h), |(a, b)| (a.min(l), b.max(h))));
-                }
-            }
-        }
-        out
-    }
-
-    /// The roots of `side` in [t0, t1] where the path can reach distances
-    /// ρ₀ to ρ₁ from the axis, over pieces in which φ (`turns` times it)
-    /// turns by at most a radian.
+    /// The roots of `side` in [t0, t1] where the path can reach the
+    /// distances from the axis `reach` was found for ([`TwistPath::reach`]),
+    /// over pieces in which φ (`turns` times it) turns by at most a radian.
     fn roots(
         &self,
         side: &Trig,
-        rho0: f64,
-        rho1: f64,
+        reach: &(Spans, Spans),
         turns: f64,
         may: &impl Fn(f64, f64) -> bool,
         out: &mut SmallVec<[f64; 8]>,
     ) {
-        let (upper, lower) = self.reach(rho0, rho1);
         let w = self.phi[1] * turns;
-        for &(ul, uh) in &upper {
-            for &(ll, lh) in &lower {
-                let (l0, h0) = (ul.max(ll), uh.min(lh));
-                if l0 > h0 {
-                    continue;
-                }
-                let pieces = ((w * (h0 - l0)).abs().ceil() as usize).clamp(1, 1 << 16);
-                for i in 0..pieces {
-                    let l = l0 + (h0 - l0) * (i as f64 / pieces as f64);
-                    let h = if i + 1 == pieces {
-                        h0
-                    } else {
-                        l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
-                    };
-                    side.roots_where(l, h, may, out);
-                }
+        for (l0, h0) in reach_overlaps(reach) {
+            let pieces = ((w * (h0 - l0)).abs().ceil() as usize).clamp(1, 1 << 16);
+            for i in 0..pieces {
+                let l = l0 + (h0 - l0) * (i as f64 / pieces as f64);
+                let h = if i + 1 == pieces {
+                    h0
+                } else {
+                    l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
+                };
+                side.roots_where(l, h, may, out);
             }
         }
         if self.tc != 0.0 {

@@ -148,7 +148,7 @@ impl Pol {
     }
 }
 
-/// The most intervals one `Trig::roots` call examines: a bound on its work
+/// The most intervals one `Trig::roots_where` call examines: a bound on its work
 /// whatever G is (the depth bound alone allows 2⁶⁰ of them), 46 times the
 /// most any call of the example scenes' twisted extrusions took (1,421, in
 /// tests/openscad/twisted_circles.csg at 320×240; most take under 100).
@@ -224,17 +224,13 @@ impl Trig {
         (m1 * (1.0 + 1e-12) + slack, m2 * (1.0 + 1e-12) + slack)
     }
 
-    /// The roots of G in [l, h) where it changes sign, appended to `out`.
-    pub fn roots(&self, l: f64, h: f64, out: &mut SmallVec<[f64; 8]>) {
-        self.roots_where(l, h, &|_, _| true, out)
-    }
-
-    /// [`Trig::roots`] of the intervals `may` says may hold a root wanted
-    /// (the caller's own bound: where a twisted side's point may lie on
-    /// its edge). An interval `may` refuses is dropped with what lies in
-    /// it, before G is evaluated there; the others are halved and bisected
-    /// exactly as [`Trig::roots`] would, so every root found in them has
-    /// the same bits.
+    /// The roots of G in [l, h) where it changes sign, appended to `out`,
+    /// of the intervals `may` says may hold a root wanted (the caller's own
+    /// bound: where a twisted side's point may lie on its edge; `|_, _|
+    /// true` for all). An interval `may` refuses is dropped with what lies
+    /// in it, before G is evaluated there; the others are halved and
+    /// bisected as they would be without it, so every root found in them
+    /// has the same bits.
     pub fn roots_where(
         &self,
         l: f64,
@@ -370,7 +366,7 @@ mod tests {
         let mut out = SmallVec::new();
         let mut l = 0.0;
         while l < 4.0 {
-            g.roots(l, (l + 1.0 / 3.0).min(4.0), &mut out);
+            g.roots_where(l, (l + 1.0 / 3.0).min(4.0), &|_, _| true, &mut out);
             l += 1.0 / 3.0;
         }
         let a = 0.2f64.acos();
