@@ -5,6 +5,9 @@
 pub struct Stats {
     pub pixels: u64,
     pub primary_rays: u64,
+    /// Camera samples seen to miss the scene's box on the image
+    /// ([`crate::render::footprint`]): the background, no ray cast.
+    pub screen_culled: u64,
     pub shadow_rays: u64,
     pub reflected_rays: u64,
     pub refracted_rays: u64,
@@ -36,6 +39,7 @@ impl Stats {
     pub fn add(&mut self, o: &Stats) {
         self.pixels += o.pixels;
         self.primary_rays += o.primary_rays;
+        self.screen_culled += o.screen_culled;
         self.shadow_rays += o.shadow_rays;
         self.reflected_rays += o.reflected_rays;
         self.refracted_rays += o.refracted_rays;

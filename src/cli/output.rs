@@ -427,6 +427,7 @@ pub fn stats_json(s: &Stats, seconds: f64) -> String {
     let v = serde_json::json!({
         "pixels": s.pixels,
         "primary_rays": s.primary_rays,
+        "screen_culled": s.screen_culled,
         "shadow_rays": s.shadow_rays,
         "reflected_rays": s.reflected_rays,
         "refracted_rays": s.refracted_rays,

@@ -65,6 +65,34 @@ impl Camera {
         }
     }
 
+    /// The image point (x, y) whose ray passes through world point `p`,
+    /// with how far ahead of the ray's origin `p` lies along the view
+    /// (positive: ahead). The inverse of [`Camera::ray`]: `du`, `dv` and
+    /// the view's direction are perpendicular, so each coordinate is one
+    /// projection.
+    pub fn project(&self, p: DVec3) -> (f64, f64, f64) {
+        match self.parallel {
+            None => {
+                // A ray's direction x·du + y·dv + vp is parallel to p − eye
+                // where their parts along du, dv and the view are in
+                // proportion.
+                let ahead = self.du.cross(self.dv);
+                let rel = p - self.eye;
+                let c = rel.dot(ahead) / self.vp.dot(ahead);
+                let (x, y) = (rel.dot(self.du) / c, rel.dot(self.dv) / c);
+                (x - self.vp.dot(self.du), y - self.vp.dot(self.dv), c)
+            }
+            Some(d) => {
+                let rel = p - self.eye - self.vp;
+                let (x, y) = (
+                    rel.dot(self.du) / self.du.length_squared(),
+                    rel.dot(self.dv) / self.dv.length_squared(),
+                );
+                (x, y, rel.dot(d))
+            }
+        }
+    }
+
     /// The ray through image point (x, y), in pixels from the top left.
     pub fn ray(&self, x: f64, y: f64) -> Ray {
         let across = x * self.du + y * self.dv + self.vp;

@@ -10,6 +10,7 @@
 
 pub mod adaptive;
 pub mod camera;
+pub mod footprint;
 pub mod probe;
 pub mod sampler;
 pub mod shade;
@@ -19,6 +20,7 @@ use crate::scene::{Light, Scene};
 use crate::stats::Stats;
 pub use adaptive::{Adaptive, ADAPTIVE_SPP, ADAPTIVE_THRESHOLD};
 use camera::Camera;
+use footprint::Footprint;
 use glam::DVec3;
 use rayon::prelude::*;
 use shade::Shader;
@@ -99,9 +101,19 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
     // The mean of a pixel's `n` samples (non-finite ones counted, not
     // summed): of their colours, and of their radiance before the last
     // clamp.
-    let sample = |x: f64, y: f64, st: &mut Stats| {
-        st.primary_rays += 1;
-        let (c, r) = shader.primary(&cam.ray(x, y), st);
+    // Where the scene's box is seen: a sample outside it sees the
+    // background, as its ray would.
+    let seen = Footprint::of(&cam, &csg.bounds(), s.width, s.height);
+    let background = (scene.background, scene.background);
+    // A sample of the picture, its ray cast only if `cast`.
+    let sample = |x: f64, y: f64, st: &mut Stats, cast: bool| {
+        let (c, r) = if cast {
+            st.primary_rays += 1;
+            shader.primary(&cam.ray(x, y), st)
+        } else {
+            st.screen_culled += 1;
+            background
+        };
         if both_finite(c, r) {
             Some((c, r))
         } else {
@@ -109,17 +121,17 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
             None
         }
     };
-    let pixel = |x: u32, y: u32, n: u32, st: &mut Stats| {
+    let pixel = |x: u32, y: u32, n: u32, st: &mut Stats, cast: bool| {
         if n == 1 {
             // The sum of one sample, divided by one: the same bits (zero
             // plus the sample, which turns −0 into +0, as the sum does).
-            let (c, r) = sample(x as f64 + 0.5, y as f64 + 0.5, st).unwrap_or_default();
+            let (c, r) = sample(x as f64 + 0.5, y as f64 + 0.5, st, cast).unwrap_or_default();
             return (DVec3::ZERO + c, DVec3::ZERO + r);
         }
         let (mut sum, mut lin) = (DVec3::ZERO, DVec3::ZERO);
         for k in 0..n {
             let (ox, oy) = sampler::offset(x, y, k, n);
-            if let Some((c, r)) = sample(x as f64 + ox, y as f64 + oy, st) {
+            if let Some((c, r)) = sample(x as f64 + ox, y as f64 + oy, st, cast) {
                 sum += c;
                 lin += r;
             }
@@ -138,8 +150,11 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
     // counters are sums and maxima, the same in any order.
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
         let mut st = Stats::default();
+        // Every sample of a pixel lies in its square, which
+        // `Footprint::columns` grows by its margin.
+        let cast = seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width));
         for x in 0..s.width {
-            let c = pixel(x, y, first, &mut st);
+            let c = pixel(x, y, first, &mut st, cast.contains(&x));
             put(row, lrow, x as usize, c);
             st.pixels += 1;
         }
@@ -150,7 +165,7 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
     if let Some(a) = s.adaptive {
         let h = s.height as usize;
         let corner = |x: u32, y: u32, st: &mut Stats| {
-            sample(x as f64, y as f64, st).map(|(c, _)| adaptive::shown(c))
+            sample(x as f64, y as f64, st, true).map(|(c, _)| adaptive::shown(c))
         };
         let (again, st) = adaptive::crossed(&lin, w, h, a.threshold, corner, progress);
         stats.add(&st);
@@ -161,7 +176,7 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
                 let mut st = Stats::default();
                 let xs = &again[y as usize];
                 for &x in xs {
-                    let c = pixel(x, y, s.spp, &mut st);
+                    let c = pixel(x, y, s.spp, &mut st, true);
                     put(row, lrow, x as usize, c);
                 }
                 progress(Progress::Done(xs.len() as u64 * s.spp as u64));
