@@ -9,6 +9,7 @@
 
 mod extent;
 mod polytopes;
+mod twins;
 pub use polytopes::MAX_POLYTOPES;
 pub mod spans;
 
@@ -277,6 +278,9 @@ impl Csg {
                     _ => vec![c],
                 })
                 .collect();
+        }
+        if matches!(op, Op::Union | Op::Intersection) {
+            children = self.without_twins(children);
         }
         if op == Op::Intersection {
             // Later children are asked only where the earlier ones leave
