@@ -93,7 +93,14 @@ impl Csg {
         if !loose.is_bounded() || loose.is_empty() {
             return loose;
         }
-        self.tight(root, [[true; 3]; 2], 0)
+        // The grids' rays come in three families, along the axes: a
+        // prism then tests only the edges a ray of one may cross
+        // ([`Csg::viewed`]; the same spans).
+        let viewed = self.viewed(None, &[DVec3::X, DVec3::Y, DVec3::Z]);
+        viewed
+            .as_ref()
+            .unwrap_or(self)
+            .tight(root, [[true; 3]; 2], 0)
     }
 
     /// A node's box on the sides `need` asks for (`[low, high]` per axis;
