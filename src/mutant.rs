@@ -65,6 +65,7 @@ pub const NAMES: &[&str] = &[
     "twist_reach_shrunk",
     "twist_discs_unturned",
     "pieces_last_dropped",
+    "merge_empty_kept",
     "trig_roots_early",
     "twist_far_point_untwisted",
     "disc_push_short",

@@ -580,6 +580,21 @@ impl Csg {
                         });
                         &hit
                     }
+                    None if !n.lanes.is_empty() => {
+                        // The children's boxes four at once (cut to where
+                        // the union matters, as the lanes are: a child met
+                        // there meets its own box).
+                        AabbLanes::gather(&n.lanes, ch, q.ray, q.tmin, q.tmax, |_, c| hit.push(c));
+                        q.st.bound_tests += ch.len() as u64;
+                        q.st.bound_culled += (ch.len() - hit.len()) as u64;
+                        for &c in &hit {
+                            let top = q.sc.stack.len();
+                            self.push_spans_within(c, q);
+                            q.sc.merge(Op::Union, base, top, q.ray);
+                        }
+                        q.st.max_spans = q.st.max_spans.max((q.sc.stack.len() - base) as u64);
+                        return;
+                    }
                     None => ch,
                 };
                 for &c in ch {
@@ -1198,17 +1213,29 @@ impl Scratch {
     }
 
     /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`,
-    /// in place where [`spans::quick`] allows.
+    /// in place where [`spans::quick`] allows. A side that is empty (a
+    /// child the ray missed: most merges) is answered here, as
+    /// [`spans::quick_empty`] answers it, without a call.
+    #[inline]
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
+        if top == base || self.stack.len() == top {
+            // A and B as they stand, or nothing.
+            let empty = op == Op::Intersection || (op == Op::Difference && top == base);
+            if empty && !crate::mutant::active("merge_empty_kept") {
+                self.stack.truncate(base);
+            }
+            return;
+        }
+        self.merge_both(op, base, top, ray);
+    }
+
+    /// [`Scratch::merge`] of two sides that both hold spans.
+    fn merge_both(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         let (a, b) = self.stack[base..].split_at(top - base);
-        // The ray's scale is needed only once both sides hold spans.
-        let mut scale = 0.0;
-        let quick = spans::quick_empty(op, a, b).or_else(|| {
-            scale = ray.origin.abs().max_element();
-            (op == Op::Union)
-                .then(|| spans::apart(a, b, scale))
-                .flatten()
-        });
+        let scale = ray.origin.abs().max_element();
+        let quick = (op == Op::Union)
+            .then(|| spans::apart(a, b, scale))
+            .flatten();
         match quick {
             // Nothing to do: A stays, B is the whole result and, A being
             // empty, already sits where A would be, or B follows A.

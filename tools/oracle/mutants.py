@@ -73,6 +73,7 @@ MUTANTS = {
     "twist_reach_shrunk": (["tests/openscad/twist.csg"], False),
     "twist_discs_unturned": (["tests/openscad/twist.csg"], ["twisted"]),
     "pieces_last_dropped": (["tests/openscad/candleStand.csg", "models/nameplate.csg"], False),
+    "merge_empty_kept": (["models/csg_ops.csg"], False),
     "trig_roots_early": (["tests/openscad/twisted_circles.csg"], ["twisted"]),
     "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
     "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
