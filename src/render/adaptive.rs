@@ -185,3 +185,51 @@ fn shown_at(lin: &[f32], i: usize) -> [f64; 3] {
 fn differ(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     (0..3).map(|k| (a[k] - b[k]).abs()).sum()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`edges`] against the rule read directly — each pixel measured
+    /// against each of its eight neighbours that exist — on random
+    /// pictures of a few colours (runs of one radiance, as pictures have)
+    /// with values past 0 and 1, −0, NaN and near-misses of the threshold.
+    #[test]
+    fn edges_are_the_rule() {
+        let mut rnd = crate::plane::tests::uniform(7);
+        let palette = [
+            0.0f32,
+            -0.0,
+            0.5,
+            0.55,
+            0.8,
+            1.0,
+            1.7,
+            -0.3,
+            f32::NAN,
+            0.1,
+            0.4,
+        ];
+        for case in 0..60 {
+            let (w, h) = (1 + (rnd() * 23.0) as usize, 1 + (rnd() * 17.0) as usize);
+            let colours: Vec<[f32; 3]> = (0..4)
+                .map(|_| [0; 3].map(|_| palette[(rnd() * palette.len() as f64) as usize]))
+                .collect();
+            let lin: Vec<f32> = (0..w * h)
+                .flat_map(|_| colours[(rnd() * rnd() * 4.0) as usize])
+                .collect();
+            let threshold = [0.3, 0.05, 0.0][case % 3];
+            let rule: Vec<bool> = (0..w * h)
+                .map(|i| {
+                    let (x, y) = (i % w, i / w);
+                    let c = shown_at(&lin, 3 * i);
+                    (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
+                        (x.saturating_sub(1)..(x + 2).min(w))
+                            .any(|nx| differ(&c, &shown_at(&lin, 3 * (ny * w + nx))) > threshold)
+                    })
+                })
+                .collect();
+            assert_eq!(edges(&lin, w, h, threshold), rule, "case {case}: {w}x{h}");
+        }
+    }
+}
