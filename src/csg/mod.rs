@@ -123,10 +123,14 @@ pub struct Node {
     /// For a union of many children: a hierarchy over the bounded ones.
     pub index: Option<Box<UnionIndex>>,
     /// For a union of [`LANES_MIN`] children or more whose first-hit query
-    /// sorts them (not one that walks its hierarchy): their boxes, four a
-    /// group in the children's order, tested four at once (empty for
-    /// other nodes).
+    /// sorts them (not one that walks its hierarchy): their boxes (cut to
+    /// where the union matters), four a group in the children's order,
+    /// tested four at once (empty for other nodes); a child whose box is
+    /// cut to nothing is left out (an empty box's slab test would read
+    /// its sides swapped).
     pub lanes: Vec<AabbLanes<4>>,
+    /// The children the lanes hold, in order.
+    pub lane_ids: Vec<u32>,
     /// Whether a query whose root this is tests its box before the query
     /// is set up (`Csg::root_box`): a bounded box (an empty one counts,
     /// and culls) of a node that is not a union walking its hierarchy.
@@ -261,6 +265,7 @@ impl Csg {
             bounds,
             index: None,
             lanes: Vec::new(),
+            lane_ids: Vec::new(),
             pretest: false,
         })
     }
@@ -305,6 +310,7 @@ impl Csg {
             bounds,
             index: None,
             lanes: Vec::new(),
+            lane_ids: Vec::new(),
             pretest: false,
         })
     }
@@ -351,6 +357,7 @@ impl Csg {
             bounds: Aabb::EVERYTHING,
             index: None,
             lanes: Vec::new(),
+            lane_ids: Vec::new(),
             pretest: false,
         })
     }
@@ -441,14 +448,19 @@ impl Csg {
         // fills its box thinly: it is indexed by the boxes of its slices.
         let index = union_index(children, &boxes, |c, b| self.pieces(c, b, 0));
         let sorts = index.as_ref().map_or(true, |ix| !ix.near_first);
-        let lanes = if sorts && children.len() >= LANES_MIN {
-            boxes.chunks(4).map(AabbLanes::of).collect()
-        } else {
-            Vec::new()
-        };
+        let (mut met, mut lane_ids) = (Vec::new(), Vec::new());
+        if sorts && children.len() >= LANES_MIN {
+            for (b, &c) in boxes.iter().zip(children) {
+                if !b.is_empty() {
+                    met.push(*b);
+                    lane_ids.push(c);
+                }
+            }
+        }
         let node = &mut self.nodes[n as usize];
         node.index = index;
-        node.lanes = lanes;
+        node.lanes = met.chunks(4).map(AabbLanes::of).collect();
+        node.lane_ids = lane_ids;
         node.pretest = pretest(node);
     }
 
@@ -584,9 +596,11 @@ impl Csg {
                         // The children's boxes four at once (cut to where
                         // the union matters, as the lanes are: a child met
                         // there meets its own box).
-                        AabbLanes::gather(&n.lanes, ch, q.ray, q.tmin, q.tmax, |_, c| hit.push(c));
-                        q.st.bound_tests += ch.len() as u64;
-                        q.st.bound_culled += (ch.len() - hit.len()) as u64;
+                        AabbLanes::gather(&n.lanes, &n.lane_ids, q.ray, q.tmin, q.tmax, |_, c| {
+                            hit.push(c)
+                        });
+                        q.st.bound_tests += n.lane_ids.len() as u64;
+                        q.st.bound_culled += (n.lane_ids.len() - hit.len()) as u64;
                         for &c in &hit {
                             let top = q.sc.stack.len();
                             self.push_spans_within(c, q);
@@ -882,9 +896,11 @@ impl Csg {
             }
         } else {
             // The same entries, four boxes at once.
-            AabbLanes::gather(&n.lanes, ch, ray, tmin, tmax, |t, c| order.push((t, c)));
-            q.st.bound_tests += ch.len() as u64;
-            q.st.bound_culled += (ch.len() - order.len()) as u64;
+            AabbLanes::gather(&n.lanes, &n.lane_ids, ray, tmin, tmax, |t, c| {
+                order.push((t, c))
+            });
+            q.st.bound_tests += n.lane_ids.len() as u64;
+            q.st.bound_culled += (n.lane_ids.len() - order.len()) as u64;
         }
         // Entries are never NaN (the box test keeps `tmin` over NaN). (The
         // closure, not the function itself: the sort compiled from the
