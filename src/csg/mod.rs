@@ -582,7 +582,9 @@ impl Csg {
             },
             NodeKind::Op(Op::Union, ch) => {
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
-                let ch: &[u32] = match &n.index {
+                // The children the ray may meet, and whether their boxes
+                // are still to be tested.
+                let (ch, untested): (&[u32], bool) = match &n.index {
                     Some(ix) => {
                         hit.extend_from_slice(&ix.unbounded);
                         ix.bvh.visit(q.ray, q.tmin, q.tmax, q.st, |c| {
@@ -590,7 +592,7 @@ impl Csg {
                                 hit.push(c)
                             }
                         });
-                        &hit
+                        (&hit, true)
                     }
                     None if !n.lanes.is_empty() => {
                         // The children's boxes four at once (cut to where
@@ -601,19 +603,17 @@ impl Csg {
                         });
                         q.st.bound_tests += n.lane_ids.len() as u64;
                         q.st.bound_culled += (n.lane_ids.len() - hit.len()) as u64;
-                        for &c in &hit {
-                            let top = q.sc.stack.len();
-                            self.push_spans_within(c, q);
-                            q.sc.merge(Op::Union, base, top, q.ray);
-                        }
-                        q.st.max_spans = q.st.max_spans.max((q.sc.stack.len() - base) as u64);
-                        return;
+                        (&hit, false)
                     }
-                    None => ch,
+                    None => (ch, true),
                 };
                 for &c in ch {
                     let top = q.sc.stack.len();
-                    self.push_spans(c, q);
+                    if untested {
+                        self.push_spans(c, q);
+                    } else {
+                        self.push_spans_within(c, q);
+                    }
                     q.sc.merge(Op::Union, base, top, q.ray);
                 }
             }
@@ -1230,13 +1230,14 @@ impl Scratch {
 
     /// Replaces `stack[base..top]` (A) and `stack[top..]` (B) by `A op B`,
     /// in place where [`spans::quick`] allows. A side that is empty (a
-    /// child the ray missed: most merges) is answered here, as
-    /// [`spans::quick_empty`] answers it, without a call.
+    /// child the ray missed: most merges) is answered here, inline, by
+    /// [`spans::quick_empty`].
     #[inline]
     fn merge(&mut self, op: Op, base: usize, top: usize, ray: &Ray) {
         if top == base || self.stack.len() == top {
             // A and B as they stand, or nothing.
-            let empty = op == Op::Intersection || (op == Op::Difference && top == base);
+            let (a, b) = self.stack[base..].split_at(top - base);
+            let empty = spans::quick_empty(op, a, b) == Some(Quick::Empty);
             if empty && !crate::mutant::active("merge_empty_kept") {
                 self.stack.truncate(base);
             }

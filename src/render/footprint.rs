@@ -19,10 +19,11 @@ pub const FOOTPRINT_MARGIN: f64 = 2.0;
 /// lie too near the plane of the eye for its projection to be trusted.
 const FOOTPRINT_REACH: f64 = 1e6;
 
-/// A box's corners on the image, in pixels from the top left.
+/// A box's corners on the image, in pixels from the top left (`None`: an
+/// empty box, seen nowhere).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Footprint {
-    corners: [DVec2; 8],
+    corners: Option<[DVec2; 8]>,
 }
 
 impl Footprint {
@@ -32,9 +33,7 @@ impl Footprint {
     /// empty box has an empty footprint.
     pub fn of(cam: &Camera, b: &Aabb, w: u32, h: u32) -> Option<Footprint> {
         if b.is_empty() {
-            return Some(Footprint {
-                corners: [DVec2::splat(f64::NAN); 8],
-            });
+            return Some(Footprint { corners: None });
         }
         if !b.is_bounded() {
             return None;
@@ -54,13 +53,18 @@ impl Footprint {
             }
             *c = DVec2::new(x, y);
         }
-        Some(Footprint { corners })
+        Some(Footprint {
+            corners: Some(corners),
+        })
     }
 
     /// The columns of row `y` (of a `w`-pixel row) whose samples may meet
     /// the box: every pixel whose square, grown by the margin, meets the
     /// hull of the corners. Empty when none does.
     pub fn columns(&self, y: u32, w: u32) -> Range<u32> {
+        let Some(corners) = &self.corners else {
+            return 0..0;
+        };
         let (lo, hi) = (
             y as f64 - FOOTPRINT_MARGIN,
             y as f64 + 1.0 + FOOTPRINT_MARGIN,
@@ -74,11 +78,11 @@ impl Footprint {
             left = left.min(x);
             right = right.max(x);
         };
-        for (i, p) in self.corners.iter().enumerate() {
+        for (i, p) in corners.iter().enumerate() {
             if p.y >= lo && p.y <= hi {
                 take(p.x);
             }
-            for q in &self.corners[i + 1..] {
+            for q in &corners[i + 1..] {
                 if p.y == q.y {
                     continue;
                 }

@@ -98,14 +98,12 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
     let viewed = scene.csg.viewed(eye, &dirs);
     let csg = viewed.as_ref().unwrap_or(&scene.csg);
     let shader = Shader::new(scene, csg, &lights, s.max_depth);
-    // The mean of a pixel's `n` samples (non-finite ones counted, not
-    // summed): of their colours, and of their radiance before the last
-    // clamp.
     // Where the scene's box is seen: a sample outside it sees the
     // background, as its ray would.
     let seen = Footprint::of(&cam, &csg.bounds(), s.width, s.height);
     let background = (scene.background, scene.background);
-    // A sample of the picture, its ray cast only if `cast`.
+    // A sample of the picture, its ray cast only if `cast` (non-finite
+    // ones counted, and `None`).
     let sample = |x: f64, y: f64, st: &mut Stats, cast: bool| {
         let (c, r) = if cast {
             st.primary_rays += 1;
@@ -121,6 +119,9 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
             None
         }
     };
+    // The mean of a pixel's `n` samples (non-finite ones counted, not
+    // summed): of their colours, and of their radiance before the last
+    // clamp.
     let pixel = |x: u32, y: u32, n: u32, st: &mut Stats, cast: bool| {
         if n == 1 {
             // The sum of one sample, divided by one: the same bits (zero
