@@ -8,6 +8,7 @@ use csgrt::error::{Error, Result};
 mod animate;
 mod jobs;
 mod output;
+mod view;
 mod watch;
 
 use clap::Parser;
@@ -21,6 +22,8 @@ pub const MAX_SIDE: u32 = 32_768;
 pub const MAX_PIXELS: u64 = 100_000_000;
 pub const MAX_SPP: u32 = 65_536;
 pub const MAX_DEPTH: u32 = 64;
+/// `--max-depth` when not given.
+pub const DEFAULT_MAX_DEPTH: u32 = 5;
 pub const MAX_THREADS: usize = 1024;
 /// The most frames `--animate` renders.
 pub const MAX_FRAMES: u32 = 100_000;
@@ -36,11 +39,14 @@ Examples:
                                           set the program's variables, as OpenSCAD's -D
   csgrt part.scad --animate 24            part00000.png ... part00023.png, $t = i/24
   csgrt part.scad --watch                 render again each time the file is saved
+  csgrt view part.scad                    a window: orbit, pan and zoom as in OpenSCAD; it follows
+                                          each save, and `s` writes the picture and prints its
+                                          command line (docs/CLI.md)
   csgrt *.csg -O thumbnails/              one image per model";
 
 /// csgrt renders CSG scenes exactly: OpenSCAD's `.csg` export plus camera,
 /// lights and materials.
-#[derive(Parser, Debug)]
+#[derive(Parser, Debug, Clone)]
 #[command(name = "csgrt", version, about, long_about = None, after_help = EXAMPLES)]
 pub struct Cli {
     /// The scenes to render: `.csg`, the seed's `.ray` display list, or
@@ -85,7 +91,7 @@ pub struct Cli {
           value_parser = clap::value_parser!(u32).range(1..=MAX_SPP as i64))]
     pub spp: Option<u32>,
     /// Depth of the ray tree (reflection + refraction).
-    #[arg(long, value_name = "N", default_value_t = 5,
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_DEPTH,
           value_parser = clap::value_parser!(u32).range(0..=MAX_DEPTH as i64))]
     pub max_depth: u32,
     /// Worker threads (default, or 0: all cores); the image is the same
@@ -159,6 +165,22 @@ pub struct Cli {
     /// No progress bar, no summary.
     #[arg(short, long)]
     pub quiet: bool,
+
+    /// With `csgrt view`: a line on standard error for each picture the
+    /// window shows (its pass, size and render time), for measuring the
+    /// viewer.
+    #[arg(long)]
+    pub log_frames: bool,
+}
+
+/// `--facets`' name for a mode.
+pub(crate) fn facets_name(f: csgrt::scene::Facets) -> &'static str {
+    use csgrt::scene::Facets;
+    match f {
+        Facets::Shapes => "shapes",
+        Facets::Exact => "exact",
+        Facets::OpenScad => "openscad",
+    }
 }
 
 fn parse_facets(s: &str) -> std::result::Result<csgrt::scene::Facets, String> {
@@ -233,7 +255,14 @@ fn parse_imgsize(s: &str) -> std::result::Result<(u32, u32), String> {
 
 /// Runs csgrt with the process's arguments; returns the exit status.
 pub fn main() -> i32 {
-    let cli = match Cli::try_parse() {
+    // `csgrt view MODEL …`: the same options, a window instead of a file
+    // (a model is a file with an extension, so `view` names none).
+    let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let view = args.get(1).is_some_and(|a| a == "view");
+    if view {
+        args.remove(1);
+    }
+    let cli = match Cli::try_parse_from(args) {
         Ok(c) => c,
         Err(e) => {
             let _ = e.print();
@@ -245,7 +274,7 @@ pub fn main() -> i32 {
     // (`syntax::MAIN_STACK`).
     let ran = std::thread::Builder::new()
         .stack_size(csgrt::syntax::MAIN_STACK)
-        .spawn(move || run(&cli))
+        .spawn(move || run(&cli, view))
         .map_err(|e| Error::Usage(format!("cannot start the main thread: {e}")))
         .and_then(|t| t.join().unwrap_or_else(|p| std::panic::resume_unwind(p)));
     match ran {
@@ -257,7 +286,7 @@ pub fn main() -> i32 {
     }
 }
 
-pub fn run(cli: &Cli) -> Result<()> {
+pub fn run(cli: &Cli, view: bool) -> Result<()> {
     let jobs = jobs(cli)?;
     let mut pool = rayon::ThreadPoolBuilder::new().stack_size(csgrt::syntax::WORKER_STACK);
     // (0: rayon's default, a thread a core.)
@@ -269,6 +298,9 @@ pub fn run(cli: &Cli) -> Result<()> {
         .map_err(|e| Error::Usage(format!("cannot start {:?} threads: {e}", cli.threads)))?;
     if let Some(dir) = &cli.output_dir {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    }
+    if view {
+        return view::view(cli, &jobs, pool);
     }
     if let [job] = &jobs[..] {
         if cli.watch {

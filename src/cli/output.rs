@@ -58,6 +58,21 @@ fn to_stdout(bytes: &[u8]) -> Result<()> {
     }
 }
 
+/// The render the command line asks for, of a `width`×`height` picture
+/// (`radiance`: its linear radiance kept, for HDR and EXR files).
+pub(super) fn settings(cli: &Cli, width: u32, height: u32, radiance: bool) -> Settings {
+    Settings {
+        width,
+        height,
+        spp: cli.spp.unwrap_or(render::ADAPTIVE_SPP),
+        max_depth: cli.max_depth,
+        adaptive: cli.spp.is_none().then_some(render::Adaptive {
+            threshold: render::ADAPTIVE_THRESHOLD,
+        }),
+        radiance,
+    }
+}
+
 pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Result<()> {
     let (width, height) = cli.imgsize.unwrap_or(cli.size);
     let output = &job.output;
@@ -105,16 +120,7 @@ pub(super) fn render_files(cli: &Cli, job: &Job, scene: &Scene, bar: bool) -> Re
                 .into(),
         ));
     }
-    let settings = Settings {
-        width,
-        height,
-        spp: cli.spp.unwrap_or(render::ADAPTIVE_SPP),
-        max_depth: cli.max_depth,
-        adaptive: cli.spp.is_none().then_some(render::Adaptive {
-            threshold: render::ADAPTIVE_THRESHOLD,
-        }),
-        radiance: format.is_linear(),
-    };
+    let settings = settings(cli, width, height, format.is_linear());
 
     if output == Path::new("-") && cli.mask.as_deref() == Some(Path::new("-")) {
         return Err(Error::Usage(

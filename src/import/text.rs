@@ -322,6 +322,24 @@ fn vertical_position(
     (-origin, DVec2::new(0.0, -(v_advance * requested).round()))
 }
 
+impl<'a> Params<'a> {
+    /// `text` in csgrt's built-in font at `size`, left to right from the
+    /// origin on its baseline, in English and Latin script.
+    pub fn line(text: &'a str, size: f64) -> Params<'a> {
+        Params {
+            text,
+            size,
+            font: DEFAULT_FAMILY,
+            halign: "left",
+            valign: "baseline",
+            spacing: 1.0,
+            direction: "ltr",
+            language: "en",
+            script: "Latn",
+        }
+    }
+}
+
 /// Lays out `p` as OpenSCAD does.
 pub fn layout(p: &Params) -> Laid {
     let mut laid = Laid::default();
@@ -505,15 +523,8 @@ mod tests {
 
     fn params(text: &str) -> Params<'_> {
         Params {
-            text,
-            size: 10.0,
             font: "",
-            halign: "left",
-            valign: "baseline",
-            spacing: 1.0,
-            direction: "ltr",
-            language: "en",
-            script: "Latn",
+            ..Params::line(text, 10.0)
         }
     }
 

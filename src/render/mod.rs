@@ -87,6 +87,30 @@ pub enum Progress {
 
 /// Renders the scene, telling `progress` how far it is.
 pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync)) -> Rendered {
+    let hooks = Hooks {
+        progress,
+        stop: &|| false,
+        first_pass: &|_| {},
+    };
+    render_with(scene, s, &hooks).expect("a render nothing stops")
+}
+
+/// What a caller may ask of a render besides its picture (an interactive
+/// view's: `csgrt view`).
+pub struct Hooks<'a> {
+    /// Told how far the render is.
+    pub progress: &'a (dyn Fn(Progress) + Sync),
+    /// Asked before each row is begun: `true` abandons the render.
+    pub stop: &'a (dyn Fn() -> bool + Sync),
+    /// Shown the picture of adaptive anti-aliasing's first pass (a sample
+    /// at each pixel's centre, 8-bit RGB) before the second pass begins.
+    pub first_pass: &'a (dyn Fn(&[u8]) + Sync),
+}
+
+/// [`render`] with [`Hooks`]: `None` when `stop` abandoned it. A render
+/// that is not stopped is the same picture, bit for bit, as [`render`]'s.
+pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendered> {
+    let (progress, stop) = (hooks.progress, hooks.stop);
     let spec = scene.view(s.width, s.height);
     let cam = Camera::new(&spec, s.width, s.height);
     let lights = scene.lights_seen_by(&spec);
@@ -151,6 +175,9 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
     // counters are sums and maxima, the same in any order.
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
         let mut st = Stats::default();
+        if stop() {
+            return st;
+        }
         // Every sample of a pixel lies in its square, which
         // `Footprint::columns` grows by its margin.
         let cast = seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width));
@@ -162,8 +189,12 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
         progress(Progress::Done(s.width as u64 * first as u64));
         st
     });
+    if stop() {
+        return None;
+    }
     let mut refined = 0;
     if let Some(a) = s.adaptive {
+        (hooks.first_pass)(&rgb);
         let h = s.height as usize;
         let corner = |x: u32, y: u32, st: &mut Stats| {
             sample(x as f64, y as f64, st, true).map(|(c, _)| adaptive::shown(c))
@@ -175,6 +206,9 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
             progress(Progress::Planned(refined * s.spp as u64));
             stats.add(&rows(&mut rgb, &mut lin, w, |y, row, lrow| {
                 let mut st = Stats::default();
+                if stop() {
+                    return st;
+                }
                 let xs = &again[y as usize];
                 for &x in xs {
                     let c = pixel(x, y, s.spp, &mut st, true);
@@ -188,15 +222,18 @@ pub fn render(scene: &Scene, s: &Settings, progress: &(dyn Fn(Progress) + Sync))
             lin = Vec::new();
         }
     }
+    if stop() {
+        return None;
+    }
     stats.approximated_nodes = scene.approximations.len() as u64;
-    Rendered {
+    Some(Rendered {
         width: s.width,
         height: s.height,
         rgb,
         radiance: lin,
         refined,
         stats,
-    }
+    })
 }
 
 /// Runs `f(y, bytes, radiance)` on every row in parallel (`radiance`

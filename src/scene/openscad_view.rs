@@ -191,6 +191,19 @@ impl Gimbal {
     }
 }
 
+/// OpenSCAD's interactive "View All" (`QGLView::viewAll`, which turns
+/// `autocenter` on): the viewpoint turned by `rotate` (`$vpr`) that looks
+/// at the centre of `bounds` from as far as `--viewall` moves back.
+pub fn view_all(rotate: DVec3, bounds: &Aabb) -> Viewpoint {
+    let mut g = Gimbal::from_vpr(DVec3::ZERO, rotate, DEFAULT_DISTANCE);
+    g.view_all(bounds, true);
+    Viewpoint::Gimbal {
+        translate: -g.object_trans,
+        rotate,
+        distance: g.distance,
+    }
+}
+
 /// The camera OpenSCAD would export a `width`×`height` PNG with, for a
 /// scene whose box is `bounds`.
 pub fn camera(opts: &ViewOptions, bounds: &Aabb, width: u32, height: u32) -> CameraSpec {

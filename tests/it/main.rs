@@ -31,4 +31,5 @@ mod skip_work;
 mod sphere_image;
 mod stability;
 mod vertical_text;
+mod view;
 mod watch;
