@@ -191,6 +191,24 @@ impl Gimbal {
     }
 }
 
+impl Viewpoint {
+    /// The same view as `$vpt`, `$vpr` and `$vpd` (the eye-and-centre form
+    /// turned into OpenSCAD's gimbal, as `Camera::setup` does).
+    pub fn as_gimbal(self) -> Viewpoint {
+        match self {
+            Viewpoint::Vector { eye, center } => {
+                let g = Gimbal::from_vector(eye, center);
+                Viewpoint::Gimbal {
+                    translate: -g.object_trans,
+                    rotate: DVec3::new(90.0 - g.object_rot.x, -g.object_rot.y, -g.object_rot.z),
+                    distance: g.distance,
+                }
+            }
+            gimbal => gimbal,
+        }
+    }
+}
+
 /// OpenSCAD's interactive "View All" (`QGLView::viewAll`, which turns
 /// `autocenter` on): the viewpoint turned by `rotate` (`$vpr`) that looks
 /// at the centre of `bounds` from as far as `--viewall` moves back.
@@ -239,6 +257,32 @@ pub fn camera(opts: &ViewOptions, bounds: &Aabb, width: u32, height: u32) -> Cam
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The eye-and-centre form as a gimbal is the same camera: the eye
+    /// and centre where they were, up the same.
+    #[test]
+    fn an_eye_and_centre_is_the_same_view_as_a_gimbal() {
+        for (eye, center) in [
+            (DVec3::new(30.0, -40.0, 25.0), DVec3::new(1.0, 2.0, 3.0)),
+            (DVec3::new(-5.0, 7.0, -9.0), DVec3::ZERO),
+            (DVec3::new(0.5, 80.0, 0.0), DVec3::new(0.5, 0.0, 0.0)),
+        ] {
+            let cam = |v: Viewpoint| {
+                let opts = ViewOptions {
+                    camera: Some(v),
+                    ..Default::default()
+                };
+                camera(&opts, &Aabb::EMPTY, 800, 600)
+            };
+            let v = Viewpoint::Vector { eye, center };
+            let (a, b) = (cam(v), cam(v.as_gimbal()));
+            assert!(matches!(v.as_gimbal(), Viewpoint::Gimbal { .. }));
+            for (p, q) in [(a.eye, b.eye), (a.lookat, b.lookat), (a.up, b.up)] {
+                assert!((p - q).length() < 1e-9, "{p} {q}");
+            }
+            assert!((a.eye - eye).length() < 1e-9 && (a.lookat - center).length() < 1e-9);
+        }
+    }
 
     #[test]
     fn parse_forms() {

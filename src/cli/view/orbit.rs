@@ -63,29 +63,19 @@ fn turn(a: f64) -> f64 {
 }
 
 impl Orbit {
-    /// The view a picture starts from: the program's `$vp*` where it sets
-    /// them, else OpenSCAD's reset view moved to see all of `bounds`, as
-    /// OpenSCAD's first preview does.
-    pub fn start(file: Option<Viewpoint>, bounds: &Aabb, projection: Projection) -> Orbit {
+    /// The view a picture starts from: `given` (`--camera`, or the
+    /// program's `$vp*`), else OpenSCAD's reset view moved to see all of
+    /// `bounds`, as OpenSCAD's first preview does.
+    pub fn start(given: Option<Viewpoint>, bounds: &Aabb, projection: Projection) -> Orbit {
         let mut o = Orbit {
             translate: DVec3::ZERO,
             rotate: DEFAULT_ROTATION,
             distance: DEFAULT_DISTANCE,
             projection,
         };
-        match file {
-            Some(Viewpoint::Gimbal {
-                translate,
-                rotate,
-                distance,
-            }) => {
-                o.translate = translate;
-                o.rotate = rotate;
-                o.distance = distance;
-            }
-            // (A program's view is always the gimbal's; `--camera`'s
-            // eye-and-centre form is not a starting view.)
-            Some(Viewpoint::Vector { .. }) | None => o.set(view_all(o.rotate, bounds)),
+        match given {
+            Some(v) => o.set(v.as_gimbal()),
+            None => o.set(view_all(o.rotate, bounds)),
         }
         o
     }

@@ -22,7 +22,9 @@ use std::time::Instant;
 /// What a reduced-resolution picture may take, seconds: a moving view
 /// then shows 30 or more pictures a second (with the time to show them).
 pub const MOVING_BUDGET: f64 = 0.022;
-/// The most pixels a side of the reduced picture stands for.
+/// The fewest and the most pixels a side of a reduced picture's pixel
+/// stands for.
+pub const MIN_REDUCTION: u32 = 2;
 pub const MAX_REDUCTION: u32 = 16;
 
 /// A pass of a picture.
@@ -259,37 +261,36 @@ impl Worker {
         let stop = || self.latest.load(Ordering::SeqCst) != w.count;
         let full = settings(&self.cli, w.width, w.height, false);
         // Reduced so that a pass takes about MOVING_BUDGET at the last
-        // pass's speed.
+        // pass's speed, and by 2 at least: the full pass is abandoned at
+        // the next view, so a view that moves is only ever seen reduced.
         let pixels = w.width as f64 * w.height as f64;
         let n = self.per_pixel.map_or(4, |s| {
-            ((pixels * s / MOVING_BUDGET).sqrt().ceil() as u32).clamp(1, MAX_REDUCTION)
+            ((pixels * s / MOVING_BUDGET).sqrt().ceil() as u32).clamp(MIN_REDUCTION, MAX_REDUCTION)
         });
-        if n > 1 {
-            let (rw, rh) = ((w.width / n).max(1), (w.height / n).max(1));
-            scene.camera = Some(w.view.camera(rw, rh));
-            let reduced = Settings {
-                width: rw,
-                height: rh,
-                spp: 1,
-                adaptive: None,
-                ..full
-            };
-            // Not stopped by the next view: views come faster than such
-            // pictures while the mouse moves, and each is shown, the
-            // latest view taken after it.
-            let start = Instant::now();
-            let img = render::render(scene, &reduced, &|_| {});
-            let seconds = start.elapsed().as_secs_f64();
-            self.per_pixel = Some(seconds / (rw as f64 * rh as f64));
-            tell(Report::Picture(Picture {
-                view: w.count,
-                pass: Pass::Reduced(n),
-                width: rw,
-                height: rh,
-                rgb: img.rgb,
-                seconds,
-            }));
-        }
+        let (rw, rh) = ((w.width / n).max(1), (w.height / n).max(1));
+        scene.camera = Some(w.view.camera(rw, rh));
+        let reduced = Settings {
+            width: rw,
+            height: rh,
+            spp: 1,
+            adaptive: None,
+            ..full
+        };
+        // Not stopped by the next view: views come faster than such
+        // pictures while the mouse moves, and each is shown, the
+        // latest view taken after it.
+        let start = Instant::now();
+        let img = render::render(scene, &reduced, &|_| {});
+        let seconds = start.elapsed().as_secs_f64();
+        self.per_pixel = Some(seconds / (rw as f64 * rh as f64));
+        tell(Report::Picture(Picture {
+            view: w.count,
+            pass: Pass::Reduced(n),
+            width: rw,
+            height: rh,
+            rgb: img.rgb,
+            seconds,
+        }));
         scene.camera = Some(w.view.camera(w.width, w.height));
         let start = Instant::now();
         let first = Mutex::new(None);

@@ -19,6 +19,7 @@ use crate::cli::jobs::Job;
 use crate::cli::watch::Follow;
 use csgrt::error::{Error, Result};
 use csgrt::geometry::Aabb;
+use csgrt::scene::openscad_view::Viewpoint;
 use std::num::NonZeroU32;
 use std::rc::Rc;
 use std::sync::Mutex;
@@ -64,6 +65,8 @@ struct App {
     buttons: [bool; 3],
     mods: ModifiersState,
     log: bool,
+    /// `--camera`: the first view, in place of the program's.
+    camera: Option<Viewpoint>,
     began: Instant,
     model_name: String,
 }
@@ -120,9 +123,17 @@ pub(super) fn run(cli: &Cli, job: &Job, pool: rayon::ThreadPool) -> Result<()> {
         buttons: [false; 3],
         mods: ModifiersState::empty(),
         log: cli.log_frames,
+        camera: cli.camera,
         began: Instant::now(),
         model_name: job.model.to_string_lossy().into_owned(),
     };
+    if app.log {
+        // The clock the lines' times count from, for a benchmark's own.
+        let epoch = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0.0, |d| d.as_secs_f64());
+        eprintln!("csgrt view: began at {epoch:.4} s after 1970");
+    }
     event_loop
         .run_app(&mut app)
         .map_err(|e| no_display(job, &format!("the window system says: {e}")))?;
@@ -139,8 +150,17 @@ impl App {
             self.asked = self
                 .renders
                 .ask(self.view, self.size.width, self.size.height);
+            self.note(&format!("asked view {}", self.asked));
         }
         self.title();
+    }
+
+    /// A line of `--log-frames`: seconds since the window began.
+    fn note(&self, what: &str) {
+        if self.log {
+            let t = self.began.elapsed().as_secs_f64();
+            eprintln!("csgrt view: {t:.4} s: {what}");
+        }
     }
 
     fn title(&self) {
@@ -231,24 +251,21 @@ impl App {
     fn reported(&mut self, t: Report) {
         match t {
             Report::Picture(f) => {
-                if f.view != self.asked {
+                // The newest picture is shown, of the view asked or of
+                // one before it: while the mouse moves, each picture
+                // comes after the next view has been asked for.
+                if self.frame.as_ref().is_some_and(|old| old.view > f.view) {
                     return;
                 }
-                if self.log {
-                    let pass = match f.pass {
-                        Pass::Reduced(n) => format!("reduced 1/{n}"),
-                        Pass::Full => "full".to_string(),
-                        Pass::Final => "final".to_string(),
-                    };
-                    eprintln!(
-                        "csgrt view: {:.3} s: view {} {pass} {}x{} in {:.4} s",
-                        self.began.elapsed().as_secs_f64(),
-                        f.view,
-                        f.width,
-                        f.height,
-                        f.seconds
-                    );
-                }
+                let pass = match f.pass {
+                    Pass::Reduced(n) => format!("reduced 1/{n}"),
+                    Pass::Full => "full".to_string(),
+                    Pass::Final => "final".to_string(),
+                };
+                self.note(&format!(
+                    "view {} {pass} {}x{} in {:.4} s",
+                    f.view, f.width, f.height, f.seconds
+                ));
                 self.frame = Some(f);
                 self.title();
                 if let Some(s) = &self.shown {
@@ -260,14 +277,10 @@ impl App {
                 self.error = None;
                 if !self.started {
                     self.started = true;
-                    self.view = Orbit::start(file_view, &bounds, self.view.projection);
+                    let given = self.camera.or(file_view);
+                    self.view = Orbit::start(given, &bounds, self.view.projection);
                 }
-                if self.log {
-                    eprintln!(
-                        "csgrt view: {:.3} s: read",
-                        self.began.elapsed().as_secs_f64()
-                    );
-                }
+                self.note("read");
                 self.ask();
             }
             Report::Failed(message) => {
@@ -317,7 +330,10 @@ impl ApplicationHandler<Note> for App {
     fn user_event(&mut self, el: &ActiveEventLoop, note: Note) {
         match note {
             Note::Report(t) => self.reported(t),
-            Note::Saved => self.renders.read(),
+            Note::Saved => {
+                self.note("a file was saved");
+                self.renders.read();
+            }
             Note::WatchFailed(e) => {
                 eprintln!("{e}");
                 let _ = el;
