@@ -311,6 +311,55 @@ pub fn mask(scene: &Scene, s: &Settings) -> Vec<u8> {
 mod tests {
     use super::*;
 
+    /// A render nothing stops is `render`'s picture, and its first pass is
+    /// shown before the second; one stopped after some rows is `None`,
+    /// and rows asked after the stop are not begun.
+    #[test]
+    fn a_render_is_stopped_at_a_row_and_otherwise_the_same() {
+        let src = crate::Source::new(
+            "t.csg",
+            "difference() { cube(10, center = true); sphere(6.5); }".to_string(),
+        );
+        let ast = crate::syntax::parse_csg(&src).unwrap();
+        let scene = crate::scene::resolve_with(&src, &ast, Default::default()).unwrap();
+        let s = Settings {
+            width: 64,
+            height: 48,
+            spp: ADAPTIVE_SPP,
+            adaptive: Some(Adaptive {
+                threshold: ADAPTIVE_THRESHOLD,
+            }),
+            ..Settings::default()
+        };
+        let want = render(&scene, &s, &|_| {});
+        let first = std::sync::Mutex::new(Vec::new());
+        let hooks = Hooks {
+            progress: &|_| {},
+            stop: &|| false,
+            first_pass: &|rgb| *first.lock().unwrap() = rgb.to_vec(),
+        };
+        let got = render_with(&scene, &s, &hooks).expect("not stopped");
+        assert!(got.rgb == want.rgb && got.stats == want.stats);
+        let first = first.into_inner().unwrap();
+        assert_eq!(first.len(), want.rgb.len());
+        assert!(first != want.rgb, "the first pass is before anti-aliasing");
+        let asked = std::sync::atomic::AtomicU32::new(0);
+        let rows_done = std::sync::atomic::AtomicU32::new(0);
+        let stop = || asked.fetch_add(1, std::sync::atomic::Ordering::SeqCst) >= 10;
+        let progress = |p: Progress| {
+            if let Progress::Done(_) = p {
+                rows_done.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+            }
+        };
+        let hooks = Hooks {
+            progress: &progress,
+            stop: &stop,
+            first_pass: &|_| panic!("no first pass once stopped"),
+        };
+        assert!(render_with(&scene, &s, &hooks).is_none());
+        assert!(rows_done.into_inner() <= 10, "rows begun after the stop");
+    }
+
     #[test]
     fn both_finite_is_every_component_finite() {
         let vals = [

@@ -39,12 +39,13 @@ fn needs(tool: &str) {
     );
 }
 
-/// An X server of its own on a free display number.
-fn xvfb() -> (Running, String) {
+/// An X server of its own on a free display number (from `base` up: each
+/// test its own range).
+fn xvfb(base: u32) -> (Running, String) {
     for tool in ["Xvfb", "xdotool", "import"] {
         needs(tool);
     }
-    for n in (100 + std::process::id() % 400)..1000 {
+    for n in (base + std::process::id() % 200)..(base + 400) {
         if Path::new(&format!("/tmp/.X{n}-lock")).exists()
             || Path::new(&format!("/tmp/.X11-unix/X{n}")).exists()
         {
@@ -234,17 +235,14 @@ const SECOND: &str =
     "sphere(r = 9);\ntranslate([0, 0, 9]) cube(size = [4, 4, 8], center = true);\n";
 const BROKEN: &str = "sphere(r = ;\n";
 
-#[test]
-fn the_window_shows_what_the_printed_command_line_writes() {
-    let (_x, display) = xvfb();
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path().to_path_buf();
-    let model = dir.join("part.csg");
-    write(&model, FIRST);
+/// `csgrt view MODEL --size 320x240` in `dir` on its own display, once its
+/// window is up and its first view refined.
+fn open(dir: &Path, model: &str, base: u32) -> (Running, Viewer) {
+    let (x, display) = xvfb(base);
     let (out, log) = (dir.join("out.txt"), dir.join("log.txt"));
     let child = Command::new(BIN)
-        .args(["view", "part.csg", "--size", "320x240"])
-        .current_dir(&dir)
+        .args(["view", model, "--size", "320x240"])
+        .current_dir(dir)
         .env("DISPLAY", &display)
         .env_remove("WAYLAND_DISPLAY")
         .stdin(Stdio::null())
@@ -252,18 +250,29 @@ fn the_window_shows_what_the_printed_command_line_writes() {
         .stderr(std::fs::File::create(&log).unwrap())
         .spawn()
         .unwrap();
+    let pid = child.id().to_string();
     let mut v = Viewer {
         display,
         window: String::new(),
         out,
         log,
-        dir: dir.clone(),
+        dir: dir.to_path_buf(),
         _child: Running(child),
     };
-    let found = v.xdo(&["search", "--sync", "--name", "^csgrt view"]);
+    let found = v.xdo(&["search", "--sync", "--pid", &pid]);
     v.window = found.lines().next().expect("the window").to_string();
     v.xdo(&["windowfocus", "--sync", &v.window]);
     v.until("the first picture", || v.title().ends_with("ready"));
+    (x, v)
+}
+
+#[test]
+fn the_window_shows_what_the_printed_command_line_writes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().to_path_buf();
+    let model = dir.join("part.csg");
+    write(&model, FIRST);
+    let (_x, v) = open(&dir, "part.csg", 100);
 
     // The first view: OpenSCAD's reset view moved to see all.
     let line = v.save();
@@ -380,4 +389,27 @@ fn without_a_display_the_viewer_says_so() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// A `.scad` model: a save of a file it includes is followed too (the
+/// files OpenSCAD says it read), the view kept.
+#[test]
+fn a_save_of_an_included_file_is_followed() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().to_path_buf();
+    write(&dir.join("sizes.scad"), "w = 12;\n");
+    write(
+        &dir.join("part.scad"),
+        "include <sizes.scad>\ndifference() { cube([w, 10, 8], center = true); cylinder(h = 20, r = 3, center = true); }\n",
+    );
+    let (_x, v) = open(&dir, "part.scad", 600);
+    v.drag("1", 100, 100, -40, 10, None);
+    let line = v.save();
+    let before = render(&line, &dir);
+    v.shows(&before, "the dragged view");
+    write(&dir.join("sizes.scad"), "w = 24;\n");
+    let after = render(&line, &dir);
+    assert!(after != before);
+    v.shows(&after, "the included file's change");
+    v.xdo(&["key", "q"]);
 }

@@ -351,3 +351,77 @@ impl Worker {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::Parser;
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    /// The render thread without a window: a view's passes come reduced,
+    /// full, then final, and the final picture is `render`'s with the
+    /// command line's settings and `--camera`, bit for bit; views asked
+    /// one after another end in the last one's final picture, none
+    /// after it.
+    #[test]
+    fn a_views_passes_end_in_the_command_lines_picture() {
+        let model = concat!(env!("CARGO_MANIFEST_DIR"), "/models/csg_ops.csg");
+        let cli = Cli::try_parse_from(["csgrt", model, "--size", "160x120", "-q"]).unwrap();
+        let job = crate::cli::jobs::jobs(&cli).unwrap().remove(0);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let (follow, _changes) = Follow::new().unwrap();
+        let (tx, rx) = mpsc::channel();
+        let tx = Mutex::new(tx);
+        let renders = Renders::start(&cli, &job, pool, follow, move |r| {
+            let _ = tx.lock().unwrap().send(r);
+        });
+        let next = || rx.recv_timeout(Duration::from_secs(60)).expect("a report");
+        let Report::Read(bounds, view) = next() else {
+            panic!("the model read first")
+        };
+        let orbit = Orbit::start(view, &bounds, Default::default());
+        let final_of = |count: u64| loop {
+            match next() {
+                Report::Picture(p) if p.view == count && p.pass == Pass::Final => return p,
+                Report::Picture(p) => assert!(p.view <= count),
+                _ => panic!("only pictures"),
+            }
+        };
+        let first = renders.ask(orbit, 160, 120);
+        let mut passes = Vec::new();
+        let got = loop {
+            match next() {
+                Report::Picture(p) if p.pass == Pass::Final => break p,
+                Report::Picture(p) => passes.push(p.pass),
+                _ => panic!("only pictures"),
+            }
+        };
+        assert_eq!(got.view, first);
+        assert!(
+            matches!(passes[..], [Pass::Reduced(4), Pass::Full]),
+            "{passes:?}"
+        );
+        let mut scene = csgrt::load(std::path::Path::new(model)).unwrap();
+        scene.camera = Some(orbit.camera(160, 120));
+        let want = render::render(&scene, &settings(&cli, 160, 120, false), &|_| {});
+        assert!(got.rgb == want.rgb, "the final picture is not render's");
+        let mut moved = orbit;
+        let mut last = 0;
+        for i in 0..8 {
+            moved.rotate_by(7.0 * i as f64, 3.0, false);
+            last = renders.ask(moved, 160, 120);
+        }
+        let p = final_of(last);
+        scene.camera = Some(moved.camera(160, 120));
+        let want = render::render(&scene, &settings(&cli, 160, 120, false), &|_| {});
+        assert!(p.rgb == want.rgb);
+        assert!(
+            rx.recv_timeout(Duration::from_millis(300)).is_err(),
+            "nothing after the last final"
+        );
+    }
+}

@@ -134,9 +134,11 @@ pub(super) fn run(cli: &Cli, job: &Job, pool: rayon::ThreadPool) -> Result<()> {
             .map_or(0.0, |d| d.as_secs_f64());
         eprintln!("csgrt view: began at {epoch:.4} s after 1970");
     }
-    event_loop
-        .run_app(&mut app)
-        .map_err(|e| no_display(job, &format!("the window system says: {e}")))?;
+    let ran = event_loop.run_app(&mut app);
+    // The window closes first; then the renders stop (a render at its
+    // next row, a `.scad` export when OpenSCAD is done).
+    drop(app.shown.take());
+    ran.map_err(|e| no_display(job, &format!("the window system says: {e}")))?;
     match app.failed.take() {
         Some(e) => Err(e),
         None => Ok(()),
