@@ -354,6 +354,12 @@ fn the_window_shows_what_the_printed_command_line_writes() {
         })
         .count();
     assert!(dimmed > 320 * 240 * 8 / 10, "{dimmed} pixels dimmed");
+    // `s` writes nothing while the model is broken (its command line
+    // would read the broken file).
+    let lines = v.lines().len();
+    v.xdo(&["key", "s"]);
+    v.until("the refusal to write", || v.said().contains("not written"));
+    assert_eq!(v.lines().len(), lines);
     // Fixed again: the picture, the message gone.
     write(&model, SECOND.replace("r = 9", "r = 8").as_str());
     v.shows(&render(&line, &dir), "the model fixed again");

@@ -118,6 +118,7 @@ impl Renders {
             scene: None,
             shown: None,
             per_pixel: None,
+            broken: false,
         };
         let thread = std::thread::Builder::new()
             .name("csgrt view renders".into())
@@ -192,6 +193,8 @@ struct Worker {
     shown: Option<u64>,
     /// Seconds a pixel of a one-sample pass took last.
     per_pixel: Option<f64>,
+    /// Whether the model's last read failed (the scene is the one before).
+    broken: bool,
 }
 
 impl Worker {
@@ -218,7 +221,11 @@ impl Worker {
                 return;
             }
             if w.read {
-                self.read(tell);
+                if !self.read(tell) {
+                    // The last good model's picture of this view is the
+                    // one shown: not rendered again.
+                    self.shown = Some(w.count);
+                }
                 continue;
             }
             if w.save && self.shown == Some(w.count) {
@@ -230,7 +237,8 @@ impl Worker {
     }
 
     /// Reads the model; on success follows the files it was read from.
-    fn read(&mut self, tell: &(dyn Fn(Report) + Sync)) {
+    /// Whether it was read.
+    fn read(&mut self, tell: &(dyn Fn(Report) + Sync)) -> bool {
         match watched_scene(&self.cli, &self.job, &mut self.kept) {
             Ok((scene, deps)) => {
                 if let Err(e) = self.follow.set(&deps, &self.job.model) {
@@ -239,15 +247,19 @@ impl Worker {
                 tell(Report::Read(scene.result_bounds(), scene.scad_view));
                 self.scene = Some(scene);
                 self.shown = None;
+                self.broken = false;
+                true
             }
             Err(e) => {
                 eprintln!("{e}");
                 tell(Report::Failed(e.to_string()));
+                self.broken = true;
                 if self.follow.count() == 0 {
                     if let Err(e) = self.follow.set(&[], &self.job.model) {
                         eprintln!("{e}");
                     }
                 }
+                false
             }
         }
     }
@@ -335,6 +347,14 @@ impl Worker {
         let Some(scene) = self.scene.as_mut() else {
             return;
         };
+        if self.broken {
+            // The command line would read the broken file.
+            eprintln!(
+                "csgrt view: not written: the model's last save has an error (above); \
+                 the window shows the last good picture"
+            );
+            return;
+        }
         let cli = Cli {
             size: (w.width, w.height),
             imgsize: None,
