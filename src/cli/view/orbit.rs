@@ -155,12 +155,34 @@ impl Orbit {
         if middle {
             m = DVec3::new(0.0, m.z, 0.0);
         }
-        // `object_trans += Rz·Ry·Rx·m`, the rotations by −object_rot.
+        self.move_by(m);
+    }
+
+    /// `QGLView::translate` relative to the viewport: m along the view's
+    /// right, depth and up; `object_trans += Rz·Ry·Rx·m`, the rotations
+    /// by −object_rot.
+    fn move_by(&mut self, m: DVec3) {
         let o = self.object_rot();
         let turn = DMat3::from_rotation_z(-o.z.to_radians())
             * DMat3::from_rotation_y(-o.y.to_radians())
             * DMat3::from_rotation_x(-o.x.to_radians());
         self.translate -= turn * m;
+    }
+
+    /// The wheel at pixel (x, y) of a `width`×`height` window: OpenSCAD's
+    /// mouse-centric zoom (`QGLView::zoomCursor`, on by default in
+    /// 2021.01): [`Orbit::zoom_by`], and the view moved so that the point
+    /// of the plane through the centre under the cursor stays under it.
+    pub fn zoom_at(&mut self, v: f64, x: f64, y: f64, width: u32, height: u32) {
+        let (w, h) = (width.max(1) as f64, height.max(1) as f64);
+        let old = self.distance;
+        self.zoom_by(v);
+        let ratio = old / self.distance - 1.0;
+        let sx = 2.0 * (x + 0.5) / w - 1.0;
+        let sy = 1.0 - 2.0 * (y + 0.5) / h;
+        let half = self.distance * (0.5 * openscad_view::FOV_Y).to_radians().tan();
+        let (mx, mz) = (ratio * sx * (w / h) * half, ratio * sy * half);
+        self.move_by(DVec3::new(-mx, 0.0, -mz));
     }
 
     /// `Camera::zoom`: the distance times 0.9 for each notch (`v` = 120).
@@ -282,6 +304,38 @@ mod tests {
         let before = p.translate;
         p.pan_by(0.0, -50.0, true, false, 800, 600);
         assert!((p.translate - before - DVec3::new(0.0, -50.0 * k / 600.0, 0.0)).length() < 1e-9);
+    }
+
+    /// The wheel zooms about the cursor: the point of the plane through
+    /// the centre under pixel (x, y) is under it after the zoom, in
+    /// either projection.
+    #[test]
+    fn the_wheel_zooms_about_the_cursor() {
+        use csgrt::render::camera::Camera;
+        for projection in [Projection::Perspective, Projection::Orthographic] {
+            for (x, y, v) in [
+                (100.0, 80.0, NOTCH),
+                (700.0, 500.0, -2.0 * NOTCH),
+                (399.5, 299.5, NOTCH),
+            ] {
+                let mut o = orbit();
+                o.projection = projection;
+                o.rotate_by(30.0, -20.0, false);
+                let before = Camera::new(&o.camera(800, 600), 800, 600);
+                let spec = o.camera(800, 600);
+                let ray = before.ray(x + 0.5, y + 0.5);
+                let ahead = (spec.lookat - spec.eye).normalize();
+                let t = (spec.lookat - ray.origin).dot(ahead) / ray.dir.dot(ahead);
+                let p = ray.origin + ray.dir * t;
+                o.zoom_at(v, x, y, 800, 600);
+                let (px, py, _) = Camera::new(&o.camera(800, 600), 800, 600).project(p);
+                assert!(
+                    (px - x - 0.5).abs() < 1e-6 && (py - y - 0.5).abs() < 1e-6,
+                    "{px} {py}"
+                );
+                assert!((o.distance - 140.0 * 0.9f64.powf(v / NOTCH)).abs() < 1e-9);
+            }
+        }
     }
 
     /// The view keys give OpenSCAD's `object_rot` (`mainwin.cc`) and its

@@ -5,7 +5,8 @@
 //!
 //! Mouse and keys as in OpenSCAD 2021.01: left drag orbits (shift: about
 //! the view's own axis), right drag pans, middle drag moves along the line
-//! of sight, shift with right or middle drag and the wheel zoom; Ctrl+4 to
+//! of sight, shift with right or middle drag zooms, the wheel zooms about
+//! the cursor (OpenSCAD's default mouse-centric zoom); Ctrl+4 to
 //! Ctrl+9 top, bottom, left, right, front, back; Ctrl+0 diagonal;
 //! Ctrl+Shift+0 centre; Ctrl+Shift+V view all; Ctrl+] and Ctrl+[ zoom.
 //! csgrt's own: `r` reset view, `p` perspective, `o` orthogonal, `s`
@@ -405,7 +406,11 @@ impl ApplicationHandler<Note> for App {
                     MouseScrollDelta::PixelDelta(p) => p.y,
                 };
                 if v != 0.0 {
-                    self.view.zoom_by(v);
+                    let (w, h) = (self.size.width, self.size.height);
+                    match self.cursor {
+                        Some(c) => self.view.zoom_at(v, c.x, c.y, w, h),
+                        None => self.view.zoom_by(v),
+                    }
                     self.ask();
                 }
             }
