@@ -358,7 +358,13 @@ impl ApplicationHandler<Note> for App {
                 }
             }
             WindowEvent::ModifiersChanged(m) => self.mods = m.state(),
-            WindowEvent::KeyboardInput { event, .. } => {
+            // (winit makes up presses of the keys held when the window
+            // gains focus: not the user's commands.)
+            WindowEvent::KeyboardInput {
+                event,
+                is_synthetic: false,
+                ..
+            } => {
                 if event.state == ElementState::Pressed && !event.repeat {
                     if let PhysicalKey::Code(code) = event.physical_key {
                         self.key(el, code);
