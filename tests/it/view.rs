@@ -364,6 +364,8 @@ fn the_window_shows_what_the_printed_command_line_writes() {
     write(&model, SECOND.replace("r = 9", "r = 8").as_str());
     v.shows(&render(&line, &dir), "the model fixed again");
     assert!(v.title().ends_with("ready"));
+    // One command line for each of the five `s` that wrote a picture.
+    assert_eq!(v.lines().len(), 5, "{:?}", v.lines());
     v.xdo(&["key", "q"]);
 }
 
