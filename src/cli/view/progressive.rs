@@ -94,7 +94,7 @@ impl Renders {
         pool: rayon::ThreadPool,
         follow: Follow,
         tell: impl Fn(Report) + Send + Sync + 'static,
-    ) -> Renders {
+    ) -> csgrt::Result<Renders> {
         let wanted = Arc::new((
             Mutex::new(Wanted {
                 view: Orbit::start(None, &Aabb::EMPTY, Default::default()),
@@ -124,12 +124,12 @@ impl Renders {
             .name("csgrt view renders".into())
             .stack_size(csgrt::syntax::MAIN_STACK)
             .spawn(move || pool.install(|| worker.run(&tell)))
-            .expect("a thread for the renders");
-        Renders {
+            .map_err(|e| csgrt::Error::Usage(format!("cannot start the render thread: {e}")))?;
+        Ok(Renders {
             wanted,
             latest,
             thread: Some(thread),
-        }
+        })
     }
 
     fn change(&self, f: impl FnOnce(&mut Wanted)) {
@@ -398,7 +398,8 @@ mod tests {
         let tx = Mutex::new(tx);
         let renders = Renders::start(&cli, &job, pool, follow, move |r| {
             let _ = tx.lock().unwrap().send(r);
-        });
+        })
+        .unwrap();
         let next = || rx.recv_timeout(Duration::from_secs(60)).expect("a report");
         let Report::Read(bounds, view) = next() else {
             panic!("the model read first")

@@ -110,7 +110,7 @@ pub(super) fn run(cli: &Cli, job: &Job, pool: rayon::ThreadPool) -> Result<()> {
     let (w, h) = cli.imgsize.unwrap_or(cli.size);
     let mut app = App {
         job: job.clone(),
-        renders: Renders::start(cli, job, pool, follow, tell),
+        renders: Renders::start(cli, job, pool, follow, tell)?,
         shown: None,
         failed: None,
         view: Orbit::start(None, &Aabb::EMPTY, cli.projection.unwrap_or_default()),
