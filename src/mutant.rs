@@ -70,6 +70,7 @@ pub const NAMES: &[&str] = &[
     "twist_far_point_untwisted",
     "disc_push_short",
     "disc_hull_frustum_thin",
+    "ball_chain_untangent",
     "rounded_lathe_torus_thin",
     "hull_parts_coarse",
     "pov_clearance_wide",

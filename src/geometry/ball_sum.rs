@@ -62,6 +62,89 @@ pub fn as_rounded(hulls: &[Vec<ConvexPart>]) -> Option<(Vec<DVec3>, f64)> {
     }
 }
 
+/// One hull of balls whose centres lie on one line — two balls always do:
+/// OpenSCAD's tapered capsule, `hull() { sphere(5); translate([16, 0, 0])
+/// sphere(2); }` — as exact pieces. The set is turned about that line, so
+/// its section through the line is the hull of the balls' discs there:
+/// the discs on its boundary, and between two neighbours along the line
+/// the trapezoid under their common tangent (a boundary disc's part
+/// beyond its tangent points is its own). Turned: those balls, and
+/// between neighbours the frustum from one tangent circle to the other —
+/// for discs of radii r₁, r₂ whose centres are d apart, with k = (r₁ −
+/// r₂)/d, the tangent circle of each lies r·k along the line from its
+/// centre, of radius r·√(1 − k²). `None` for anything else, or centres
+/// off the line by more than 10⁻¹² of the set's size.
+pub fn as_ball_chain(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
+    let [parts] = hulls else { return None };
+    if parts.len() < 2 || parts.len() > MAX_HULL_POINTS {
+        return None;
+    }
+    let balls: Vec<(DVec3, f64)> = parts.iter().map(ball).collect::<Option<_>>()?;
+    if balls
+        .iter()
+        .any(|b| !(b.1 > 0.0 && b.0.is_finite() && b.1.is_finite()))
+    {
+        return None;
+    }
+    // The line: from the centre farthest from the first to the one
+    // farthest from that.
+    let farthest = |from: DVec3| {
+        balls
+            .iter()
+            .map(|b| b.0)
+            .max_by(|p, q| (*p - from).length().total_cmp(&(*q - from).length()))
+            .unwrap_or(from)
+    };
+    let c0 = farthest(balls[0].0);
+    let c1 = farthest(c0);
+    let length = (c1 - c0).length();
+    let radius = balls.iter().map(|b| b.1).fold(0.0, f64::max);
+    let tol = 1e-12 * (length + radius + c0.abs().max_element());
+    let mut out = Pieces { parts: Vec::new() };
+    if length <= tol {
+        let (c, r) = balls
+            .iter()
+            .copied()
+            .max_by(|p, q| p.1.total_cmp(&q.1))
+            .unwrap_or(balls[0]);
+        out.ball(c, r);
+        return Some(out);
+    }
+    let u = (c1 - c0) / length;
+    if balls
+        .iter()
+        .any(|b| (b.0 - c0).reject_from_normalized(u).length() > tol)
+    {
+        return None;
+    }
+    let discs: Vec<(DVec2, f64)> = balls
+        .iter()
+        .map(|&(c, r)| (DVec2::new((c - c0).dot(u), 0.0), r))
+        .collect();
+    let (_, mut on) = disc_hull(&discs)?;
+    on.sort_by(|&a, &b| discs[a].0.x.total_cmp(&discs[b].0.x));
+    on.dedup();
+    for &i in &on {
+        out.ball(balls[i].0, balls[i].1);
+    }
+    for w in on.windows(2) {
+        let ((ci, ri), (cj, rj)) = (balls[w[0]], balls[w[1]]);
+        let d = discs[w[1]].0.x - discs[w[0]].0.x;
+        let k = (ri - rj) / d;
+        // (Neighbours on the boundary have a band between them unless one
+        // holds the other, touching it from inside.)
+        if d > 0.0 && k.abs() < 1.0 {
+            let c = if crate::mutant::active("ball_chain_untangent") {
+                1.0
+            } else {
+                (1.0 - k * k).sqrt()
+            };
+            out.frustum(ci + u * (ri * k), cj + u * (rj * k), ri * c, rj * c);
+        }
+    }
+    Some(out)
+}
+
 /// A hull that is one ball (a sphere under a uniform scale): its centre
 /// and radius.
 pub fn ball_of(hull: &[ConvexPart]) -> Option<(DVec3, f64)> {
@@ -192,14 +275,19 @@ impl Pieces {
 
     /// The cylinder of radius r about segment ab, without its ends' balls.
     fn cylinder(&mut self, a: DVec3, b: DVec3, r: f64) {
+        self.frustum(a, b, r, r);
+    }
+
+    /// The frustum about segment ab, of radius ra at a and rb at b (ra > 0).
+    fn frustum(&mut self, a: DVec3, b: DVec3, ra: f64, rb: f64) {
         let z = (b - a).normalize();
         let helper = if z.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
         let x = helper.cross(z).normalize();
         let y = z.cross(x);
-        let m = DAffine3::from_mat3_translation(DMat3::from_cols(x * r, y * r, b - a), a);
+        let m = DAffine3::from_mat3_translation(DMat3::from_cols(x * ra, y * ra, b - a), a);
         let cone = Cone {
             r0: 1.0,
-            r1: 1.0,
+            r1: rb / ra,
             centered: false,
         };
         self.parts.push((Shape::Cone(cone), m));
@@ -540,6 +628,100 @@ pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<ConvexPart>>]) -> Opt
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Balls of several radii on a line, hulled: a point inside the hull
+    /// of points sampled on the balls is in a piece, a point farther than
+    /// the sampling's sagitta outside it in none — along random lines, with
+    /// balls inside others and balls at one place among them.
+    #[test]
+    fn balls_on_a_line_hulled_are_their_sampled_hull() {
+        let mut rnd = crate::plane::tests::uniform(47);
+        let n = 3000;
+        let (mut inside, mut outside) = (0, 0);
+        for set in 0..40 {
+            let dir = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+            let origin = DVec3::new(rnd(), rnd(), rnd()) * 20.0 - DVec3::splat(10.0);
+            let mut balls: Vec<(DVec3, f64)> = (0..2 + set % 4)
+                .map(|_| (origin + dir * (12.0 * rnd()), 0.3 + 3.0 * rnd()))
+                .collect();
+            if set % 5 == 0 {
+                // One inside another, and one at another's centre.
+                let (c, r) = balls[0];
+                balls.push((c + dir * (0.3 * r), 0.5 * r));
+                balls.push((balls[1].0, 0.4 * balls[1].1));
+            }
+            let parts: Vec<ConvexPart> = balls
+                .iter()
+                .map(|&(c, r)| ConvexPart {
+                    shape: Shape::Sphere(Sphere),
+                    to_world: DAffine3::from_scale_rotation_translation(
+                        DVec3::splat(r),
+                        glam::DQuat::from_rotation_arc(DVec3::Z, dir),
+                        c,
+                    ),
+                })
+                .collect();
+            let pieces = as_ball_chain(&[parts]).unwrap_or_else(|| panic!("set {set}: no pieces"));
+            let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let mut pts = Vec::new();
+            for &(c, r) in &balls {
+                for k in 0..n {
+                    let z = 1.0 - 2.0 * (k as f64 + 0.5) / n as f64;
+                    let (a, w) = (golden * k as f64, (1.0 - z * z).sqrt());
+                    pts.push(c + DVec3::new(w * a.cos(), w * a.sin(), z) * r);
+                }
+            }
+            let (v, t) = crate::geometry::quickhull::hull(&pts, 1e-9).unwrap();
+            let planes: Vec<(DVec3, f64)> = t
+                .iter()
+                .map(|f| {
+                    let [a, b, c] = f.map(|i| v[i as usize]);
+                    let nrm = (b - a).cross(c - a).normalize();
+                    (nrm, nrm.dot(a))
+                })
+                .collect();
+            // The sampling's widest gap is about 2·√(4π/n) of a turn.
+            let rmax = balls.iter().map(|b| b.1).fold(0.0, f64::max);
+            let sagitta =
+                rmax * (1.0 - (2.0 * (4.0 * std::f64::consts::PI / n as f64).sqrt()).cos());
+            let (bmin, bmax) = v
+                .iter()
+                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| {
+                    (a.min(p), b.max(p))
+                });
+            let in_pieces = |p: DVec3| {
+                pieces
+                    .parts
+                    .iter()
+                    .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
+            };
+            for _ in 0..600 {
+                let p = bmin - DVec3::ONE
+                    + (bmax - bmin + DVec3::splat(2.0)) * DVec3::new(rnd(), rnd(), rnd());
+                let far = planes
+                    .iter()
+                    .map(|(nrm, d)| nrm.dot(p) - d)
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if far < -1e-9 {
+                    inside += 1;
+                    assert!(
+                        in_pieces(p),
+                        "set {set}: {p} in the sampled hull, in no piece"
+                    );
+                } else if far > sagitta {
+                    outside += 1;
+                    assert!(
+                        !in_pieces(p),
+                        "set {set}: {p} {far} outside the hull, in a piece"
+                    );
+                }
+            }
+        }
+        assert!(
+            inside > 3000 && outside > 3000,
+            "{inside} inside, {outside} outside"
+        );
+    }
 
     #[test]
     fn a_cube_rounded_is_a_mesh_twelve_cylinders_and_eight_balls() {

@@ -992,7 +992,12 @@ def side_pieces(a, b, c):
 # and the hull of points
 # --------------------------------------------------------------------------
 
-CONVEXES = ["hull_spheres", "rounded_box", "hull_points", "lofted_plate", "chamfered_plate"]
+CONVEXES = ["hull_spheres", "hull_spheres_support", "rounded_box", "hull_points", "lofted_plate", "chamfered_plate"]
+# The tapered capsule twice: as written (csgrt's exact pieces, balls and the
+# tangent frustum) and with a small cube inside it among the hull's parts
+# (the same set, which only the support function's path takes: GJK and
+# Newton's proof).
+SPHERE_HULLS = ("hull_spheres", "hull_spheres_support")
 # The hull of two balls on the z axis: centres and radii, times the size.
 CAPSULE = ((-0.3, 0.35), (0.4, 0.15))
 # The rounded box: a centred box's sides and the ball's radius, times the size.
@@ -1026,7 +1031,7 @@ class Convexed(Prim):
     def __init__(self, kind, c, s, pose="plain"):
         super().__init__(kind, c, s, pose)
         S = M(s)
-        if kind == "hull_spheres":
+        if kind in SPHERE_HULLS:
             (z1, r1), (z2, r2) = [(M(float(z * s)), M(float(r * s))) for z, r in CAPSULE]
             self.balls = [([M(0), M(0), z1], r1), ([M(0), M(0), z2], r2)]
             sin_a = (r1 - r2) / (z2 - z1)
@@ -1049,8 +1054,10 @@ class Convexed(Prim):
     def body(self):
         s = self.s
         f = lambda x: repr(float(x * s))
-        if self.kind == "hull_spheres":
+        if self.kind in SPHERE_HULLS:
             balls = " ".join(f"translate([0, 0, {f(z)}]) sphere(r = {f(r)});" for z, r in CAPSULE)
+            if self.kind == "hull_spheres_support":
+                balls += f" translate([0, 0, {f(0.05)}]) cube({f(0.01)}, center = true);"
             return f"hull() {{ {balls} }}"
         if self.kind == "rounded_box":
             sides = ", ".join(f(x) for x in BOX_SIDES)
@@ -1083,7 +1090,7 @@ class Convexed(Prim):
     def intervals(self, o, d):
         """The intervals of t in each convex piece (local ray)."""
         out = []
-        if self.kind == "hull_spheres":
+        if self.kind in SPHERE_HULLS:
             for cen, r in self.balls:
                 rel = [o[i] - cen[i] for i in range(3)]
                 q = quadratic(dot(d, d), dot(rel, d), dot(rel, rel) - r * r)
@@ -1145,7 +1152,7 @@ class Convexed(Prim):
     def normal(self, o, d, t):
         lo, ld = self.local(o, d)
         p = [lo[i] + t * ld[i] for i in range(3)]
-        if self.kind == "hull_spheres":
+        if self.kind in SPHERE_HULLS:
             if p[2] <= self.z1t or p[2] >= self.z2t:
                 cen, r = self.balls[0] if p[2] <= self.z1t else self.balls[1]
                 n, rho = [p[i] - cen[i] for i in range(3)], r
@@ -1455,7 +1462,7 @@ def convex_rays(p, n, rng):
     slim = max(SLIM, 8 * ulp / s)
     for j in range(n):
         a = 2 * math.pi * j / n
-        if p.kind == "hull_spheres":
+        if p.kind in SPHERE_HULLS:
             # Across the cone at z = 0.1, 1e-9 of the size inside it.
             z = M(0.1) * p.S
             rz = (p.rho1 + p.k * (z - p.z1t)) / p.S

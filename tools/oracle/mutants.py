@@ -68,7 +68,7 @@ MUTANTS = {
     "offset_arcs_unswept": (["tests/openscad/offset_circles.csg"], False),
     "framing_loose": (["tests/scenes/ring_sector.csg"], False),
     "polytope_part_dropped": (["tests/openscad/hull_polytopes.csg"], ["hull_points"]),
-    "convex_slab_shrunk": (["tests/openscad/hull.csg"], ["hull_spheres"]),
+    "convex_slab_shrunk": (["tests/openscad/hull.csg"], ["hull_spheres_support"]),
     "coaxial_axis_dropped": (["tests/openscad/hull_coaxial.csg"], False),
     "twist_reach_shrunk": (["tests/openscad/twist.csg"], False),
     "twist_discs_unturned": (["tests/openscad/twist.csg"], ["twisted"]),
@@ -78,6 +78,7 @@ MUTANTS = {
     "twist_far_point_untwisted": (["tests/openscad/twist.csg"], False),
     "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
     "disc_hull_frustum_thin": (["tests/openscad/hull_cones.csg"], ["chamfered_plate"]),
+    "ball_chain_untangent": (["tests/openscad/hull.csg", "bench/capsule_hull.csg"], ["hull_spheres"]),
     "rounded_lathe_torus_thin": (["tests/openscad/rounded_lathes.csg"], False),
 }
 

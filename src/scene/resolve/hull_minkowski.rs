@@ -180,6 +180,7 @@ impl Resolver<'_> {
         // A polytope rounded by a ball: written out as exact primitives.
         let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
             .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
+            .or_else(|| crate::geometry::ball_sum::as_ball_chain(&hulls))
             .or_else(|| crate::geometry::ball_sum::as_cylinders(&hulls))
             .or_else(|| crate::geometry::disc_sum::as_disc_sum(&hulls))
             .or_else(|| crate::geometry::disc_hull::as_disc_hull(&hulls));
