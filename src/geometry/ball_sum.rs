@@ -266,6 +266,64 @@ pub fn span(pts: &[DVec3], tol: f64) -> Span {
     Span::Solid
 }
 
+#[cfg(test)]
+impl Pieces {
+    /// Checks the pieces against the hull of points `pts` sampled on the
+    /// solid's surface, which lies inside the solid and within `margin` of
+    /// it: of `tries` random points about it, one inside the sampled hull
+    /// must be in a piece, one farther than `margin` outside it in none
+    /// (`what` names the set in a failure). The counts of points inside
+    /// and outside that were checked.
+    pub(crate) fn check_sampled_hull(
+        &self,
+        pts: &[DVec3],
+        margin: f64,
+        tries: usize,
+        rnd: &mut impl FnMut() -> f64,
+        what: &str,
+    ) -> (usize, usize) {
+        let (v, t) = crate::geometry::quickhull::hull(pts, 1e-9).unwrap();
+        let planes: Vec<(DVec3, f64)> = t
+            .iter()
+            .map(|f| {
+                let [a, b, c] = f.map(|i| v[i as usize]);
+                let nrm = (b - a).cross(c - a).normalize();
+                (nrm, nrm.dot(a))
+            })
+            .collect();
+        let (bmin, bmax) = v
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| {
+                (a.min(p), b.max(p))
+            });
+        let in_pieces = |p: DVec3| {
+            self.parts
+                .iter()
+                .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
+        };
+        let (mut inside, mut outside) = (0, 0);
+        for _ in 0..tries {
+            let p = bmin - DVec3::ONE
+                + (bmax - bmin + DVec3::splat(2.0)) * DVec3::new(rnd(), rnd(), rnd());
+            let far = planes
+                .iter()
+                .map(|(nrm, d)| nrm.dot(p) - d)
+                .fold(f64::NEG_INFINITY, f64::max);
+            if far < -1e-9 {
+                inside += 1;
+                assert!(in_pieces(p), "{what}: {p} in the sampled hull, in no piece");
+            } else if far > margin {
+                outside += 1;
+                assert!(
+                    !in_pieces(p),
+                    "{what}: {p} {far} outside the hull, in a piece"
+                );
+            }
+        }
+        (inside, outside)
+    }
+}
+
 impl Pieces {
     fn ball(&mut self, c: DVec3, r: f64) {
         let m =
@@ -671,51 +729,13 @@ mod tests {
                     pts.push(c + DVec3::new(w * a.cos(), w * a.sin(), z) * r);
                 }
             }
-            let (v, t) = crate::geometry::quickhull::hull(&pts, 1e-9).unwrap();
-            let planes: Vec<(DVec3, f64)> = t
-                .iter()
-                .map(|f| {
-                    let [a, b, c] = f.map(|i| v[i as usize]);
-                    let nrm = (b - a).cross(c - a).normalize();
-                    (nrm, nrm.dot(a))
-                })
-                .collect();
             // The sampling's widest gap is about 2·√(4π/n) of a turn.
             let rmax = balls.iter().map(|b| b.1).fold(0.0, f64::max);
             let sagitta =
                 rmax * (1.0 - (2.0 * (4.0 * std::f64::consts::PI / n as f64).sqrt()).cos());
-            let (bmin, bmax) = v
-                .iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| {
-                    (a.min(p), b.max(p))
-                });
-            let in_pieces = |p: DVec3| {
-                pieces
-                    .parts
-                    .iter()
-                    .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
-            };
-            for _ in 0..600 {
-                let p = bmin - DVec3::ONE
-                    + (bmax - bmin + DVec3::splat(2.0)) * DVec3::new(rnd(), rnd(), rnd());
-                let far = planes
-                    .iter()
-                    .map(|(nrm, d)| nrm.dot(p) - d)
-                    .fold(f64::NEG_INFINITY, f64::max);
-                if far < -1e-9 {
-                    inside += 1;
-                    assert!(
-                        in_pieces(p),
-                        "set {set}: {p} in the sampled hull, in no piece"
-                    );
-                } else if far > sagitta {
-                    outside += 1;
-                    assert!(
-                        !in_pieces(p),
-                        "set {set}: {p} {far} outside the hull, in a piece"
-                    );
-                }
-            }
+            let (i, o) =
+                pieces.check_sampled_hull(&pts, sagitta, 600, &mut rnd, &format!("set {set}"));
+            (inside, outside) = (inside + i, outside + o);
         }
         assert!(
             inside > 3000 && outside > 3000,

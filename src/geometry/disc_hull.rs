@@ -406,48 +406,10 @@ mod tests {
                 parts.push(part);
             }
             let pieces = as_disc_hull(&[parts]).unwrap_or_else(|| panic!("set {set}: no pieces"));
-            let (v, t) = crate::geometry::quickhull::hull(&pts, 1e-9).unwrap();
-            let planes: Vec<(DVec3, f64)> = t
-                .iter()
-                .map(|f| {
-                    let [a, b, c] = f.map(|i| v[i as usize]);
-                    let nrm = (b - a).cross(c - a).normalize();
-                    (nrm, nrm.dot(a))
-                })
-                .collect();
             let sagitta = 2.5 * (1.0 - (std::f64::consts::PI / n as f64).cos());
-            let (bmin, bmax) = v
-                .iter()
-                .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| {
-                    (a.min(p), b.max(p))
-                });
-            let in_pieces = |p: DVec3| {
-                pieces
-                    .parts
-                    .iter()
-                    .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
-            };
-            for _ in 0..400 {
-                let p = bmin - DVec3::ONE
-                    + (bmax - bmin + DVec3::splat(2.0)) * DVec3::new(rnd(), rnd(), rnd());
-                let far = planes
-                    .iter()
-                    .map(|(nrm, d)| nrm.dot(p) - d)
-                    .fold(f64::NEG_INFINITY, f64::max);
-                if far < -1e-9 {
-                    inside += 1;
-                    assert!(
-                        in_pieces(p),
-                        "set {set}: {p} in the sampled hull, in no piece"
-                    );
-                } else if far > 2.0 * sagitta {
-                    outside += 1;
-                    assert!(
-                        !in_pieces(p),
-                        "set {set}: {p} {far} outside the hull, in a piece"
-                    );
-                }
-            }
+            let what = format!("set {set}");
+            let (i, o) = pieces.check_sampled_hull(&pts, 2.0 * sagitta, 400, &mut rnd, &what);
+            (inside, outside) = (inside + i, outside + o);
         }
         assert!(
             inside > 5000 && outside > 5000,
