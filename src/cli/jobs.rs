@@ -36,13 +36,7 @@ fn with_stem_suffix(path: &Path, suffix: &str) -> PathBuf {
 pub(super) fn jobs(cli: &Cli) -> Result<Vec<Job>> {
     let several = cli.model.len() > 1;
     if several || cli.animate.is_some() {
-        let single = [
-            ("--mask", cli.mask.is_some()),
-            ("--stats-json", cli.stats_json.is_some()),
-            ("--dump-scene", cli.dump_scene.is_some()),
-            ("--export-pov", cli.export_pov.is_some()),
-            ("--trace-rays", cli.trace_rays.is_some()),
-        ];
+        let single = cli.one_file_outputs();
         let what = if several {
             "several models"
         } else {

@@ -173,6 +173,20 @@ pub struct Cli {
     pub log_frames: bool,
 }
 
+impl Cli {
+    /// The options that each write one file of their own (for one image),
+    /// and whether each is given.
+    pub(crate) fn one_file_outputs(&self) -> [(&'static str, bool); 5] {
+        [
+            ("--mask", self.mask.is_some()),
+            ("--stats-json", self.stats_json.is_some()),
+            ("--dump-scene", self.dump_scene.is_some()),
+            ("--export-pov", self.export_pov.is_some()),
+            ("--trace-rays", self.trace_rays.is_some()),
+        ]
+    }
+}
+
 /// `--facets`' name for a mode.
 pub(crate) fn facets_name(f: csgrt::scene::Facets) -> &'static str {
     use csgrt::scene::Facets;

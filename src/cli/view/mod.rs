@@ -36,19 +36,15 @@ fn no_display(job: &Job, why: &str) -> Error {
 
 /// Runs the viewer on `job` until its window is closed.
 pub(super) fn view(cli: &Cli, jobs: &[Job], pool: rayon::ThreadPool) -> Result<()> {
-    let single = [
-        ("--animate", cli.animate.is_some()),
-        ("--mask", cli.mask.is_some()),
-        ("--stats-json", cli.stats_json.is_some()),
-        ("--dump-scene", cli.dump_scene.is_some()),
-        ("--export-pov", cli.export_pov.is_some()),
-        ("--trace-rays", cli.trace_rays.is_some()),
-        ("--watch", cli.watch),
-        ("--viewall", cli.viewall),
-        ("--autocenter", cli.autocenter),
-        ("-O", cli.output_dir.is_some()),
-    ];
-    if let Some((opt, _)) = single.iter().find(|(_, on)| *on) {
+    let mut refused = std::iter::once(("--animate", cli.animate.is_some()))
+        .chain(cli.one_file_outputs())
+        .chain([
+            ("--watch", cli.watch),
+            ("--viewall", cli.viewall),
+            ("--autocenter", cli.autocenter),
+            ("-O", cli.output_dir.is_some()),
+        ]);
+    if let Some((opt, _)) = refused.find(|(_, on)| *on) {
         return Err(Error::Usage(format!(
             "{opt} is not for csgrt view (a window that follows the model; it starts from the \
              program's view or views all, and its `s` key writes the picture)"

@@ -75,7 +75,7 @@ impl Orbit {
         };
         match given {
             Some(v) => o.set(v.as_gimbal()),
-            None => o.set(view_all(o.rotate, bounds)),
+            None => o.set(openscad_view::view_all(o.rotate, bounds)),
         }
         o
     }
@@ -214,7 +214,7 @@ impl Orbit {
             ViewKey::Back => self.set_object_rot(DVec3::new(0.0, 0.0, 180.0)),
             ViewKey::Diagonal => self.set_object_rot(DVec3::new(35.0, 0.0, -25.0)),
             ViewKey::Center => self.translate = DVec3::ZERO,
-            ViewKey::ViewAll => self.set(view_all(self.rotate, bounds)),
+            ViewKey::ViewAll => self.set(openscad_view::view_all(self.rotate, bounds)),
             ViewKey::Reset => {
                 self.rotate = DEFAULT_ROTATION;
                 self.translate = DVec3::ZERO;
@@ -226,11 +226,6 @@ impl Orbit {
             ViewKey::Orthogonal => self.projection = Projection::Orthographic,
         }
     }
-}
-
-/// View All, or for a box with nothing in it OpenSCAD's reset distance.
-fn view_all(rotate: DVec3, bounds: &Aabb) -> Viewpoint {
-    openscad_view::view_all(rotate, bounds)
 }
 
 #[cfg(test)]

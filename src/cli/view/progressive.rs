@@ -139,14 +139,21 @@ impl Renders {
         wake.notify_one();
     }
 
+    /// Counts one more thing asked that the render under way must stop
+    /// for (at its next row); the new count.
+    fn supersede(&self, w: &mut Wanted) -> u64 {
+        w.count += 1;
+        self.latest.store(w.count, Ordering::SeqCst);
+        w.count
+    }
+
     /// Asks for `view` in a `width`×`height` window; returns its count.
     /// The render under way stops at its next row.
     pub fn ask(&self, view: Orbit, width: u32, height: u32) -> u64 {
         let mut count = 0;
         self.change(|w| {
-            w.count += 1;
-            (w.view, w.width, w.height, count) = (view, width, height, w.count);
-            self.latest.store(w.count, Ordering::SeqCst);
+            (w.view, w.width, w.height) = (view, width, height);
+            count = self.supersede(w);
         });
         count
     }
@@ -156,8 +163,7 @@ impl Renders {
     pub fn read(&self) {
         self.change(|w| {
             w.read = true;
-            w.count += 1;
-            self.latest.store(w.count, Ordering::SeqCst);
+            self.supersede(w);
         });
     }
 
@@ -171,8 +177,7 @@ impl Drop for Renders {
     fn drop(&mut self) {
         self.change(|w| {
             w.quit = true;
-            w.count += 1;
-            self.latest.store(w.count, Ordering::SeqCst);
+            self.supersede(w);
         });
         if let Some(t) = self.thread.take() {
             let _ = t.join();

@@ -69,7 +69,6 @@ struct App {
     /// `--camera`: the first view, in place of the program's.
     camera: Option<Viewpoint>,
     began: Instant,
-    model_name: String,
 }
 
 /// Opens the window and runs it until it is closed.
@@ -126,7 +125,6 @@ pub(super) fn run(cli: &Cli, job: &Job, pool: rayon::ThreadPool) -> Result<()> {
         log: cli.log_frames,
         camera: cli.camera,
         began: Instant::now(),
-        model_name: job.model.to_string_lossy().into_owned(),
     };
     if app.log {
         // The clock the lines' times count from, for a benchmark's own.
@@ -178,7 +176,7 @@ impl App {
         };
         s.window.set_title(&format!(
             "csgrt view — {} — {state}",
-            csgrt::error::printable(&self.model_name)
+            csgrt::error::printable(&self.job.model.to_string_lossy())
         ));
     }
 
@@ -330,17 +328,14 @@ impl ApplicationHandler<Note> for App {
         }
     }
 
-    fn user_event(&mut self, el: &ActiveEventLoop, note: Note) {
+    fn user_event(&mut self, _: &ActiveEventLoop, note: Note) {
         match note {
             Note::Report(t) => self.reported(t),
             Note::Saved => {
                 self.note("a file was saved");
                 self.renders.read();
             }
-            Note::WatchFailed(e) => {
-                eprintln!("{e}");
-                let _ = el;
-            }
+            Note::WatchFailed(e) => eprintln!("{e}"),
         }
     }
 
