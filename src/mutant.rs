@@ -71,6 +71,7 @@ pub const NAMES: &[&str] = &[
     "disc_push_short",
     "disc_hull_frustum_thin",
     "ball_chain_untangent",
+    "distribute_cut_dropped",
     "rounded_lathe_torus_thin",
     "hull_parts_coarse",
     "pov_clearance_wide",

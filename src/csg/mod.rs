@@ -7,6 +7,7 @@
 //! its subtracted children. The normal and material are looked up only for
 //! the boundary that wins ([`Csg::surface`]).
 
+mod distribute;
 mod extent;
 mod polytopes;
 mod twins;
@@ -168,7 +169,14 @@ pub struct Csg {
     pub prims: Vec<Primitive>,
     pub nodes: Vec<Node>,
     pub sections: Vec<Section>,
+    /// The tree as the file wrote it: what is exported, measured and
+    /// framed.
     pub root: Option<u32>,
+    /// The same solid as rays walk it ([`Csg::index_unions`] sets it; the
+    /// written root until then): each difference of a union distributed
+    /// over the union's children where its cuts meet only some of them
+    /// ([`Csg::distributed`]).
+    pub walked: Option<u32>,
 }
 
 /// A surface point found by a query, with its unit outward normal.
@@ -386,8 +394,13 @@ impl Csg {
         let Some(root) = self.root else {
             return;
         };
-        let ctx = self.contexts(root);
-        let mut todo = vec![root];
+        let mut memo = vec![None; self.nodes.len()];
+        let walked = self.distributed(root, &mut memo);
+        self.walked = Some(walked);
+        // The written tree keeps its hierarchies too: the framing box
+        // casts rays through it ([`Csg::tight_bounds`]).
+        let ctx = self.contexts(&[root, walked]);
+        let mut todo = vec![root, walked];
         let mut seen = vec![false; self.nodes.len()];
         while let Some(n) = todo.pop() {
             if std::mem::replace(&mut seen[n as usize], true) {
@@ -407,8 +420,8 @@ impl Csg {
         }
     }
 
-    /// For each node under `root`, a box outside which its spans cannot
-    /// change the root's, within its own box: its box for the root; for a
+    /// For each node under `roots`, a box outside which its spans cannot
+    /// change its root's, within its own box: its box for a root; for a
     /// child of an operation, the operation's (every operation is
     /// pointwise, and its result lies in its box: a union's the union of
     /// its children's, an intersection's their overlap, a difference's its
@@ -417,10 +430,13 @@ impl Csg {
     /// ray's foot). Empty for a node the root does not reach. (Children
     /// come before parents, so one pass from the root down has each whole
     /// before its children read it.)
-    fn contexts(&self, root: u32) -> Vec<Aabb> {
+    fn contexts(&self, roots: &[u32]) -> Vec<Aabb> {
         let mut ctx = vec![Aabb::EMPTY; self.nodes.len()];
-        ctx[root as usize] = Aabb::EVERYTHING;
-        for i in (0..=root as usize).rev() {
+        for &r in roots {
+            ctx[r as usize] = Aabb::EVERYTHING;
+        }
+        let top = roots.iter().copied().max().unwrap_or(0);
+        for i in (0..=top as usize).rev() {
             ctx[i] = ctx[i].intersect(&self.nodes[i].bounds);
             if ctx[i].is_empty() {
                 continue;
@@ -507,6 +523,11 @@ impl Csg {
         node.pretest = pretest(&node);
         self.nodes.push(node);
         self.nodes.len() as u32 - 1
+    }
+
+    /// The root rays walk: [`Csg::walked`], else the written one.
+    fn walked_root(&self) -> Option<u32> {
+        self.walked.or(self.root)
     }
 
     /// The world box of everything (EMPTY for an empty tree).
@@ -739,7 +760,7 @@ impl Csg {
         st: &mut Stats,
         need: Need,
     ) -> Option<Boundary> {
-        let root = self.root?;
+        let root = self.walked_root()?;
         if let NodeKind::Leaf(id) = self.nodes[root as usize].kind {
             return self.leaf_first(root, id, ray, tmin, tmax, st, need);
         }
@@ -804,7 +825,7 @@ impl Csg {
         stops: impl Fn(&Boundary) -> bool,
         f: impl FnOnce(&[Span]) -> R,
     ) -> R {
-        let Some(root) = self.root else {
+        let Some(root) = self.walked_root() else {
             return f(&[]);
         };
         let first = |acc: &[Span]| {

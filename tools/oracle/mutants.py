@@ -79,6 +79,7 @@ MUTANTS = {
     "disc_push_short": (["tests/openscad/hull_discs.csg"], ["lofted_plate"]),
     "disc_hull_frustum_thin": (["tests/openscad/hull_cones.csg"], ["chamfered_plate"]),
     "ball_chain_untangent": (["tests/openscad/hull.csg", "bench/capsule_hull.csg"], ["hull_spheres"]),
+    "distribute_cut_dropped": (["models/bracket.csg", "tests/openscad/candleStand.csg"], False),
     "rounded_lathe_torus_thin": (["tests/openscad/rounded_lathes.csg"], False),
 }
 
