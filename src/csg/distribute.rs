@@ -118,7 +118,8 @@ mod tests {
     /// Bodies of parts minus cuts, the cuts meeting some parts and not
     /// others, as people write them: the tree rays walk is not the one
     /// written, and along random rays its spans are the written tree's,
-    /// boundary for boundary (the same t, primitive, part and side).
+    /// boundary for boundary (the same t, primitive, part and side); so
+    /// are its first hit and its answer to a shadow ray.
     #[test]
     fn a_distributed_tree_has_the_written_spans() {
         let mut rnd = crate::plane::tests::uniform(11);
@@ -179,6 +180,9 @@ mod tests {
                     |b: Option<crate::csg::spans::Boundary>| b.map(|b| (b.t.to_bits(), b.prim));
                 let first = csg.first_boundary(&ray, tmin, tmax, &mut st);
                 assert_eq!(at(first), at(crate::csg::first_surface(&written, tmin)));
+                // A shadow ray's question: whether there is a boundary.
+                let seen = crate::csg::first_surface(&written, tmin).is_some();
+                assert_eq!(csg.occluded(&ray, tmin, tmax, &mut st), seen);
             }
         }
         assert!(spread > 30, "{spread} of 60 trees distributed");
