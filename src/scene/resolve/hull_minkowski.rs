@@ -294,9 +294,16 @@ impl Resolver<'_> {
             nodes.extend(self.statement(c, at, mat, depth + 1)?);
         }
         self.placed_approximations(noted, &xf);
+        // The operand taken whole (a mesh summed as it is) is not cut.
+        let ops = self.summands(&nodes);
+        let cut: Vec<u32> = nodes
+            .iter()
+            .copied()
+            .filter(|&n| Some(n) != ops.whole())
+            .collect();
         let read = self
-            .cut_operands(s, &nodes, xf)
-            .and_then(|cuts| self.sum_of(&nodes, &cuts));
+            .cut_operands(s, &cut, xf)
+            .and_then(|cuts| self.sum_of(&nodes, ops, &cuts));
         self.b.csg.rewind(mark);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
@@ -364,17 +371,20 @@ impl Resolver<'_> {
         self.leaf(s, Shape::Rounded(shape), frame, mat)
     }
 
-    /// What the operands `nodes` sum to: one mesh that is not convex and
-    /// balls (the mesh rounded by their sum), or else every choice of one
-    /// convex piece from each operand's union, or what stands in the way.
-    fn sum_of(&self, nodes: &[u32], cuts: &Cuts) -> std::result::Result<Summed, String> {
-        let (mut mesh, mut centre, mut r, mut others) = (None, DVec3::ZERO, 0.0, false);
-        let mut mesh_node = None;
+    /// What the operands `nodes` are made of: balls, one mesh that is not
+    /// convex, and whether there are others.
+    fn summands(&self, nodes: &[u32]) -> Operands {
+        let mut ops = Operands {
+            mesh: None,
+            centre: DVec3::ZERO,
+            r: 0.0,
+            others: false,
+        };
         for &node in nodes {
             let (mut leaves, mut cut) = (Vec::new(), Vec::new());
             self.union_members(node, false, &mut leaves, &mut cut);
             if !cut.is_empty() || leaves.is_empty() {
-                others = true;
+                ops.others = true;
                 continue;
             }
             let prim = &self.b.csg.prims[leaves[0] as usize];
@@ -384,40 +394,45 @@ impl Resolver<'_> {
             };
             match (&part.shape, crate::geometry::ball_sum::ball(&part)) {
                 (_, Some((c, radius))) if leaves.len() == 1 => {
-                    centre += c;
-                    r += radius;
+                    ops.centre += c;
+                    ops.r += radius;
                 }
                 (Shape::Mesh(m), None)
-                    if leaves.len() == 1 && mesh.is_none() && !is_convex(&part.shape) =>
+                    if leaves.len() == 1 && ops.mesh.is_none() && !is_convex(&part.shape) =>
                 {
-                    mesh = Some((m.clone(), part.to_world));
-                    mesh_node = Some(node);
+                    ops.mesh = Some((m.clone(), part.to_world, node));
                 }
-                _ => others = true,
+                _ => ops.others = true,
             }
         }
-        if let (Some((m, to)), false, true) = (&mesh, others, r > 0.0) {
-            return Ok(Summed::Mesh(
-                m.clone(),
-                DAffine3::from_translation(centre) * *to,
-                r,
-            ));
+        ops
+    }
+
+    /// What the operands `nodes` (made of `ops`) sum to: one mesh that is
+    /// not convex and balls (the mesh rounded by their sum), or a mesh
+    /// plus the others, or else every choice of one convex piece from each
+    /// operand's union, or what stands in the way.
+    fn sum_of(
+        &self,
+        nodes: &[u32],
+        ops: Operands,
+        cuts: &Cuts,
+    ) -> std::result::Result<Summed, String> {
+        match ops.mesh {
+            Some((m, to, _)) if !ops.others && ops.r > 0.0 => Ok(Summed::Mesh(
+                m,
+                DAffine3::from_translation(ops.centre) * to,
+                ops.r,
+            )),
+            Some((m, to, mesh_node)) if ops.others => {
+                // The mesh plus the sum of the others, distributed over
+                // their unions: one convex set for each choice of a piece
+                // of each.
+                let others: Vec<u32> = nodes.iter().copied().filter(|&n| n != mesh_node).collect();
+                Ok(Summed::MeshPlus(m, to, self.choices(&others, cuts)?))
+            }
+            _ => Ok(Summed::Convex(self.choices(nodes, cuts)?)),
         }
-        if let (Some((m, to)), true) = (&mesh, others) {
-            // The mesh plus the sum of the others, distributed over their
-            // unions: one convex set for each choice of a piece of each.
-            let others: Vec<u32> = nodes
-                .iter()
-                .copied()
-                .filter(|&n| Some(n) != mesh_node)
-                .collect();
-            return Ok(Summed::MeshPlus(
-                m.clone(),
-                *to,
-                self.choices(&others, cuts)?,
-            ));
-        }
-        Ok(Summed::Convex(self.choices(nodes, cuts)?))
     }
 
     /// The polytopes of the intersections and differences among the
@@ -492,6 +507,27 @@ impl Resolver<'_> {
 /// The convex polytopes of the operands' intersections and differences, by
 /// node.
 type Cuts = std::collections::HashMap<u32, Vec<Polytope>>;
+
+/// A `minkowski()`'s operands: a mesh that is not convex (placed, and its
+/// node), the balls' summed centre and radius, and whether there are
+/// others.
+struct Operands {
+    mesh: Option<(Mesh, DAffine3, u32)>,
+    centre: DVec3,
+    r: f64,
+    others: bool,
+}
+
+impl Operands {
+    /// The operand summed whole, not cut into polytopes: the mesh, if it
+    /// is rounded by the balls or added to the others.
+    fn whole(&self) -> Option<u32> {
+        self.mesh
+            .as_ref()
+            .filter(|_| self.others || self.r > 0.0)
+            .map(|m| m.2)
+    }
+}
 
 /// What a `minkowski()` sums to.
 enum Summed {
