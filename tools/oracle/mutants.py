@@ -102,7 +102,7 @@ MESHES = {
     "ring_unslanted": "turned_slanted_ellipses",
     "nef3_holes_dropped": "nef3_import",
     "pieces_uncut": "approximated",
-    "climb_once": "approximated_polyhedra",
+    "climb_once": "approximated_sections",
     "twist_pieces_reversed": "approximated_twisted",
     "mesh_hulled": "approximated_polyhedra",
     "svg_nested_popped": "nested_svg",
