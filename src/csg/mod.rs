@@ -175,7 +175,7 @@ pub struct Csg {
     /// The same solid as rays walk it ([`Csg::index_unions`] sets it; the
     /// written root until then): each difference of a union distributed
     /// over the union's children where its cuts meet only some of them
-    /// ([`Csg::distributed`]).
+    /// (`csg/distribute.rs`).
     pub walked: Option<u32>,
 }
 
@@ -383,13 +383,14 @@ impl Csg {
         }
     }
 
-    /// Builds the hierarchy (and the boxes in lanes, where the sorting
-    /// first-hit query reads them: a union that walks its hierarchy does
-    /// not) of every union under the root, once the tree is whole; the
-    /// nodes' pretests after them. The children's boxes there are cut to
-    /// where the union can matter ([`Csg::contexts`]), so the hierarchy and
-    /// the lanes answer for queries of the whole tree (from the root), as
-    /// every query is.
+    /// Once the tree is whole: sets [`Csg::walked`], the tree rays walk
+    /// (its differences distributed: `csg/distribute.rs`), and builds the
+    /// hierarchy (and the boxes in lanes, where the sorting first-hit query
+    /// reads them: a union that walks its hierarchy does not) of every
+    /// union under either root; the nodes' pretests after them. The
+    /// children's boxes there are cut to where the union can matter
+    /// ([`Csg::contexts`]), so the hierarchy and the lanes answer for
+    /// queries of a whole tree (from its root), as every query is.
     pub fn index_unions(&mut self) {
         let Some(root) = self.root else {
             return;
