@@ -268,6 +268,13 @@ pub fn span(pts: &[DVec3], tol: f64) -> Span {
 
 #[cfg(test)]
 impl Pieces {
+    /// Whether world point `p` lies in one of the pieces.
+    pub(crate) fn has_point(&self, p: DVec3) -> bool {
+        self.parts
+            .iter()
+            .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
+    }
+
     /// Checks the pieces against the hull of points `pts` sampled on the
     /// solid's surface, which lies inside the solid and within `margin` of
     /// it: of `tries` random points about it, one inside the sampled hull
@@ -296,11 +303,6 @@ impl Pieces {
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(a, b), &p| {
                 (a.min(p), b.max(p))
             });
-        let in_pieces = |p: DVec3| {
-            self.parts
-                .iter()
-                .any(|(s, m)| s.contains(m.inverse().transform_point3(p)))
-        };
         let (mut inside, mut outside) = (0, 0);
         for _ in 0..tries {
             let p = bmin - DVec3::ONE
@@ -311,11 +313,14 @@ impl Pieces {
                 .fold(f64::NEG_INFINITY, f64::max);
             if far < -1e-9 {
                 inside += 1;
-                assert!(in_pieces(p), "{what}: {p} in the sampled hull, in no piece");
+                assert!(
+                    self.has_point(p),
+                    "{what}: {p} in the sampled hull, in no piece"
+                );
             } else if far > margin {
                 outside += 1;
                 assert!(
-                    !in_pieces(p),
+                    !self.has_point(p),
                     "{what}: {p} {far} outside the hull, in a piece"
                 );
             }
@@ -820,10 +825,7 @@ mod tests {
                 let want = grown
                     .iter()
                     .any(|(l, u)| l.cmplt(p).all() && p.cmplt(*u).all());
-                let got = pieces
-                    .parts
-                    .iter()
-                    .any(|(s, t)| s.contains(t.inverse().transform_point3(p)));
+                let got = pieces.has_point(p);
                 assert_eq!(got, want, "round {round}: {p}");
                 if want {
                     inside += 1;
