@@ -181,11 +181,29 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
         // Every sample of a pixel lies in its square, which
         // `Footprint::columns` grows by its margin.
         let cast = seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width));
-        for x in 0..s.width {
-            let c = pixel(x, y, first, &mut st, cast.contains(&x));
+        for x in cast.clone() {
+            let c = pixel(x, y, first, &mut st, true);
             put(row, lrow, x as usize, c);
-            st.pixels += 1;
         }
+        // The pixels no ray is cast for: the background's pixel, found once
+        // and copied (the same bytes as found at each).
+        let culled = s.width - cast.len() as u32;
+        if culled > 0 {
+            let mut one = Stats::default();
+            let (mut b, mut r) = ([0u8; 3], [0f32; 3]);
+            let r: &mut [f32] = if lrow.is_empty() { &mut [] } else { &mut r };
+            put(&mut b, r, 0, pixel(0, y, first, &mut one, false));
+            for x in (0..cast.start).chain(cast.end..s.width) {
+                let k = 3 * x as usize..3 * x as usize + 3;
+                row[k.clone()].copy_from_slice(&b);
+                if !r.is_empty() {
+                    lrow[k].copy_from_slice(r);
+                }
+            }
+            st.screen_culled += one.screen_culled * culled as u64;
+            st.nonfinite_samples += one.nonfinite_samples * culled as u64;
+        }
+        st.pixels += s.width as u64;
         progress(Progress::Done(s.width as u64 * first as u64));
         st
     });
