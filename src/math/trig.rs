@@ -164,64 +164,105 @@ pub struct Trig {
     pub phi: [f64; 2],
 }
 
+/// φ's sines and cosines at one t: (sin φ, cos φ), and (sin 2φ, cos 2φ)
+/// where G has a second harmonic.
+struct Turn {
+    first: (f64, f64),
+    second: Option<(f64, f64)>,
+}
+
+/// What [`Trig::isolate`] knows of G over an interval before it asks for
+/// G″'s bound: a bound of |G′|, the rounding's slack, and the
+/// coefficients' largest magnitudes and slopes (A, B; A₂, B₂).
+struct Reach {
+    m1: f64,
+    slack: f64,
+    first: [f64; 4],
+    second: Option<[f64; 4]>,
+}
+
 impl Trig {
     pub fn g(&self, t: f64) -> f64 {
+        self.g_at(&self.turn(t), t)
+    }
+
+    /// φ's sines and cosines at `t` (of 2φ too where there is a second
+    /// harmonic): what G and G′ at `t` share.
+    fn turn(&self, t: f64) -> Turn {
         let phi = self.phi[0] + self.phi[1] * t;
-        let (s, c) = phi.sin_cos();
-        let v = self.a.at(t) * c + self.b.at(t) * s - self.c.at(t);
-        match &self.second {
-            None => v,
-            Some((a2, b2)) => {
-                let (s2, c2) = (2.0 * phi).sin_cos();
-                v + (a2.at(t) * c2 + b2.at(t) * s2)
-            }
+        Turn {
+            first: phi.sin_cos(),
+            second: self.second.as_ref().map(|_| (2.0 * phi).sin_cos()),
         }
     }
 
-    fn g1(&self, t: f64) -> f64 {
-        let phi = self.phi[0] + self.phi[1] * t;
-        let (s, c) = phi.sin_cos();
+    /// G at `t`, φ's sines and cosines there given.
+    fn g_at(&self, turn: &Turn, t: f64) -> f64 {
+        let (s, c) = turn.first;
+        let v = self.a.at(t) * c + self.b.at(t) * s - self.c.at(t);
+        match (&self.second, turn.second) {
+            (Some((a2, b2)), Some((s2, c2))) => v + (a2.at(t) * c2 + b2.at(t) * s2),
+            _ => v,
+        }
+    }
+
+    /// G′ at `t`, φ's sines and cosines there given.
+    fn g1_at(&self, turn: &Turn, t: f64) -> f64 {
+        let (s, c) = turn.first;
         let w = self.phi[1];
         let v = self.a.d(t) * c + self.b.d(t) * s + w * (self.b.at(t) * c - self.a.at(t) * s)
             - self.c.d(t);
-        match &self.second {
-            None => v,
-            Some((a2, b2)) => {
-                let (s2, c2) = (2.0 * phi).sin_cos();
+        match (&self.second, turn.second) {
+            (Some((a2, b2)), Some((s2, c2))) => {
                 v + (a2.d(t) * c2 + b2.d(t) * s2 + 2.0 * w * (b2.at(t) * c2 - a2.at(t) * s2))
             }
+            _ => v,
         }
     }
 
-    /// The sum of the coefficients' largest magnitudes over [l, h]: the
-    /// scale of G's own rounding there.
-    fn size(&self, l: f64, h: f64) -> f64 {
-        let s = self.a.max_abs(l, h) + self.b.max_abs(l, h) + self.c.max_abs(l, h);
-        match &self.second {
-            None => s,
-            Some((a2, b2)) => s + (a2.max_abs(l, h) + b2.max_abs(l, h)),
-        }
-    }
-
-    /// Bounds of |G′| and |G″| over [l, h].
-    fn bounds(&self, l: f64, h: f64) -> (f64, f64) {
+    /// The coefficients' largest magnitudes over [l, h], and from them
+    /// the scale of G's own rounding there (their sum) and a bound of |G′|.
+    fn reach(&self, l: f64, h: f64) -> Reach {
         let w = self.phi[1].abs();
-        let (a0, b0) = (self.a.max_abs(l, h), self.b.max_abs(l, h));
+        let (a0, b0, c0) = (
+            self.a.max_abs(l, h),
+            self.b.max_abs(l, h),
+            self.c.max_abs(l, h),
+        );
         let (a1, b1) = (self.a.max_abs_d(l, h), self.b.max_abs_d(l, h));
-        let (a2, b2) = (self.a.max_abs_dd(l, h), self.b.max_abs_dd(l, h));
+        let mut size = a0 + b0 + c0;
         let mut m1 = a1 + b1 + w * (a0 + b0) + self.c.max_abs_d(l, h);
-        let mut m2 = a2 + b2 + 2.0 * w * (a1 + b1) + w * w * (a0 + b0) + self.c.max_abs_dd(l, h);
+        let mut second = None;
         if let Some((p, q)) = &self.second {
             // d/dt of A₂ cos 2φ: A₂′ cos 2φ − 2φ₁ A₂ sin 2φ, and so on.
             let (p0, q0) = (p.max_abs(l, h), q.max_abs(l, h));
             let (p1, q1) = (p.max_abs_d(l, h), q.max_abs_d(l, h));
-            let (p2, q2) = (p.max_abs_dd(l, h), q.max_abs_dd(l, h));
+            size += p0 + q0;
             m1 += p1 + q1 + 2.0 * w * (p0 + q0);
-            m2 += p2 + q2 + 4.0 * w * (p1 + q1) + 4.0 * w * w * (p0 + q0);
+            second = Some([p0, q0, p1, q1]);
         }
         // Room for the rounding of G's own evaluation.
-        let slack = 1e-13 * self.size(l, h);
-        (m1 * (1.0 + 1e-12) + slack, m2 * (1.0 + 1e-12) + slack)
+        let slack = 1e-13 * size;
+        Reach {
+            m1: m1 * (1.0 + 1e-12) + slack,
+            slack,
+            first: [a0, b0, a1, b1],
+            second,
+        }
+    }
+
+    /// A bound of |G″| over [l, h], from [`Trig::reach`]'s of the same
+    /// interval.
+    fn bound2(&self, l: f64, h: f64, k: &Reach) -> f64 {
+        let w = self.phi[1].abs();
+        let [a0, b0, a1, b1] = k.first;
+        let (a2, b2) = (self.a.max_abs_dd(l, h), self.b.max_abs_dd(l, h));
+        let mut m2 = a2 + b2 + 2.0 * w * (a1 + b1) + w * w * (a0 + b0) + self.c.max_abs_dd(l, h);
+        if let (Some((p, q)), Some([p0, q0, p1, q1])) = (&self.second, k.second) {
+            let (p2, q2) = (p.max_abs_dd(l, h), q.max_abs_dd(l, h));
+            m2 += p2 + q2 + 4.0 * w * (p1 + q1) + 4.0 * w * w * (p0 + q0);
+        }
+        m2 * (1.0 + 1e-12) + k.slack
     }
 
     /// The roots of G in [l, h) where it changes sign, appended to `out`,
@@ -263,14 +304,16 @@ impl Trig {
         }
         *budget = budget.saturating_sub(1);
         let (m, r) = (0.5 * (l + h), 0.5 * (h - l));
-        let gm = self.g(m);
-        let (m1, m2) = self.bounds(l, h);
-        let slack = 1e-13 * self.size(l, h);
-        if gm.abs() > r * m1 + slack && (gl > 0.0) == (gm > 0.0) && (gh > 0.0) == (gm > 0.0) {
+        let turn = self.turn(m);
+        let gm = self.g_at(&turn, m);
+        let k = self.reach(l, h);
+        let slack = k.slack;
+        if gm.abs() > r * k.m1 + slack && (gl > 0.0) == (gm > 0.0) && (gh > 0.0) == (gm > 0.0) {
             return;
         }
         let changes = (gl > 0.0) != (gh > 0.0);
-        let g1 = self.g1(m);
+        let g1 = self.g1_at(&turn, m);
+        let m2 = self.bound2(l, h, &k);
         // G no larger than its own rounding at both ends and the middle,
         // and its slope there no more: the line runs along the surface
         // (a side's function zero all along it), where halving finds
