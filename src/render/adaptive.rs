@@ -140,6 +140,11 @@ fn edges(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
     near.par_chunks_mut(w).enumerate().for_each(|(y, out)| {
         let (up, mid, down) = (row(y.saturating_sub(1)), row(y), row((y + 1).min(h - 1)));
         let same = |a: &[f32], b: &[f32]| a.iter().zip(b).all(|(p, q)| p.to_bits() == q.to_bits());
+        // Three rows of one radiance (a band of background): no pixel in
+        // the middle one is near an edge.
+        if same(up, mid) && same(down, mid) && mid.chunks_exact(3).all(|p| same(p, &mid[..3])) {
+            return;
+        }
         // Whether the column's pixels in rows y − 1, y, y + 1 are one.
         let column: Vec<bool> = (0..w)
             .map(|x| {
