@@ -2,7 +2,7 @@
 """People's models (bench/people/) timed as a user runs csgrt, beside OpenSCAD's
 CGAL render and manifold3d's mesh and raster of the same files (issue 45).
 
-    python -m tools.bench.people [--csgrt BIN] [--against BIN] [--limit 120] [--json F] [--out F] [FILE...]
+    python -m tools.bench.people [--csgrt BIN] [--arg ARG ...] [--against BIN] [--limit 120] [--json F] [--out F] [FILE...]
 
 For each export (every `.csg` under bench/people/ unless files are given),
 each on its own, one after another:
@@ -62,16 +62,18 @@ def csgrt_time(csgrt, model, work, limit):
 def builds_times(builds, model, work, limit):
     """Each build's (t, why) for `csgrt -q -o x.png model`: one run, and
     where it took under a second the median of 3, a failed rerun counting
-    as the first. Several builds' runs alternate — this machine's speed
-    drifts by tens of percent over minutes, so builds timed in runs apart
-    cannot be compared."""
+    as the first. A build is a path, or a list: the path and arguments
+    added to its command line. Several builds' runs alternate — this
+    machine's speed drifts by tens of percent over minutes, so builds
+    timed in runs apart cannot be compared."""
     png = os.path.join(work, "c.png")
-    first = [timed([b, "-q", "-o", png, model], limit) for b in builds]
+    cmds = [([b] if isinstance(b, str) else list(b)) + ["-q", "-o", png, model] for b in builds]
+    first = [timed(c, limit) for c in cmds]
     runs = [[t] for t, _ in first]
     for _ in range(2):
-        for b, (t, _), got in zip(builds, first, runs):
+        for c, (t, _), got in zip(cmds, first, runs):
             if t is not None and t < 1.0:
-                got.append(timed([b, "-q", "-o", png, model], limit)[0] or t)
+                got.append(timed(c, limit)[0] or t)
     return [(statistics.median(got), None) if t is not None else (None, why) for (t, why), got in zip(first, runs)]
 
 
@@ -167,6 +169,13 @@ def main():
         help="another csgrt build, timed beside this one model by model (their runs alternated): "
         "the ratio of each model's times and their distribution",
     )
+    ap.add_argument(
+        "--arg",
+        action="append",
+        default=[],
+        help="an argument added to this build's command line only (repeatable; `--arg=--spp --arg=1` "
+        "with `--against` the same build: what default anti-aliasing costs)",
+    )
     ap.add_argument("--manifold-child", nargs=2, help=argparse.SUPPRESS)
     a = ap.parse_args()
     if a.manifold_child:
@@ -174,7 +183,7 @@ def main():
         return 0
     files = a.files or sorted(glob.glob(os.path.join(ROOT, "bench/people/**/*.csg"), recursive=True))
     skip = set(filter(None, a.skip.split(",")))
-    csgrt = os.path.abspath(a.csgrt)
+    csgrt = [os.path.abspath(a.csgrt)] + a.arg
     earlier = {}
     if a.reuse:
         with open(a.reuse) as f:
@@ -195,7 +204,7 @@ def main():
             else:
                 c = kept("csgrt") if "csgrt" in skip else csgrt_time(csgrt, model, work, a.limit)
             o = kept("openscad") if "openscad" in skip else openscad_time(model, work, a.limit)
-            m = kept("manifold") if "manifold" in skip else manifold_time(csgrt, model, work, a.limit)
+            m = kept("manifold") if "manifold" in skip else manifold_time(csgrt[0], model, work, a.limit)
         row = {"model": name, "csgrt": c[0], "csgrt_why": c[1], "openscad": o[0], "openscad_why": o[1], "manifold": m[0], "manifold_why": m[1]}
         if a.against:
             row.update(against=before[0], against_why=before[1])
