@@ -1043,7 +1043,9 @@ fn union_index(
     let root = items.iter().fold(Aabb::EMPTY, |a, x| a.union(&x.1));
     // (A flat union's box has no volume: ∞ or NaN, never below.)
     let fill: f64 = items.iter().map(|x| x.1.volume()).sum::<f64>() / root.volume();
-    let near_first = items.len() > BEST_FIRST_MIN || fill < FILL_MAX;
+    // A child held by pieces (at most half its box) is found by them only
+    // through the hierarchy: sorting takes its whole box.
+    let near_first = items.len() > BEST_FIRST_MIN || fill < FILL_MAX || split;
     Some(Box::new(UnionIndex {
         near_first,
         bvh,
@@ -1066,12 +1068,14 @@ pub const PIECES_DEPTH: usize = 32;
 type Pieces = SmallVec<[Aabb; PIECES_MAX]>;
 
 /// The boxes a union's hierarchy may hold primitive `p` by, within its
-/// box `whole` (bounded, not empty): for a primitive whose object box is
-/// long in the world (its longest side at least twice its others), the
-/// world boxes of its object box cut across that side into as many slices
-/// as it is times longer (at most [`PIECES_MAX`]), each met with `whole`;
-/// else `whole` itself. Every point of the primitive lies in one of them;
-/// [`Csg::pieces`] keeps them where they pay.
+/// box `whole` (bounded, not empty): the world boxes of its slices across
+/// one object axis ([`Solid::slab_bounds`](crate::geometry::solid::Solid::slab_bounds)),
+/// each met with `whole` — for a primitive whose object box is long in
+/// the world (its longest side at least twice its others), across that
+/// side, as many slices as it is times longer; for one whose slabs narrow
+/// or turn (a twisted or tapered prism), across that axis; at most
+/// [`PIECES_MAX`] — else `whole` itself. Every point of the primitive
+/// lies in one of them; [`Csg::pieces`] keeps them where they pay.
 fn leaf_pieces(p: &Primitive, whole: &Aabb) -> Pieces {
     let alone = smallvec::smallvec![*whole];
     let ob = p.shape.object_bounds();
@@ -1085,16 +1089,19 @@ fn leaf_pieces(p: &Primitive, whole: &Aabb) -> Pieces {
         (m.matrix3.y_axis * ext.y).length(),
         (m.matrix3.z_axis * ext.z).length(),
     );
-    let axis = (0..3).fold(0, |a, i| if len[i] > len[a] { i } else { a });
+    let long = (0..3).fold(0, |a, i| if len[i] > len[a] { i } else { a });
     let rest = (0..3)
-        .filter(|&i| i != axis)
+        .filter(|&i| i != long)
         .map(|i| len[i])
         .fold(0.0, f64::max);
-    let k = (len[axis] / rest).floor().min(PIECES_MAX as f64);
-    if k.is_nan() || k < 2.0 {
+    let k = (len[long] / rest).floor().min(PIECES_MAX as f64);
+    let (axis, k) = if k >= 2.0 {
+        (long, k as usize)
+    } else if let Some(axis) = p.shape.narrowing_axis() {
+        (axis, PIECES_MAX)
+    } else {
         return alone;
-    }
-    let k = k as usize;
+    };
     let at = |i: usize| ob.min[axis] + ext[axis] * (i as f64 / k as f64);
     let mut out = SmallVec::new();
     // (The mutant forgets the last slice.)
@@ -1104,9 +1111,8 @@ fn leaf_pieces(p: &Primitive, whole: &Aabb) -> Pieces {
         k
     };
     for i in 0..slices {
-        let mut b = ob;
-        b.min[axis] = at(i);
-        b.max[axis] = if i + 1 == k { ob.max[axis] } else { at(i + 1) };
+        let hi = if i + 1 == k { ob.max[axis] } else { at(i + 1) };
+        let b = p.shape.slab_bounds(axis, at(i), hi);
         let w = crate::geometry::solid::corner_box(&b, m).intersect(whole);
         if !w.is_empty() {
             out.push(w);
@@ -1152,7 +1158,8 @@ pub const BEST_FIRST_MIN: usize = 64;
 
 /// Below this many children, a union's first-hit query walks its hierarchy
 /// only if the children's boxes fill less than this share of the union's
-/// box (their volumes summed): boxes apart (a row of turned parts, the
+/// box (their volumes summed), or a child is held by pieces
+/// ([`Csg::pieces`]), which only the hierarchy holds it by: boxes apart (a row of turned parts, the
 /// glyphs of a text) leave most subtrees unopened, boxes nested about one
 /// another (interlocked tori) make the walk open nearly every box and pay
 /// its own bookkeeping besides. Measured by instructions at 640×480 on one

@@ -93,6 +93,16 @@ impl Shape {
         each!(self, s => s.world_bounds(m))
     }
 
+    /// See [`Solid::slab_bounds`].
+    pub fn slab_bounds(&self, axis: usize, lo: f64, hi: f64) -> Aabb {
+        each!(self, s => s.slab_bounds(axis, lo, hi))
+    }
+
+    /// See [`Solid::narrowing_axis`].
+    pub fn narrowing_axis(&self) -> Option<usize> {
+        each!(self, s => s.narrowing_axis())
+    }
+
     /// See [`Solid::support`].
     pub fn support(&self, d: DVec3) -> Option<DVec3> {
         each!(self, s => s.support(d))

@@ -111,6 +111,22 @@ pub trait Solid {
         corner_box(&self.object_bounds(), m)
     }
 
+    /// A box (object space) around the part of the solid whose `axis`
+    /// coordinate lies in [lo, hi]; by default the object box cut there.
+    fn slab_bounds(&self, axis: usize, lo: f64, hi: f64) -> Aabb {
+        let mut b = self.object_bounds();
+        b.min[axis] = b.min[axis].max(lo);
+        b.max[axis] = b.max[axis].min(hi);
+        b
+    }
+
+    /// The axis along which the solid's slabs have boxes much smaller
+    /// than its own (a twisted or tapered prism's z): worth slicing it
+    /// along even where its box is not long.
+    fn narrowing_axis(&self) -> Option<usize> {
+        None
+    }
+
     /// The point of the solid's convex hull farthest along `d` (object
     /// space, `d` not zero), or `None` for an unbounded solid.
     fn support(&self, d: DVec3) -> Option<DVec3>;
