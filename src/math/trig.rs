@@ -174,7 +174,7 @@ struct Turn {
 /// What [`Trig::isolate`] knows of G over an interval before it asks for
 /// G″'s bound: a bound of |G′|, the rounding's slack, and the
 /// coefficients' largest magnitudes and slopes (A, B; A₂, B₂).
-struct Reach {
+struct Maxima {
     m1: f64,
     slack: f64,
     first: [f64; 4],
@@ -222,7 +222,7 @@ impl Trig {
 
     /// The coefficients' largest magnitudes over [l, h], and from them
     /// the scale of G's own rounding there (their sum) and a bound of |G′|.
-    fn reach(&self, l: f64, h: f64) -> Reach {
+    fn maxima(&self, l: f64, h: f64) -> Maxima {
         let w = self.phi[1].abs();
         let (a0, b0, c0) = (
             self.a.max_abs(l, h),
@@ -243,7 +243,7 @@ impl Trig {
         }
         // Room for the rounding of G's own evaluation.
         let slack = 1e-13 * size;
-        Reach {
+        Maxima {
             m1: m1 * (1.0 + 1e-12) + slack,
             slack,
             first: [a0, b0, a1, b1],
@@ -251,9 +251,9 @@ impl Trig {
         }
     }
 
-    /// A bound of |G″| over [l, h], from [`Trig::reach`]'s of the same
+    /// A bound of |G″| over [l, h], from [`Trig::maxima`]'s of the same
     /// interval.
-    fn bound2(&self, l: f64, h: f64, k: &Reach) -> f64 {
+    fn bound2(&self, l: f64, h: f64, k: &Maxima) -> f64 {
         let w = self.phi[1].abs();
         let [a0, b0, a1, b1] = k.first;
         let (a2, b2) = (self.a.max_abs_dd(l, h), self.b.max_abs_dd(l, h));
@@ -306,7 +306,7 @@ impl Trig {
         let (m, r) = (0.5 * (l + h), 0.5 * (h - l));
         let turn = self.turn(m);
         let gm = self.g_at(&turn, m);
-        let k = self.reach(l, h);
+        let k = self.maxima(l, h);
         let slack = k.slack;
         if gm.abs() > r * k.m1 + slack && (gl > 0.0) == (gm > 0.0) && (gh > 0.0) == (gm > 0.0) {
             return;
