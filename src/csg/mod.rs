@@ -1159,8 +1159,8 @@ pub const BEST_FIRST_MIN: usize = 64;
 /// Below this many children, a union's first-hit query walks its hierarchy
 /// only if the children's boxes fill less than this share of the union's
 /// box (their volumes summed), or a child is held by pieces
-/// ([`Csg::pieces`]), which only the hierarchy holds it by: boxes apart (a row of turned parts, the
-/// glyphs of a text) leave most subtrees unopened, boxes nested about one
+/// ([`Csg::pieces`]), which only the hierarchy holds it by: boxes apart
+/// (a row of turned parts, the glyphs of a text) leave most subtrees unopened, boxes nested about one
 /// another (interlocked tori) make the walk open nearly every box and pay
 /// its own bookkeeping besides. Measured by instructions at 640×480 on one
 /// thread (callgrind): twelve lathes (fill 0.26) 1.53 → 1.38 G, the glass

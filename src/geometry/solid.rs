@@ -114,10 +114,7 @@ pub trait Solid {
     /// A box (object space) around the part of the solid whose `axis`
     /// coordinate lies in [lo, hi]; by default the object box cut there.
     fn slab_bounds(&self, axis: usize, lo: f64, hi: f64) -> Aabb {
-        let mut b = self.object_bounds();
-        b.min[axis] = b.min[axis].max(lo);
-        b.max[axis] = b.max[axis].min(hi);
-        b
+        slab_of(self.object_bounds(), axis, lo, hi)
     }
 
     /// The axis along which the solid's slabs have boxes much smaller
@@ -137,6 +134,13 @@ pub trait Solid {
     /// The POV-Ray 3.7 object in the same object space, up to (not
     /// including) its transform and texture: `sphere { <0, 0, 0>, 1`.
     fn pov(&self) -> String;
+}
+
+/// Box `b` cut to the slab lo ≤ `axis` ≤ hi.
+pub fn slab_of(mut b: Aabb, axis: usize, lo: f64, hi: f64) -> Aabb {
+    b.min[axis] = b.min[axis].max(lo);
+    b.max[axis] = b.max[axis].min(hi);
+    b
 }
 
 /// The box of the eight transformed corners of `b`.

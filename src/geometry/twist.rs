@@ -241,14 +241,14 @@ impl Twisted {
     }
 
     /// The box of the sections from height a to b (from the bottom, 0 ≤ a
-    /// ≤ b ≤ 1), `top` the scale σ(b) (the top's own scale at b = 1, not
-    /// σ(1) rounded): without twist, the section's box scaled by σ; with
-    /// it, the box of the arcs its corners turn through (a section lies in
-    /// the hull of its corners; an ellipse in its box's, a
-    /// parallelogram's), scaled by σ, which lies between σ(a) and σ(b)
-    /// (≥ 0) in each direction.
-    fn swept(&self, a: f64, b: f64, top: DVec2) -> (DVec2, DVec2) {
+    /// ≤ b ≤ 1): without twist, the section's box scaled by σ; with it,
+    /// the box of the arcs its corners turn through (a section lies in the
+    /// hull of its corners; an ellipse in its box's, a parallelogram's),
+    /// scaled by σ, which lies between σ(a) and σ(b) (≥ 0) in each
+    /// direction (at the ends, 1 and the top's own scale, not σ rounded).
+    fn swept(&self, a: f64, b: f64) -> (DVec2, DVec2) {
         let base = if a == 0.0 { DVec2::ONE } else { self.sigma(a) };
+        let top = if b == 1.0 { self.scale } else { self.sigma(b) };
         let (s0, s1) = (base.min(top), base.max(top));
         if self.twist == 0.0 {
             let (lo, hi) = self.section.box2();
@@ -842,7 +842,7 @@ impl Solid for Twisted {
 
     /// The box of all its sections ([`Twisted::swept`]).
     fn object_bounds(&self) -> Aabb {
-        let (lo, hi) = self.swept(0.0, 1.0, self.scale);
+        let (lo, hi) = self.swept(0.0, 1.0);
         let z = self.z_lo();
         Aabb::new(lo.extend(z), hi.extend(z + 1.0))
     }
@@ -852,13 +852,9 @@ impl Solid for Twisted {
         let z = self.z_lo();
         let (a, b) = ((lo - z).max(0.0), (hi - z).min(1.0));
         if axis != 2 || a > b {
-            let mut o = self.object_bounds();
-            o.min[axis] = o.min[axis].max(lo);
-            o.max[axis] = o.max[axis].min(hi);
-            return o;
+            return super::solid::slab_of(self.object_bounds(), axis, lo, hi);
         }
-        let top = if b == 1.0 { self.scale } else { self.sigma(b) };
-        let (l, h) = self.swept(a, b, top);
+        let (l, h) = self.swept(a, b);
         Aabb::new(l.extend(a + z), h.extend(b + z))
     }
 

@@ -171,6 +171,16 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
     progress(Progress::Planned(
         s.width as u64 * s.height as u64 * first as u64,
     ));
+    // A pixel no ray is cast for is the background's: found once (its
+    // bytes, its radiance and the counters of its samples) and copied.
+    let mut culled_st = Stats::default();
+    let (mut culled_rgb, mut culled_lin) = ([0u8; 3], [0f32; 3]);
+    put(
+        &mut culled_rgb,
+        &mut culled_lin,
+        0,
+        pixel(0, 0, first, &mut culled_st, false),
+    );
     // Each row is written in place by whichever thread takes it; the
     // counters are sums and maxima, the same in any order.
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
@@ -185,24 +195,17 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
             let c = pixel(x, y, first, &mut st, true);
             put(row, lrow, x as usize, c);
         }
-        // The pixels no ray is cast for: the background's pixel, found once
-        // and copied (the same bytes as found at each).
-        let culled = s.width - cast.len() as u32;
-        if culled > 0 {
-            let mut one = Stats::default();
-            let (mut b, mut r) = ([0u8; 3], [0f32; 3]);
-            let r: &mut [f32] = if lrow.is_empty() { &mut [] } else { &mut r };
-            put(&mut b, r, 0, pixel(0, y, first, &mut one, false));
-            for x in (0..cast.start).chain(cast.end..s.width) {
-                let k = 3 * x as usize..3 * x as usize + 3;
-                row[k.clone()].copy_from_slice(&b);
-                if !r.is_empty() {
-                    lrow[k].copy_from_slice(r);
-                }
+        // The pixels no ray is cast for: the background's pixel, copied.
+        for x in (0..cast.start).chain(cast.end..s.width) {
+            let k = 3 * x as usize..3 * x as usize + 3;
+            row[k.clone()].copy_from_slice(&culled_rgb);
+            if !lrow.is_empty() {
+                lrow[k].copy_from_slice(&culled_lin);
             }
-            st.screen_culled += one.screen_culled * culled as u64;
-            st.nonfinite_samples += one.nonfinite_samples * culled as u64;
         }
+        let culled = (s.width - cast.len() as u32) as u64;
+        st.screen_culled += culled_st.screen_culled * culled;
+        st.nonfinite_samples += culled_st.nonfinite_samples * culled;
         st.pixels += s.width as u64;
         progress(Progress::Done(s.width as u64 * first as u64));
         st
