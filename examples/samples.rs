@@ -1,5 +1,5 @@
-//! Every sample a render at WxH may trace — each pixel's centre and the 16
-//! samples adaptive anti-aliasing adds — with its primary hit (primitive,
+//! Every sample a render at WxH may trace — each pixel's centre and the
+//! samples adaptive anti-aliasing adds (`ADAPTIVE_SPP`) — with its primary hit (primitive,
 //! t) and, for each directional light the surface faces, the shadow ray and
 //! whether it is blocked (`-` where the surface faces away). One line a
 //! sample that hits. Two builds' outputs side by side show which shadow
@@ -29,12 +29,9 @@ fn main() {
     let mut out = std::io::BufWriter::new(out.lock());
     for y in 0..h {
         for x in 0..w {
-            for s in 0..17u32 {
-                let (ox, oy) = if s == 16 {
-                    (0.5, 0.5)
-                } else {
-                    sampler::offset(x, y, s, 16)
-                };
+            let n = csgrt::render::ADAPTIVE_SPP;
+            let centre = std::iter::once((0.5, 0.5));
+            for (s, (ox, oy)) in sampler::offsets(x, y, n).chain(centre).enumerate() {
                 let ray = cam.ray(x as f64 + ox, y as f64 + oy);
                 let Some(hit) = scene.csg.first_hit(&ray, 0.0, f64::INFINITY, &mut st) else {
                     continue;

@@ -154,8 +154,7 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
             return (DVec3::ZERO + c, DVec3::ZERO + r);
         }
         let (mut sum, mut lin) = (DVec3::ZERO, DVec3::ZERO);
-        for k in 0..n {
-            let (ox, oy) = sampler::offset(x, y, k, n);
+        for (ox, oy) in sampler::offsets(x, y, n) {
             if let Some((c, r)) = sample(x as f64 + ox, y as f64 + oy, st, cast) {
                 sum += c;
                 lin += r;

@@ -1,19 +1,40 @@
-//! Sub-pixel sample positions: N-rooks (Latin hypercube) stratification
-//! with jitter — sample s lies in column stratum s and row stratum π(s) of
-//! an N×N grid over the pixel, π a permutation — seeded from the pixel
-//! coordinates only, so images do not depend on threads or run order.
+//! Sub-pixel sample positions: correlated multi-jittered sampling
+//! (Kensler, "Correlated Multi-Jittered Sampling", 2013) for any count n —
+//! each sample alone in one of n rows and in one of m·k columns (m = ⌊√n⌋,
+//! k = ⌈n/m⌉), and at most one in each cell of a grid of m columns and k
+//! rows when n = m·k, as in a jittered grid — seeded from the pixel coordinates only, so images
+//! do not depend on threads or run order.
 
-/// The offset inside pixel (px, py) of sample `s` of `n`, in [0, 1)².
-/// One sample is the pixel centre.
-pub fn offset(px: u32, py: u32, s: u32, n: u32) -> (f64, f64) {
-    if n <= 1 {
-        return (0.5, 0.5);
-    }
+use smallvec::SmallVec;
+
+/// The offsets inside pixel (px, py) of its `n` samples, in [0, 1)², row
+/// by row. One sample is the pixel centre.
+pub fn offsets(px: u32, py: u32, n: u32) -> impl Iterator<Item = (f64, f64)> {
     let seed = hash(((py as u64) << 32) | px as u64);
-    let row = permute(s, n, seed as u32);
-    let jx = unit(hash(seed ^ (2 * s as u64 + 1)));
-    let jy = unit(hash(seed ^ (2 * s as u64 + 2) << 20));
-    ((s as f64 + jx) / n as f64, (row as f64 + jy) / n as f64)
+    let p = seed as u32;
+    let m = ((n as f64).sqrt() as u32).max(1);
+    let k = n.div_ceil(m);
+    // Sample r takes row r of n; its cell of the grid is (r mod m,
+    // r div m), its column in that cell's band permuted per pixel: the
+    // two permutations are tables of m and k entries, not 2n hashes.
+    let columns: SmallVec<[u32; 16]> = (0..m)
+        .map(|i| permute(i, m, p.wrapping_mul(0x68bc_21eb)))
+        .collect();
+    let bands: SmallVec<[u32; 16]> = (0..k)
+        .map(|i| permute(i, k, p.wrapping_mul(0x02e5_be93)))
+        .collect();
+    (0..n).map(move |r| {
+        if n <= 1 {
+            return (0.5, 0.5);
+        }
+        let (cx, cy) = (columns[(r % m) as usize], bands[(r / m) as usize]);
+        let jx = unit(hash(seed ^ (2 * r as u64 + 1)));
+        let jy = unit(hash(seed ^ (2 * r as u64 + 2) << 20));
+        (
+            (cx as f64 + (cy as f64 + jx) / k as f64) / m as f64,
+            (r as f64 + jy) / n as f64,
+        )
+    })
 }
 
 /// SplitMix64's finaliser: a fast, well-mixed 64-bit hash.
@@ -85,36 +106,50 @@ mod tests {
     }
 
     #[test]
-    fn samples_fill_every_row_and_column_stratum_once() {
-        let n = 16;
-        let mut rows = vec![0; n as usize];
-        for s in 0..n {
-            let (x, y) = offset(7, 9, s, n);
-            assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y));
-            assert_eq!((x * n as f64) as u32, s);
-            rows[(y * n as f64) as usize] += 1;
+    fn samples_are_stratified_in_rows_columns_and_cells() {
+        for n in 2..=64u32 {
+            let m = (n as f64).sqrt() as u32;
+            let k = n.div_ceil(m);
+            for (px, py) in [(7, 9), (0, 0), (799, 599)] {
+                let mut rows = vec![0; n as usize];
+                let mut columns = vec![0; (m * k) as usize];
+                let mut cells = vec![0; (m * k) as usize];
+                assert_eq!(offsets(px, py, n).count(), n as usize);
+                for (x, y) in offsets(px, py, n) {
+                    assert!((0.0..1.0).contains(&x) && (0.0..1.0).contains(&y));
+                    rows[(y * n as f64) as usize] += 1;
+                    columns[(x * (m * k) as f64) as usize] += 1;
+                    let cell = (y * k as f64) as u32 * m + (x * m as f64) as u32;
+                    cells[cell as usize] += 1;
+                }
+                assert!(rows.iter().all(|&c| c == 1), "n {n}: rows {rows:?}");
+                assert!(columns.iter().all(|&c| c <= 1), "n {n}: {columns:?}");
+                if n == m * k {
+                    assert!(cells.iter().all(|&c| c == 1), "n {n}: cells {cells:?}");
+                }
+            }
         }
-        assert!(rows.iter().all(|&c| c == 1), "{rows:?}");
     }
 
     #[test]
     fn one_sample_is_the_pixel_centre() {
         for (px, py) in [(0, 0), (7, 3), (4000, 12)] {
-            assert_eq!(offset(px, py, 0, 1), (0.5, 0.5));
+            assert!(offsets(px, py, 1).eq([(0.5, 0.5)]));
         }
     }
 
     #[test]
     fn samples_depend_on_the_pixel() {
-        // Over a 16×16 block, the row stratum of sample 0 (of 4) and its
-        // jitter vary from pixel to pixel: every stratum is used, and no two
-        // pixels share an offset (a constant pattern would alias).
+        // Over a 16×16 block, the column stratum of the first sample (of 4,
+        // the one in the top row) and its jitter vary from pixel to pixel:
+        // every stratum is used, and no two pixels share an offset (a
+        // constant pattern would alias).
         let mut strata = [0u32; 4];
         let mut seen = Vec::new();
         for py in 0..16 {
             for px in 0..16 {
-                let (x, y) = offset(px, py, 0, 4);
-                strata[(y * 4.0) as usize] += 1;
+                let (x, y) = offsets(px, py, 4).next().unwrap();
+                strata[(x * 4.0) as usize] += 1;
                 seen.push((x.to_bits(), y.to_bits()));
             }
         }

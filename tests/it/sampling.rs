@@ -27,7 +27,7 @@ fn run(dir: &Path, args: &[&str]) -> String {
 const THRESHOLD: f64 = 0.3;
 
 /// Without `--spp`, each pixel is either the pixel centre's colour (as
-/// `--spp 1`) or the mean of the 16 samples `--spp 16` takes there. It is
+/// `--spp 1`) or the mean of the 13 samples `--spp 13` takes there. It is
 /// the latter exactly where a neighbour's centre colour differs by more
 /// than the threshold *and* an edge crosses the pixel: one of its corners
 /// differs from its centre or another corner by more than the threshold.
@@ -42,7 +42,7 @@ fn adaptive_refines_exactly_where_edges_cross() {
     let (dir, _) = common::scene("s.csg", SCENE);
     let said = run(dir.path(), &["-o", "a.png"]);
     run(dir.path(), &["-q", "--spp", "1", "-o", "one.png"]);
-    run(dir.path(), &["-q", "--spp", "16", "-o", "many.png"]);
+    run(dir.path(), &["-q", "--spp", "13", "-o", "many.png"]);
     let fov = 2.0 * (15f64.to_radians().tan() * 97.0 / 96.0).atan().to_degrees();
     let wider = SCENE.replace(
         "lookat = [0, 0, 0]",
@@ -97,7 +97,7 @@ fn adaptive_refines_exactly_where_edges_cross() {
             let (centre, mean) = (one.get_pixel(x, y).0, many.get_pixel(x, y).0);
             assert!(
                 got == centre || got == mean,
-                "pixel {x},{y} is neither the centre's nor the 16 samples' colour"
+                "pixel {x},{y} is neither the centre's nor the 13 samples' colour"
             );
             if near > THRESHOLD + band && crossed > THRESHOLD + band {
                 assert_eq!(got, mean, "pixel {x},{y} not refined");
@@ -113,14 +113,14 @@ fn adaptive_refines_exactly_where_edges_cross() {
         }
     }
     // Many pixels are refined, and many near an edge keep their centre
-    // (the corners' saving) though their 16 samples' mean differs.
+    // (the corners' saving) though their 13 samples' mean differs.
     assert!(
         refined > 100 && kept > 30 && decided > (w * h) as usize * 9 / 10,
         "{refined} {kept} {decided}"
     );
     // The summary says how many pixels were sampled again.
     assert!(
-        said.contains("adaptive: ") && said.contains(" of 6912 pixels at 16 spp"),
+        said.contains("adaptive: ") && said.contains(" of 6912 pixels at 13 spp"),
         "{said}"
     );
     // The same bytes for any thread count.
