@@ -1304,6 +1304,26 @@ impl Scratch {
             return;
         }
         self.out.clear();
+        // Only A's spans that B's ends come near take part: those wholly
+        // before B's first span, or wholly after its last one, the sweep
+        // meets one end at a time with B nowhere near, outside B — it keeps
+        // them as they are (an intersection drops them). A is sorted, so
+        // they are a prefix and a suffix, found by bisection: a union of
+        // many children merged one at a time sweeps what each one touches,
+        // not everything merged so far.
+        let (first, last) = (&b[0], &b[b.len() - 1]);
+        let p = a.partition_point(|s| spans::ends_before(s, first, scale));
+        let q = p + a[p..].partition_point(|s| !spans::ends_before(last, s, scale));
+        if p > 0 || q < a.len() {
+            let keep = op.apply(true, false);
+            spans::combine_into(op, &a[p..q], b, scale, &mut self.out);
+            if keep {
+                self.out.extend_from_slice(&a[q..]);
+            }
+            self.stack.truncate(base + if keep { p } else { 0 });
+            self.stack.extend_from_slice(&self.out);
+            return;
+        }
         spans::sweep_into(op, a, b, scale, &mut self.out);
         self.stack.truncate(base);
         self.stack.extend_from_slice(&self.out);
@@ -1334,7 +1354,7 @@ fn with_scratch<R>(st: &mut Stats, f: impl FnOnce(&mut Scratch, &mut Stats) -> R
 
 #[cfg(test)]
 mod tests {
-    use super::by_entry;
+    use super::{by_entry, Op};
     use proptest::prelude::*;
 
     /// Every point of a node lies in one of the boxes [`super::Csg::pieces`]
@@ -1424,6 +1444,56 @@ mod tests {
             got.sort_unstable_by(by_entry);
             let bits = |l: &[(f64, u32)]| l.iter().map(|x| (x.0.to_bits(), x.1)).collect::<Vec<_>>();
             prop_assert_eq!(bits(&got), bits(&want));
+        }
+
+        /// Lists merged on the scratch stack, where only the spans of A
+        /// that B comes near are swept, are the one sweep over both lists,
+        /// boundary for boundary: on sorted lists whose ends sit on a
+        /// coarse grid moved by a few units of the coincidence bound, so
+        /// that ends coincide, nearly touch and lie apart.
+        #[test]
+        fn a_merge_spliced_is_the_whole_sweep(
+            a in proptest::collection::vec((0u32..3, 0u32..3, -2i32..3), 0..12),
+            b in proptest::collection::vec((0u32..3, 0u32..3, -2i32..3), 1..4),
+            start in 0u32..6,
+        ) {
+            use super::{Scratch, Span};
+            use crate::csg::spans::{combine, Boundary};
+            use crate::geometry::Ray;
+            use glam::DVec3;
+            let scale = 10.0;
+            let bound = crate::math::robust::coincidence(50.0, scale);
+            // Each list sorted: gaps and lengths in grid steps, each end
+            // moved by a multiple of half the coincidence bound.
+            let list = |v: &[(u32, u32, i32)], from: u32, prim: u32| {
+                let mut t = from as f64;
+                v.iter()
+                    .map(|&(gap, len, wiggle)| {
+                        let enter = (t + gap as f64 + wiggle as f64 * 0.5 * bound).max(t);
+                        let exit = enter.max(t + (gap + len) as f64);
+                        t = exit;
+                        Span { enter: Boundary::new(enter, prim, 0), exit: Boundary::new(exit, prim, 1) }
+                    })
+                    .collect::<Vec<_>>()
+            };
+            let (a, b) = (list(&a, 0, 0), list(&b, start, 1));
+            let ray = Ray::new(DVec3::new(scale, 0.0, 0.0), DVec3::X);
+            let key = |l: &[Span]| {
+                l.iter()
+                    .map(|s| {
+                        let end = |x: &Boundary| (x.t.to_bits(), x.prim, x.part(), x.flip());
+                        (end(&s.enter), end(&s.exit))
+                    })
+                    .collect::<Vec<_>>()
+            };
+            for op in [Op::Union, Op::Intersection, Op::Difference, Op::Xor] {
+                let want = combine(op, &a, &b, scale);
+                let mut sc = Scratch::new();
+                sc.stack.extend_from_slice(&a);
+                sc.stack.extend_from_slice(&b);
+                sc.merge(op, 0, a.len(), &ray);
+                prop_assert_eq!(key(&sc.stack), key(&want), "{:?}", op);
+            }
         }
     }
 }

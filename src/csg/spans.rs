@@ -157,14 +157,20 @@ pub fn quick_empty(op: Op, a: &[Span], b: &[Span]) -> Option<Quick> {
 /// common case of a wide union.
 #[inline]
 pub fn apart(a: &[Span], b: &[Span], scale: f64) -> Option<Quick> {
-    let gap_after = |x: &Span, y: &Span| y.enter.t > x.exit.t + coincidence(x.exit.t, scale);
-    if gap_after(&a[a.len() - 1], &b[0]) {
+    if ends_before(&a[a.len() - 1], &b[0], scale) {
         Some(Quick::AThenB)
-    } else if gap_after(&b[b.len() - 1], &a[0]) {
+    } else if ends_before(&b[b.len() - 1], &a[0], scale) {
         Some(Quick::BThenA)
     } else {
         None
     }
+}
+
+/// Whether span `x` ends before `y` starts, beyond the coincidence bound
+/// (a sweep meets their ends in different steps).
+#[inline]
+pub fn ends_before(x: &Span, y: &Span, scale: f64) -> bool {
+    y.enter.t > x.exit.t + coincidence(x.exit.t, scale)
 }
 
 /// The union of two single spans that are not [`apart`]: what
