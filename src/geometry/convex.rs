@@ -15,6 +15,7 @@
 //! enters the set's box, the exit from where it leaves it, backwards.
 //! Converged to 10⁻¹² of the set's size and distance from the origin.
 
+use super::coherence;
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part as SurfacePart, Shape};
 use glam::{DAffine3, DVec3};
@@ -400,16 +401,43 @@ impl Convex {
         (lo <= hi).then_some((lo - pad, hi + pad))
     }
 
+    /// [`Convex::cast`], started where it can be from the normal a cast
+    /// along nearly `r` found last ([`coherence::recall`]; `slot` 0 for an
+    /// entry, 1 for an exit): Newton's method from the plane of that
+    /// normal ([`Convex::refine`]), whose answer is proved as ever; GJK's
+    /// cast when it proves none. What it finds is remembered.
+    fn warm_cast(&self, s: DVec3, r: DVec3, lmax: f64, slot: u8) -> (Option<(f64, DVec3)>, u32) {
+        let key = self as *const Convex as usize;
+        let mut steps = 0;
+        if let Some(n) = coherence::recall(key, slot, r) {
+            let nr = n.dot(r);
+            if nr < 0.0 {
+                let h = n.dot(self.support_point(n));
+                let (hit, k) = self.refine(s, r, ((h - n.dot(s)) / nr).max(0.0), n);
+                steps += k;
+                if let Some(hit) = hit.filter(|h| h.0 <= lmax) {
+                    coherence::remember(key, slot, r, hit.1);
+                    return (Some(hit), steps);
+                }
+            }
+        }
+        let (hit, k) = self.cast(s, r, lmax);
+        if let Some(n) = hit.and_then(|h| h.1.try_normalize()) {
+            coherence::remember(key, slot, r, n);
+        }
+        (hit, steps + k)
+    }
+
     /// The span of the line, and the steps both casts took.
     fn span(&self, o: DVec3, d: DVec3) -> (Option<(f64, DVec3, f64, DVec3)>, u32) {
         let Some((a, b)) = self.clip(o, d) else {
             return (None, 0);
         };
-        let (fwd, i0) = self.cast(o + d * a, d, b - a);
+        let (fwd, i0) = self.warm_cast(o + d * a, d, b - a, 0);
         let Some((l0, n0)) = fwd else {
             return (None, i0);
         };
-        let (back, i1) = self.cast(o + d * b, -d, b - a);
+        let (back, i1) = self.warm_cast(o + d * b, -d, b - a, 1);
         let Some((l1, n1)) = back else {
             return (None, i0 + i1);
         };

@@ -9,6 +9,7 @@ pub mod aabb;
 pub mod ball_sum;
 pub mod bvh;
 pub mod coaxial;
+pub mod coherence;
 pub mod cone;
 pub mod convex;
 pub mod cuboid;

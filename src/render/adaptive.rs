@@ -1,6 +1,7 @@
 //! Adaptive anti-aliasing: which pixels are sampled again, from the first
 //! pass's pixel centres and the corners of the pixels near an edge.
 
+use crate::geometry::coherence::coherent;
 use crate::stats::Stats;
 use glam::DVec3;
 use rayon::prelude::*;
@@ -81,7 +82,8 @@ pub fn crossed(
         .with_max_len(1)
         .map(|(y, xs)| {
             let mut st = Stats::default();
-            let row: Vec<_> = xs.iter().map(|&x| corner(x, y as u32, &mut st)).collect();
+            let row: Vec<_> =
+                coherent(|| xs.iter().map(|&x| corner(x, y as u32, &mut st)).collect());
             progress(super::Progress::Done(xs.len() as u64));
             (row, st)
         })

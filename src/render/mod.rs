@@ -15,6 +15,7 @@ pub mod probe;
 pub mod sampler;
 pub mod shade;
 
+use crate::geometry::coherence::coherent;
 use crate::math::srgb;
 use crate::scene::{Light, Scene};
 use crate::stats::Stats;
@@ -273,18 +274,19 @@ fn rows(
     // so on two threads a picture whose work lies in a band (a turned
     // part in the middle) left one thread idle for most of the render
     // (a speed-up of 1.25 on two threads, 3.6 on four, measured).
+    // Each row's rays share what they learn (`coherent`), in their order.
     if lin.is_empty() {
         rgb.par_chunks_mut(3 * w)
             .enumerate()
             .with_max_len(1)
-            .map(|(y, row)| f(y as u32, row, &mut []))
+            .map(|(y, row)| coherent(|| f(y as u32, row, &mut [])))
             .reduce(Stats::default, reduce)
     } else {
         rgb.par_chunks_mut(3 * w)
             .zip(lin.par_chunks_mut(3 * w))
             .enumerate()
             .with_max_len(1)
-            .map(|(y, (row, lrow))| f(y as u32, row, lrow))
+            .map(|(y, (row, lrow))| coherent(|| f(y as u32, row, lrow)))
             .reduce(Stats::default, reduce)
     }
 }
