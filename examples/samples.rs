@@ -1,10 +1,11 @@
 //! Every sample a render at WxH may trace — each pixel's centre and the
-//! samples adaptive anti-aliasing adds (`ADAPTIVE_SPP`) — with its primary hit (primitive,
-//! t) and, for each directional light the surface faces, the shadow ray and
-//! whether it is blocked (`-` where the surface faces away). One line a
-//! sample that hits. Two builds' outputs side by side show which shadow
-//! decisions a change of a solid's arithmetic moves; `tools/explain_shadows.py`
-//! settles each one by exact arithmetic (for scenes of tori).
+//! samples adaptive anti-aliasing adds (`ADAPTIVE_SPP`) — with its primary
+//! hit (primitive, t) and, for each directional light the surface faces,
+//! the shadow ray and whether it is blocked (`-` where the surface faces
+//! away). One line a sample that hits. Two builds' outputs side by side
+//! show which shadow decisions a change of a solid's arithmetic moves;
+//! `tools/explain_shadows.py` settles each one by exact arithmetic (for
+//! scenes of tori).
 //!
 //! Usage: cargo run --release --example samples -- SCENE [WxH] > out.txt
 

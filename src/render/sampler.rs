@@ -2,8 +2,8 @@
 //! (Kensler, "Correlated Multi-Jittered Sampling", 2013) for any count n —
 //! each sample alone in one of n rows and in one of m·k columns (m = ⌊√n⌋,
 //! k = ⌈n/m⌉), and at most one in each cell of a grid of m columns and k
-//! rows when n = m·k, as in a jittered grid — seeded from the pixel coordinates only, so images
-//! do not depend on threads or run order.
+//! rows when n = m·k, as in a jittered grid — seeded from the pixel
+//! coordinates only, so images do not depend on threads or run order.
 
 use smallvec::SmallVec;
 
