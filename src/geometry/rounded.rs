@@ -8,9 +8,10 @@
 //! coincidence bound of world coordinates that a CSG union applies.
 
 use super::bvh::Bvh;
-use super::solid::{Param, Probe, RawSpan, Solid};
-use super::{Aabb, Part, Ray, Shape, Transform};
+use super::solid::{Need, Param, Probe, RawSpan, Solid};
+use super::{Aabb, Part, Ray, Shape, Transform, NO_PART};
 use crate::geometry::convex::ConvexPart as HullPart;
+use crate::stats::Stats;
 use glam::{DAffine3, DVec3};
 
 /// One primitive of the union, placed in the set's object space.
@@ -76,6 +77,93 @@ impl Rounded {
         })
     }
 
+    /// The spans of piece `i` (whose box `line` meets) within (tmin,
+    /// tmax), pushed onto `all` with their parts numbered as the union's.
+    #[inline]
+    fn piece_spans(
+        &self,
+        i: u32,
+        line: &Ray,
+        tmin: f64,
+        tmax: f64,
+        st: &mut Stats,
+        all: &mut Gathered,
+    ) {
+        let p = &self.pieces[i as usize];
+        st.primitive_tests += 1;
+        let (o, d) = p.xf.ray_to_object(line);
+        let mut sub = Probe {
+            o,
+            d,
+            tmin,
+            tmax,
+            st,
+            need: Need::Spans,
+        };
+        let n = self.pieces.len() as Part;
+        // Through `dyn`: a piece's spans are not generic in this
+        // closure's type (a shape holding shapes would recurse).
+        let mut push = |(a, pa, b, pb): RawSpan| all.push((a, pa * n + i, b, pb * n + i));
+        p.shape
+            .spans(&mut sub, &mut (&mut push as &mut dyn FnMut(RawSpan)));
+    }
+
+    /// The scale of `line`'s t about this set: what [`MERGE`] is relative to.
+    fn line_scale(&self, line: &Ray) -> f64 {
+        let size = (self.bounds.max - self.bounds.min).max_element();
+        (line.origin.abs().max_element() + size) / line.dir.length()
+    }
+
+    /// Only the union's first boundary after `q.tmin` (a first hit, or a
+    /// shadow ray's question) of a union of many pieces (a few are cast
+    /// at less cost than ordering them takes): the pieces are taken
+    /// nearest box first (`bvh`), and none whose box begins beyond the
+    /// first boundary of those taken so far (and the merging distance past
+    /// it) is cast — it can neither enter before that boundary nor,
+    /// beginning after an exit, join the span that exit ends. Emitted as
+    /// [`Mesh`](super::Mesh) does: the boundary, left open on its other
+    /// side.
+    fn first_spans(
+        &self,
+        bvh: &Bvh,
+        line: &Ray,
+        q: &mut Probe,
+        all: &mut Gathered,
+        emit: &mut impl FnMut(RawSpan),
+    ) {
+        let (tmin, tmax) = (q.tmin, q.tmax);
+        let scale = self.line_scale(line);
+        let mut found: Option<RawSpan> = None;
+        let take = |i: u32, st: &mut Stats| -> f64 {
+            let from = all.len();
+            self.piece_spans(i, line, tmin, tmax, st, all);
+            // Each new span put in its place by entry, after those with
+            // the same entry (as a stable sort of the whole list puts it).
+            for k in from..all.len() {
+                let s = all[k];
+                let at = all[..k].partition_point(|x| x.0 <= s.0);
+                all.copy_within(at..k, at + 1);
+                all[at] = s;
+            }
+            found = first_merged(all, scale, tmin);
+            match found {
+                Some((a, _, b, _)) => {
+                    let t = if a > tmin { a } else { b };
+                    t + MERGE * (scale + t.abs())
+                }
+                None => f64::INFINITY,
+            }
+        };
+        bvh.visit_near_first(line, tmin, tmax, q.st, take);
+        if let Some((a, pa, b, pb)) = found {
+            if a > tmin {
+                emit((a, pa, f64::INFINITY, NO_PART));
+            } else {
+                emit((f64::NEG_INFINITY, NO_PART, b, pb));
+            }
+        }
+    }
+
     fn piece(&self, part: Part) -> (&RoundedPiece, Part) {
         let n = self.pieces.len() as Part;
         (&self.pieces[(part % n) as usize], part / n)
@@ -87,8 +175,10 @@ impl Solid for Rounded {
 
     fn spans(&self, q: &mut Probe, emit: &mut impl FnMut(RawSpan)) {
         let line = Ray::new(q.o, q.d);
-        let n = self.pieces.len() as Part;
-        let mut all: smallvec::SmallVec<[RawSpan; 16]> = smallvec::SmallVec::new();
+        let mut all: Gathered = smallvec::SmallVec::new();
+        if let Some(b) = self.bvh.as_deref().filter(|_| q.need != Need::Spans) {
+            return self.first_spans(b, &line, q, &mut all, emit);
+        }
         let mut near: smallvec::SmallVec<[u32; 32]> = smallvec::SmallVec::new();
         match &self.bvh {
             Some(b) => b.visit(&line, q.tmin, q.tmax, q.st, |i| near.push(i)),
@@ -96,48 +186,14 @@ impl Solid for Rounded {
         }
         // The hierarchy's order is fixed; the spans are sorted below.
         for &i in &near {
-            let p = &self.pieces[i as usize];
-            if !p.bounds.hit(&line, q.tmin, q.tmax) {
-                continue;
+            if self.pieces[i as usize].bounds.hit(&line, q.tmin, q.tmax) {
+                self.piece_spans(i, &line, q.tmin, q.tmax, q.st, &mut all);
             }
-            q.st.primitive_tests += 1;
-            let (o, d) = p.xf.ray_to_object(&line);
-            let mut sub = Probe {
-                o,
-                d,
-                tmin: q.tmin,
-                tmax: q.tmax,
-                st: &mut *q.st,
-                need: super::Need::Spans,
-            };
-            // Through `dyn`: a piece's spans are not generic in this
-            // closure's type (a shape holding shapes would recurse).
-            let mut push = |(a, pa, b, pb): RawSpan| all.push((a, pa * n + i, b, pb * n + i));
-            p.shape
-                .spans(&mut sub, &mut (&mut push as &mut dyn FnMut(RawSpan)));
         }
         all.sort_by(|x, y| x.0.total_cmp(&y.0));
-        let size = (self.bounds.max - self.bounds.min).max_element();
-        let scale = (q.o.abs().max_element() + size) / q.d.length();
-        let mut cur: Option<RawSpan> = None;
-        for s in all {
-            match &mut cur {
-                Some(c) if s.0 <= c.2 + MERGE * (scale + c.2.abs()) => {
-                    if s.2 > c.2 {
-                        c.2 = s.2;
-                        c.3 = s.3;
-                    }
-                }
-                _ => {
-                    if let Some(c) = cur.take() {
-                        emit(c);
-                    }
-                    cur = Some(s);
-                }
-            }
-        }
-        if let Some(c) = cur {
-            emit(c);
+        let scale = self.line_scale(&line);
+        for s in merged(&all, scale) {
+            emit(s);
         }
     }
 
@@ -189,5 +245,161 @@ impl Solid for Rounded {
     fn pov(&self) -> String {
         "#error \"csgrt: hull() and minkowski() have no POV-Ray equivalent\"\nsphere { <0, 0, 0>, 0"
             .to_string()
+    }
+}
+
+/// The spans of a union's pieces, gathered before they are merged.
+type Gathered = smallvec::SmallVec<[RawSpan; 16]>;
+
+/// Spans `all`, sorted by entry, merged where one begins before (or within
+/// [`MERGE`] of) the end of those before it.
+fn merged(all: &[RawSpan], scale: f64) -> Gathered {
+    let mut out = Gathered::new();
+    for &s in all {
+        match out.last_mut() {
+            Some(c) if s.0 <= c.2 + MERGE * (scale + c.2.abs()) => {
+                if s.2 > c.2 {
+                    c.2 = s.2;
+                    c.3 = s.3;
+                }
+            }
+            _ => out.push(s),
+        }
+    }
+    out
+}
+
+/// The first span of [`merged`]`(all, scale)` with a boundary after
+/// `tmin` (one that begins after it, or the one it lies in), merged only
+/// as far as that.
+fn first_merged(all: &[RawSpan], scale: f64, tmin: f64) -> Option<RawSpan> {
+    let mut cur: Option<RawSpan> = None;
+    for &s in all {
+        match &mut cur {
+            Some(c) if s.0 <= c.2 + MERGE * (scale + c.2.abs()) => {
+                if s.2 > c.2 {
+                    c.2 = s.2;
+                    c.3 = s.3;
+                }
+            }
+            _ => {
+                if let Some(c) = cur.filter(|c| c.0 > tmin || c.2 > tmin) {
+                    return Some(c);
+                }
+                cur = Some(s);
+            }
+        }
+    }
+    cur.filter(|c| c.0 > tmin || c.2 > tmin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Cuboid, Sphere};
+
+    /// The first boundary after tmin, read as the CSG reads a leaf's list.
+    fn read_first(spans: &[RawSpan], tmin: f64) -> Option<(f64, Part)> {
+        spans.iter().find_map(|s| {
+            if s.0 > tmin {
+                Some((s.0, s.1))
+            } else if s.2 > tmin {
+                Some((s.2, s.3))
+            } else {
+                None
+            }
+        })
+    }
+
+    /// Asked only for the first boundary (a first hit, a shadow ray), a
+    /// union of overlapping balls and boxes gives the one its whole list
+    /// of spans gives — the same t and the same piece — from outside and
+    /// from inside, with few pieces (all cast) and with many (nearest box
+    /// first, through the hierarchy), while casting fewer pieces.
+    #[test]
+    fn the_first_boundary_alone_is_the_whole_lists() {
+        let mut rnd = crate::plane::tests::uniform(67);
+        let (mut met, mut inside, mut cast, mut cast_all) = (0, 0, 0u64, 0u64);
+        for round in 0..60 {
+            let count = if round % 2 == 0 { 6 } else { 40 };
+            let parts: Vec<(Shape, DAffine3)> = (0..count)
+                .map(|k| {
+                    let at = DVec3::new(rnd(), rnd(), rnd()) * 10.0;
+                    let size = DVec3::new(0.5 + rnd(), 0.5 + rnd(), 0.5 + rnd()) * 1.5;
+                    if k % 2 == 0 {
+                        (
+                            Shape::Sphere(Sphere),
+                            DAffine3::from_scale_rotation_translation(
+                                DVec3::splat(size.x),
+                                glam::DQuat::IDENTITY,
+                                at,
+                            ),
+                        )
+                    } else {
+                        (
+                            Shape::Cuboid(Cuboid { centered: true }),
+                            DAffine3::from_scale_rotation_translation(
+                                size,
+                                glam::DQuat::from_rotation_z(rnd()),
+                                at,
+                            ),
+                        )
+                    }
+                })
+                .collect();
+            let set = Rounded::new(parts, Vec::new()).unwrap();
+            for _ in 0..300 {
+                let o = DVec3::new(rnd(), rnd(), rnd()) * 30.0 - DVec3::splat(10.0);
+                let to = DVec3::new(rnd(), rnd(), rnd()) * 10.0;
+                let d = (to - o).normalize();
+                let tmin = if rnd() < 0.5 {
+                    0.0
+                } else {
+                    (to - o).length() * rnd()
+                };
+                let tmax = if rnd() < 0.2 {
+                    (to - o).length()
+                } else {
+                    f64::INFINITY
+                };
+                // The list asked for `need`, and the pieces cast for it.
+                let ask = |need: Need| {
+                    let mut st = Stats::default();
+                    let mut out = Vec::new();
+                    let mut q = Probe {
+                        o,
+                        d,
+                        tmin,
+                        tmax,
+                        st: &mut st,
+                        need,
+                    };
+                    set.spans(&mut q, &mut |s| out.push(s));
+                    (out, st.primitive_tests)
+                };
+                let (all, n) = ask(Need::Spans);
+                cast_all += n;
+                let want = read_first(&all, tmin).filter(|b| b.0 < tmax);
+                for need in [Need::FirstBoundary, Need::AnyBoundary] {
+                    let (first, n) = ask(need);
+                    assert!(count <= SCAN_PIECES || first.len() <= 1);
+                    let got = read_first(&first, tmin).filter(|b| b.0 < tmax);
+                    assert_eq!(got, want, "round {round}: {o} {d} from {tmin}");
+                    if need == Need::FirstBoundary {
+                        cast += n;
+                    }
+                }
+                met += want.is_some() as u32;
+                inside += all.iter().any(|s| s.0 <= tmin && tmin < s.2) as u32;
+            }
+        }
+        assert!(
+            met > 4000 && inside > 500,
+            "{met} met, {inside} from inside"
+        );
+        assert!(
+            cast < cast_all,
+            "{cast} pieces cast for the first boundaries, {cast_all} for the lists"
+        );
     }
 }
