@@ -24,8 +24,10 @@ struct Step {
 
 /// The mesh with corners `w` (placed) and triangles `tris` as convex cells
 /// inside it, planes `tol` thick; `None` when it is not closed (the cells'
-/// volume is not its own) or needs more than [`MAX_MESH_CELLS`].
-pub fn mesh_cells(w: &[DVec3], tris: &[[u32; 3]], tol: f64) -> Option<Vec<Polytope>> {
+/// volume is not its own) or needs more than `most` cells (at most
+/// [`MAX_MESH_CELLS`]).
+pub fn mesh_cells(w: &[DVec3], tris: &[[u32; 3]], tol: f64, most: usize) -> Option<Vec<Polytope>> {
+    let most = most.min(MAX_MESH_CELLS);
     // Its signed volume: below 0, its triangles are turned inward
     // (OpenSCAD's own order), and are taken the other way round.
     let own = signed_volume(w, tris);
@@ -92,7 +94,7 @@ pub fn mesh_cells(w: &[DVec3], tris: &[[u32; 3]], tol: f64) -> Option<Vec<Polyto
         if let Some(c) = cell.clip(n, d, tol) {
             if back.is_empty() {
                 inside.push(c);
-                if inside.len() > MAX_MESH_CELLS {
+                if inside.len() > most {
                     return None;
                 }
             } else {

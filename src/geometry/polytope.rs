@@ -501,12 +501,13 @@ pub fn pieces_across(
                 return Ok(vec![hull]);
             }
             // Not convex: its cells, exactly.
-            super::mesh_cells::mesh_cells(&w, &d.tris, tol).ok_or_else(|| {
-                format!(
-                    "a mesh that crosses itself or is cut into more than {} convex cells",
-                    super::mesh_cells::MAX_MESH_CELLS
-                )
-            })
+            super::mesh_cells::mesh_cells(&w, &d.tris, tol, super::mesh_cells::MAX_MESH_CELLS)
+                .ok_or_else(|| {
+                    format!(
+                        "a mesh that crosses itself or is cut into more than {} convex cells",
+                        super::mesh_cells::MAX_MESH_CELLS
+                    )
+                })
         }
         Shape::Prism(q) => {
             // Curved edges (text, SVG) as chords within eps of them.
