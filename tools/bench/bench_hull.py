@@ -7,9 +7,8 @@ slot made by hull() of two cylinders beside its union of two cylinders and
 a box (both written out as exact primitives by csgrt); and a tapered
 capsule, hull() of two balls of different radii, beside its union of the
 balls and the frustum tangent to both (cast by GJK and Newton's method);
-and an L-shaped polyhedron plus a box (the mesh moved, and each triangle
-plus the box written out as the polytope it is, under a box tree) beside
-its union of two boxes.
+and an L-shaped polyhedron plus a box (its convex cells, each plus the box
+written out as the polytope it is) beside its union of two boxes.
 csgrt alone, one thread, the median of --runs alternating runs
 (render_seconds of --stats-json). The table gives both times, their ratio
 (issue 16 asks at most 3 for the rounded box), and the support-function
@@ -110,7 +109,7 @@ PAIRS = [
     ("rounded box", "rounded_box_minkowski", rounded_minkowski, "rounded_box_union", rounded_union),
     ("slot", "slot_hull", slot_hull, "slot_union", slot_union),
     ("tapered capsule (GJK)", "capsule_hull", capsule_hull, "capsule_union", capsule_union),
-    ("L plus a box (a mesh plus a polytope: a polytope per triangle)", "ell_plus_box", ell_plus_box, "ell_union", ell_union),
+    ("L plus a box (a mesh plus a polytope: a polytope per convex cell)", "ell_plus_box", ell_plus_box, "ell_union", ell_union),
 ]
 
 
