@@ -136,7 +136,28 @@ pub struct Convex {
     slabs: Box<[(f64, f64); 10]>,
     /// The tolerance of a cast: 10⁻¹² of the box's size and distance.
     tol: f64,
+    /// The flat ends of a hull's cylinders and frustums whose planes hold
+    /// the whole set (at most [`MOST_ENDS`]): a line that crosses one of
+    /// them inwards within its disc enters there ([`Convex::end_entry`]).
+    ends: Vec<FlatEnd>,
 }
+
+/// A flat end of a cylinder or frustum of a hull, in a plane that holds
+/// the whole set.
+#[derive(Clone, Debug, PartialEq)]
+struct FlatEnd {
+    /// The plane: its outward unit normal and n·x there.
+    normal: DVec3,
+    offset: f64,
+    /// The part's object space, where the end is the disc x² + y² ≤ r²
+    /// at height `z`.
+    to_object: DAffine3,
+    r2: f64,
+}
+
+/// The most flat ends [`Convex::new`] keeps (a hull of many coplanar
+/// discs is a face none of them fills).
+const MOST_ENDS: usize = 8;
 
 impl Convex {
     /// The set of `hulls` (parts placed in the world), moved so that its
@@ -160,6 +181,7 @@ impl Convex {
             bounds: Aabb::EMPTY,
             slabs: Box::new([(0.0, 0.0); 10]),
             tol: 0.0,
+            ends: Vec::new(),
         };
         let axis = |i: usize| DVec3::AXES[i];
         let (mut lo, mut hi) = (DVec3::ZERO, DVec3::ZERO);
@@ -180,7 +202,65 @@ impl Convex {
             * (hi - lo)
                 .max_element()
                 .max(lo.abs().max(hi.abs()).max_element());
+        c.ends = c.flat_ends();
         c
+    }
+
+    /// The ends for [`Convex::ends`]: of a hull (a sum's face is not one
+    /// part's), each end of positive radius of a cylinder or frustum whose
+    /// plane holds the set within the tolerance.
+    fn flat_ends(&self) -> Vec<FlatEnd> {
+        let [parts] = self.hulls.as_slice() else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        for part in parts {
+            let Shape::Cone(c) = &part.shape else {
+                continue;
+            };
+            let m = part.to_world;
+            if m.matrix3.determinant() == 0.0 {
+                continue;
+            }
+            let to_object = m.inverse();
+            let z0 = super::cone::bottom(c.centered);
+            for (up, z, r) in [(1.0, z0 + 1.0, c.r1), (-1.0, z0, c.r0)] {
+                let Some(normal) = (to_object.matrix3.transpose() * DVec3::Z * up).try_normalize()
+                else {
+                    continue;
+                };
+                let offset = normal.dot(m.transform_point3(DVec3::Z * z));
+                let holds = normal.dot(self.support_point(normal)) <= offset + self.tol;
+                if r > 0.0 && holds && out.len() < MOST_ENDS {
+                    out.push(FlatEnd {
+                        normal,
+                        offset,
+                        to_object,
+                        r2: r * r,
+                    });
+                }
+            }
+        }
+        out
+    }
+
+    /// Where the line s + λr (λ in [0, lmax]) enters through one of the
+    /// flat ends, and that end's normal: proved without a step, for the
+    /// set lies behind the end's plane and the point where the line
+    /// crosses it inwards lies on the end's disc, in the set. (A flat end
+    /// has no atom along its axis, so Newton's method proves nothing
+    /// there, and GJK took all its steps.)
+    fn end_entry(&self, s: DVec3, r: DVec3, lmax: f64) -> Option<(f64, DVec3)> {
+        self.ends.iter().find_map(|e| {
+            let nr = e.normal.dot(r);
+            let lambda = (e.offset - e.normal.dot(s)) / nr;
+            // (NaN fails each test.)
+            if !(nr < 0.0 && lambda >= 0.0 && lambda <= lmax) {
+                return None;
+            }
+            let local = e.to_object.transform_point3(s + r * lambda);
+            (local.truncate().length_squared() <= e.r2).then_some((lambda, e.normal))
+        })
     }
 
     /// The point of the set farthest along `d` (any of them where several).
@@ -408,6 +488,10 @@ impl Convex {
     /// cast when it proves none. What it finds is remembered.
     fn warm_cast(&self, s: DVec3, r: DVec3, lmax: f64, slot: u8) -> (Option<(f64, DVec3)>, u32) {
         let key = self as *const Convex as usize;
+        if let Some(hit) = self.end_entry(s, r, lmax) {
+            coherence::remember(key, slot, r, hit.1);
+            return (Some(hit), 0);
+        }
         let mut steps = 0;
         if let Some(n) = coherence::recall(key, slot, r) {
             let nr = n.dot(r);
@@ -1050,6 +1134,77 @@ mod tests {
                 c,
             ),
         }
+    }
+
+    /// A thin cylinder squashed into an elliptic disc, placed by `m`'s
+    /// scale (radius along x, y; height) and height `z`.
+    fn disc(rx: f64, ry: f64, h: f64, z: f64) -> ConvexPart {
+        ConvexPart {
+            shape: Shape::Cone(crate::geometry::Cone {
+                r0: 1.0,
+                r1: 1.0,
+                centered: false,
+            }),
+            to_world: DAffine3::from_scale_rotation_translation(
+                DVec3::new(rx, ry, h),
+                glam::DQuat::IDENTITY,
+                DVec3::Z * z,
+            ),
+        }
+    }
+
+    /// The hull of two parallel elliptic discs of different shapes (no
+    /// exact form: cast by support functions) is entered through its
+    /// flat ends where GJK alone enters it, with no step; an end inside
+    /// the hull (a disc within the other's shadow under a point above
+    /// both) is not an entry; a sum has no ends of its own.
+    #[test]
+    fn a_line_through_a_flat_end_enters_where_gjk_finds_it() {
+        let mut rnd = crate::plane::tests::uniform(73);
+        let funnel = Convex::new(vec![vec![
+            disc(29.0, 14.5, 0.01, 0.0),
+            disc(24.0, 13.2, 0.01, -15.0),
+        ]]);
+        assert_eq!(
+            funnel.ends.len(),
+            2,
+            "the top of the upper disc, the bottom of the lower"
+        );
+        let capped = Convex::new(vec![vec![
+            disc(5.0, 3.0, 1.0, 0.0),
+            ball(DVec3::Z * 9.0, 0.5),
+        ]]);
+        assert_eq!(
+            capped.ends.len(),
+            1,
+            "the top end lies inside, under the ball"
+        );
+        let summed = Convex::new(vec![
+            vec![disc(5.0, 3.0, 1.0, 0.0)],
+            vec![ball(DVec3::ZERO, 1.0)],
+        ]);
+        assert!(summed.ends.is_empty());
+        let mut through = 0;
+        for set in [&funnel, &capped] {
+            for _ in 0..3000 {
+                let at = DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd()) * DVec3::new(60.0, 30.0, 40.0)
+                    - DVec3::Z * 15.0;
+                let r = (DVec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 2.0).normalize();
+                let s = at - r * 100.0;
+                let Some((lambda, n)) = set.end_entry(s, r, 200.0) else {
+                    continue;
+                };
+                through += 1;
+                let (gjk, _) = set.cast(s, r, 200.0);
+                let (want, wn) = gjk.expect("GJK enters where the end is crossed");
+                assert!(
+                    (lambda - want).abs() <= 1e-9 * 100.0,
+                    "{s} {r}: {lambda} against {want}"
+                );
+                assert!(n.dot(wn.normalize()) > 0.999, "{n} against {wn}");
+            }
+        }
+        assert!(through > 300, "{through} lines through an end");
     }
 
     #[test]
