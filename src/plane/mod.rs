@@ -191,6 +191,26 @@ pub struct Outlines {
 }
 
 impl Outlines {
+    /// Its corners (lo, hi) where it is one rectangle with sides along the
+    /// axes and of positive size.
+    pub fn axis_rectangle(&self) -> Option<(DVec2, DVec2)> {
+        let [l] = self.loops.as_slice() else {
+            return None;
+        };
+        if l.len() != 4 || self.curved() {
+            return None;
+        }
+        let (lo, hi) = l
+            .iter()
+            .fold((l[0], l[0]), |(a, b), &p| (a.min(p), b.max(p)));
+        let corner = |p: DVec2| (p.x == lo.x || p.x == hi.x) && (p.y == lo.y || p.y == hi.y);
+        let sides = (0..4).all(|i| {
+            let (p, q) = (l[i], l[(i + 1) % 4]);
+            (p.x == q.x) != (p.y == q.y)
+        });
+        (sides && l.iter().all(|&p| corner(p)) && lo.x < hi.x && lo.y < hi.y).then_some((lo, hi))
+    }
+
     /// Straight-edged outlines.
     pub fn polygons(loops: Vec<Vec<DVec2>>) -> Outlines {
         Outlines {

@@ -285,3 +285,64 @@ fn an_intersection_asks_its_cheap_child_first() {
     let tests = s["primitive_tests"].as_u64().unwrap();
     assert!(tests < 4 * rays, "{tests} primitive tests for {rays} rays");
 }
+
+#[test]
+fn an_upright_rectangle_extruded_straight_is_drawn_as_its_box() {
+    // Each extrusion renders to the same bytes as the `cube` placed where
+    // it stands (the cube's own path, independent of the extrusion's):
+    // a wrong corner, size or centring shows. A rectangle with its sides
+    // off the axes, a tapered one and any other quadrilateral stay prisms.
+    let camera = "camera(eye = [9, -14, 11], lookat = [1, 1, 0], fov = 40);\n";
+    let render = |body: &str| {
+        let (dir, _) = scene("s.csg", &format!("{camera}{body}\n"));
+        let r = csgrt(
+            dir.path(),
+            &[
+                "s.csg",
+                "--size",
+                "96x72",
+                "-q",
+                "-o",
+                "p.png",
+                "--dump-scene",
+                "d.json",
+            ],
+        );
+        assert_eq!(r.status, 0, "{}", r.stderr);
+        let dump = std::fs::read_to_string(dir.path().join("d.json")).unwrap();
+        (std::fs::read(dir.path().join("p.png")).unwrap(), dump)
+    };
+    let same = [
+        (
+            "linear_extrude(height = 3) square([4, 2]);",
+            "cube([4, 2, 3]);",
+        ),
+        (
+            "linear_extrude(height = 3, center = true) square([4, 2], center = true);",
+            "translate([-2, -1, -1.5]) cube([4, 2, 3]);",
+        ),
+        (
+            "translate([1, 2, 0.5]) rotate([0, 0, 30]) linear_extrude(height = 3) \
+             polygon([[0, 0], [0, 2], [4, 2], [4, 0]]);",
+            "translate([1, 2, 0.5]) rotate([0, 0, 30]) cube([4, 2, 3]);",
+        ),
+        (
+            "linear_extrude(height = 2) translate([-1, 0.5]) square([3, 1.5]);",
+            "translate([-1, 0.5, 0]) cube([3, 1.5, 2]);",
+        ),
+    ];
+    for (extruded, cube) in same {
+        let (a, dump) = render(extruded);
+        let (b, _) = render(cube);
+        assert!(a == b, "{extruded} is not drawn as {cube}");
+        assert!(dump.contains("\"cube\""), "{extruded}: {dump}");
+    }
+    for prism in [
+        "linear_extrude(height = 3) rotate(20) square([4, 2]);",
+        "linear_extrude(height = 3, scale = 0.5) square([4, 2]);",
+        "linear_extrude(height = 3) polygon([[0, 0], [4, 0], [5, 2], [1, 2]]);",
+    ] {
+        let (_, dump) = render(prism);
+        assert!(!dump.contains("\"cube\""), "{prism}: {dump}");
+    }
+}
