@@ -663,8 +663,7 @@ pub fn mesh_plus(mesh: &Mesh, m: DAffine3, sets: &[Vec<Vec<ConvexPart>>]) -> Opt
     }
     let v = placed_corners(mesh, m);
     let tris = &mesh.data.tris;
-    let bounds = v.iter().fold(super::Aabb::EMPTY, |b, p| b.include(*p));
-    let tol = super::polytope::plane_tolerance(&bounds);
+    let tol = super::polytope::points_tolerance(&v);
     let cells = super::mesh_cells::mesh_cells(&v, tris, tol, tris.len() / 2);
     Some(mesh_pieces_plus(mesh, m, &v, cells.as_deref(), sets))
 }

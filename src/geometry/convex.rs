@@ -119,8 +119,7 @@ pub fn polytope_sum(hulls: &[Vec<ConvexPart>]) -> Option<super::Mesh> {
 
 /// The corners of the hull of `pts`; `None` when it has no volume.
 fn hull_corners(pts: &[DVec3]) -> Option<Vec<DVec3>> {
-    let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
-    super::quickhull::hull(pts, super::polytope::plane_tolerance(&b)).map(|(v, _)| v)
+    super::quickhull::hull(pts, super::polytope::points_tolerance(pts)).map(|(v, _)| v)
 }
 
 /// The Minkowski sum of the convex hulls of `hulls`' parts.
@@ -225,13 +224,16 @@ impl Convex {
             let to_object = m.inverse();
             let z0 = super::cone::bottom(c.centered);
             for (up, z, r) in [(1.0, z0 + 1.0, c.r1), (-1.0, z0, c.r0)] {
+                if r <= 0.0 || out.len() == MOST_ENDS {
+                    continue;
+                }
                 let Some(normal) = (to_object.matrix3.transpose() * DVec3::Z * up).try_normalize()
                 else {
                     continue;
                 };
                 let offset = normal.dot(m.transform_point3(DVec3::Z * z));
-                let holds = normal.dot(self.support_point(normal)) <= offset + self.tol;
-                if r > 0.0 && holds && out.len() < MOST_ENDS {
+                // The one support query: whether the plane holds the set.
+                if normal.dot(self.support_point(normal)) <= offset + self.tol {
                     out.push(FlatEnd {
                         normal,
                         offset,

@@ -33,7 +33,7 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use crate::geometry::ball_sum::Pieces;
 use crate::geometry::convex::ConvexPart;
-use crate::geometry::disc_sum::{in_frustum, minkowski, scale, shape_of, tolerance, vertices};
+use crate::geometry::disc_sum::{in_frustum, minkowski, scale, shape_of, vertices};
 use crate::geometry::{Cone, Shape};
 use crate::plane::hull::MAX_HULL_POINTS;
 
@@ -124,7 +124,7 @@ pub fn as_disc_hull(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
         }
     }
     let centres: Vec<DVec3> = discs.iter().map(|d| d.0).collect();
-    let tol = tolerance(&centres);
+    let tol = crate::geometry::polytope::points_tolerance(&centres);
     if !others.is_empty() {
         let near = 1e-9 * scale(&centres).max(1.0);
         let hull = super::quickhull::hull(&centres, tol);

@@ -25,7 +25,8 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use crate::geometry::ball_sum::{hull_faces, plane_hull, span, Pieces, Span};
 use crate::geometry::convex::ConvexPart;
-use crate::geometry::{Aabb, Cone, Shape};
+use crate::geometry::polytope::points_tolerance;
+use crate::geometry::{Cone, Shape};
 use crate::plane::hull::MAX_HULL_POINTS;
 
 /// A cylinder part (equal radii) placed in the world: its two axis ends
@@ -116,12 +117,12 @@ pub fn as_disc_sum(hulls: &[Vec<ConvexPart>]) -> Option<Pieces> {
         }
     }
     let pts = vertices(&sum)?;
-    let tol = tolerance(&pts);
+    let tol = points_tolerance(&pts);
     // The hull's own polytopes must lie inside the hull of its cylinders.
     if !others.is_empty() {
         let axes = vertices(&ends)?;
         let faces = if axes.len() >= 4 {
-            hull_faces(&axes, tolerance(&axes))
+            hull_faces(&axes, points_tolerance(&axes))
         } else {
             Vec::new()
         };
@@ -324,7 +325,7 @@ pub fn in_frustum(q: DVec3, a: (DVec3, f64), b: (DVec3, f64), near: f64) -> bool
 /// The corners of the hull of `pts` (all of them, deduplicated, when they
 /// span no volume); `None` past [`MAX_HULL_POINTS`].
 pub fn vertices(pts: &[DVec3]) -> Option<Vec<DVec3>> {
-    let mut v = match super::quickhull::hull(pts, tolerance(pts)) {
+    let mut v = match super::quickhull::hull(pts, points_tolerance(pts)) {
         Some((v, _)) => v,
         None => pts.to_vec(),
     };
@@ -353,13 +354,6 @@ pub fn scale(pts: &[DVec3]) -> f64 {
         s.max((*p - p0).abs().max_element())
             .max(p.abs().max_element())
     })
-}
-
-/// The thickness of a plane: 10⁻¹⁰ of the points' extent and distance
-/// from the origin, as for every hull of corners.
-pub fn tolerance(pts: &[DVec3]) -> f64 {
-    let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
-    super::polytope::plane_tolerance(&b)
 }
 
 #[cfg(test)]

@@ -319,11 +319,17 @@ pub fn plane_tolerance(b: &Aabb) -> f64 {
     1e-10 * ((b.max - b.min).max_element() + far)
 }
 
+/// The thickness of a plane among points `pts`: [`plane_tolerance`] of
+/// their box, as for every hull of corners.
+pub fn points_tolerance(pts: &[DVec3]) -> f64 {
+    let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
+    plane_tolerance(&b)
+}
+
 /// The convex hull of `pts` as a closed mesh (planes 10⁻¹⁰ of the points'
 /// size and distance from the origin thick); `None` when it has no volume.
 pub fn hull_mesh(pts: &[DVec3]) -> Option<super::Mesh> {
-    let b = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
-    let (v, t) = super::quickhull::hull(pts, plane_tolerance(&b))?;
+    let (v, t) = super::quickhull::hull(pts, points_tolerance(pts))?;
     let data = std::sync::Arc::new(super::mesh::MeshData::convex(v, t));
     Some(super::Mesh { data })
 }

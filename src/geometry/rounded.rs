@@ -256,14 +256,8 @@ type Gathered = smallvec::SmallVec<[RawSpan; 16]>;
 fn merged(all: &[RawSpan], scale: f64) -> Gathered {
     let mut out = Gathered::new();
     for &s in all {
-        match out.last_mut() {
-            Some(c) if s.0 <= c.2 + MERGE * (scale + c.2.abs()) => {
-                if s.2 > c.2 {
-                    c.2 = s.2;
-                    c.3 = s.3;
-                }
-            }
-            _ => out.push(s),
+        if !out.last_mut().is_some_and(|c| joined(c, s, scale)) {
+            out.push(s);
         }
     }
     out
@@ -273,24 +267,31 @@ fn merged(all: &[RawSpan], scale: f64) -> Gathered {
 /// `tmin` (one that begins after it, or the one it lies in), merged only
 /// as far as that.
 fn first_merged(all: &[RawSpan], scale: f64, tmin: f64) -> Option<RawSpan> {
+    let after = |c: &RawSpan| c.0 > tmin || c.2 > tmin;
     let mut cur: Option<RawSpan> = None;
     for &s in all {
-        match &mut cur {
-            Some(c) if s.0 <= c.2 + MERGE * (scale + c.2.abs()) => {
-                if s.2 > c.2 {
-                    c.2 = s.2;
-                    c.3 = s.3;
-                }
-            }
-            _ => {
-                if let Some(c) = cur.filter(|c| c.0 > tmin || c.2 > tmin) {
-                    return Some(c);
-                }
-                cur = Some(s);
-            }
+        if cur.as_mut().is_some_and(|c| joined(c, s, scale)) {
+            continue;
         }
+        if let Some(c) = cur.filter(after) {
+            return Some(c);
+        }
+        cur = Some(s);
     }
-    cur.filter(|c| c.0 > tmin || c.2 > tmin)
+    cur.filter(after)
+}
+
+/// Whether span `s` (beginning at or after `c`) begins before the end of
+/// `c` or within [`MERGE`] of it: then `c` is made to end where the later
+/// of the two ends.
+fn joined(c: &mut RawSpan, s: RawSpan, scale: f64) -> bool {
+    // (A NaN joins nothing, as before.)
+    let joins = s.0 <= c.2 + MERGE * (scale + c.2.abs());
+    if joins && s.2 > c.2 {
+        c.2 = s.2;
+        c.3 = s.3;
+    }
+    joins
 }
 
 #[cfg(test)]

@@ -88,7 +88,7 @@ impl Resolver<'_> {
             Figure::Polygon(o) if even && sweep.twist == 0.0 => {
                 // An upright box: a rectangle on the axes extruded straight.
                 if let Some((lo, hi)) = o.axis_rectangle().filter(|_| top == 1.0) {
-                    let z = if centered { -0.5 } else { 0.0 };
+                    let z = crate::geometry::cone::bottom(centered);
                     let place = DAffine3::from_translation(lo.extend(z))
                         * DAffine3::from_scale((hi - lo).extend(1.0));
                     let shape = Shape::Cuboid(Cuboid { centered: false });
