@@ -191,9 +191,21 @@ impl Solid for Rounded {
             }
         }
         all.sort_by(|x, y| x.0.total_cmp(&y.0));
+        // Merged as they come: each span joins the one before it, or that
+        // one is complete.
         let scale = self.line_scale(&line);
-        for s in merged(&all, scale) {
-            emit(s);
+        let mut cur: Option<RawSpan> = None;
+        for &s in &all {
+            if cur.as_mut().is_some_and(|c| joined(c, s, scale)) {
+                continue;
+            }
+            if let Some(c) = cur {
+                emit(c);
+            }
+            cur = Some(s);
+        }
+        if let Some(c) = cur {
+            emit(c);
         }
     }
 
@@ -251,21 +263,10 @@ impl Solid for Rounded {
 /// The spans of a union's pieces, gathered before they are merged.
 type Gathered = smallvec::SmallVec<[RawSpan; 16]>;
 
-/// Spans `all`, sorted by entry, merged where one begins before (or within
-/// [`MERGE`] of) the end of those before it.
-fn merged(all: &[RawSpan], scale: f64) -> Gathered {
-    let mut out = Gathered::new();
-    for &s in all {
-        if !out.last_mut().is_some_and(|c| joined(c, s, scale)) {
-            out.push(s);
-        }
-    }
-    out
-}
-
-/// The first span of [`merged`]`(all, scale)` with a boundary after
-/// `tmin` (one that begins after it, or the one it lies in), merged only
-/// as far as that.
+/// Of spans `all`, sorted by entry and merged where one begins before (or
+/// within [`MERGE`] of) the end of those before it, the first with a
+/// boundary after `tmin` (one that begins after it, or the one it lies
+/// in), merged only as far as that.
 fn first_merged(all: &[RawSpan], scale: f64, tmin: f64) -> Option<RawSpan> {
     let after = |c: &RawSpan| c.0 > tmin || c.2 > tmin;
     let mut cur: Option<RawSpan> = None;
