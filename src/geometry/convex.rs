@@ -639,9 +639,6 @@ enum Atom {
 /// cast's last one (radians): well beyond GJK's √ε error in it.
 const ACTIVE_TILT: f64 = 1e-5;
 
-/// The step of the Jacobian's central differences (radians).
-const NEWTON_STEP: f64 = 1e-6;
-
 /// How close (relative to the set's size) GJK brings the line's point
 /// before Newton's method is tried.
 const LOOSE: f64 = 1e-6;
@@ -727,6 +724,37 @@ impl Convex {
         }
     }
 
+    /// How atom `a`'s support point along unit `d` moves as `d` turns by
+    /// `e` (d·e = 0), to first order: the derivative of
+    /// [`Convex::atom_support`]. A placed ball's point is M·n + t with
+    /// n = l/|l|, l = Mᵀd, so it moves by M·(Mᵀe − n(n·Mᵀe))/|l|; a rim's
+    /// the same in the end circle's plane (n the unit horizontal part of
+    /// l, scaled by the radius); a vertex does not move.
+    fn atom_turn(&self, a: Atom, d: DVec3, e: DVec3) -> DVec3 {
+        let (part, radius, flat) = match a {
+            Atom::Point(_) => return DVec3::ZERO,
+            Atom::Ball(j, i) => (&self.hulls[j][i], 1.0, false),
+            Atom::Rim(j, i, top) => {
+                let part = &self.hulls[j][i];
+                let Shape::Cone(c) = &part.shape else {
+                    unreachable!("a rim of a cone")
+                };
+                (part, if top { c.r1 } else { c.r0 }, true)
+            }
+        };
+        let m = part.to_world.matrix3;
+        let (mut l, mut le) = (m.transpose() * d, m.transpose() * e);
+        if flat {
+            (l.z, le.z) = (0.0, 0.0);
+        }
+        let len = l.length();
+        if len == 0.0 {
+            return DVec3::ZERO;
+        }
+        let n = l / len;
+        m * ((le - n * n.dot(le)) * (radius / len))
+    }
+
     /// The atoms of each hull that support the set along `m` or along
     /// directions tilted from it by [`ACTIVE_TILT`]: the pieces the
     /// surface is made of near the point `m` supports. `None` when a part
@@ -797,34 +825,67 @@ impl Convex {
         (None, steps)
     }
 
+    /// [`Convex::newton`]'s residual at its unknowns z — the face's point
+    /// (each hull's first active atom's support point w₀ plus the others'
+    /// differences w − w₀ by their weights) minus the line's, then each
+    /// tie d·(w − w₀) — and its Jacobian, given the normal d there and how
+    /// it turns with z₀ and z₁ ([`normal_turns`]): the face's point moves
+    /// as its atoms' support points do ([`Convex::atom_turn`], weighted),
+    /// and with the line's parameter and the weights as the line and the
+    /// atoms' differences; each tie as d turns (a support point moves
+    /// within its supporting plane, d·(w − w₀)' = d'·(w − w₀)).
+    fn linearised(
+        &self,
+        s: DVec3,
+        r: DVec3,
+        z: &[f64; MAX_UNKNOWNS],
+        (d, e): (DVec3, [DVec3; 2]),
+        act: &[Atoms],
+    ) -> Linearised {
+        let mut f = [0.0; MAX_UNKNOWNS];
+        let mut jac = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
+        let mut p = -(s + r * z[2]);
+        let mut moved = [DVec3::ZERO; 2];
+        let mut k = 3;
+        for atoms in act {
+            let w0 = self.atom_support(atoms[0], d);
+            p += w0;
+            let t0 = e.map(|e| self.atom_turn(atoms[0], d, e));
+            moved[0] += t0[0];
+            moved[1] += t0[1];
+            for &a in &atoms[1..] {
+                let w = self.atom_support(a, d) - w0;
+                p += w * z[k];
+                f[k] = d.dot(w);
+                let t = e.map(|e| self.atom_turn(a, d, e));
+                for c in 0..2 {
+                    let dt = t[c] - t0[c];
+                    moved[c] += dt * z[k];
+                    jac[k][c] = e[c].dot(w);
+                }
+                for row in 0..3 {
+                    jac[row][k] = w[row];
+                }
+                k += 1;
+            }
+        }
+        for row in 0..3 {
+            f[row] = p[row];
+            jac[row][0] = moved[0][row];
+            jac[row][1] = moved[1][row];
+            jac[row][2] = -r[row];
+        }
+        (f, jac)
+    }
+
     /// One round of [`Convex::refine`] with the atoms `act`, and the
     /// steps taken.
     fn newton(&self, s: DVec3, r: DVec3, lambda: f64, m: DVec3, act: &[Atoms]) -> (Newton, u32) {
         let u1 = m.any_orthonormal_vector();
         let u2 = m.cross(u1);
         let n = 3 + act.iter().map(|a| a.len() - 1).sum::<usize>();
-        let normal = |z: &[f64; MAX_UNKNOWNS]| (m + u1 * z[0] + u2 * z[1]).normalize();
-        // The residual: the face's point minus the line's, then the ties.
-        let residual = |z: &[f64; MAX_UNKNOWNS]| {
-            let d = normal(z);
-            let mut f = [0.0; MAX_UNKNOWNS];
-            let mut p = -(s + r * z[2]);
-            let mut k = 3;
-            for atoms in act {
-                let w0 = self.atom_support(atoms[0], d);
-                p += w0;
-                for &a in &atoms[1..] {
-                    let w = self.atom_support(a, d) - w0;
-                    p += w * z[k];
-                    f[k] = d.dot(w);
-                    k += 1;
-                }
-            }
-            f[0] = p.x;
-            f[1] = p.y;
-            f[2] = p.z;
-            f
-        };
+        let linearised =
+            |z: &[f64; MAX_UNKNOWNS]| self.linearised(s, r, z, normal_turns(m, u1, u2, z), act);
         let mut z = [0.0; MAX_UNKNOWNS];
         z[2] = lambda;
         let mut k = 3;
@@ -838,32 +899,7 @@ impl Convex {
         let mut last = f64::INFINITY;
         for _ in 0..NEWTON_ITERATIONS {
             steps += 1;
-            let f = residual(&z);
-            let mut jac = [[0.0; MAX_UNKNOWNS]; MAX_UNKNOWNS];
-            for c in 0..2 {
-                let (mut hi, mut lo) = (z, z);
-                hi[c] += NEWTON_STEP;
-                lo[c] -= NEWTON_STEP;
-                let (fh, fl) = (residual(&hi), residual(&lo));
-                for row in 0..n {
-                    jac[row][c] = (fh[row] - fl[row]) / (2.0 * NEWTON_STEP);
-                }
-            }
-            for row in 0..3 {
-                jac[row][2] = -r[row];
-            }
-            let d = normal(&z);
-            let mut c = 3;
-            for atoms in act {
-                let w0 = self.atom_support(atoms[0], d);
-                for &a in &atoms[1..] {
-                    let w = self.atom_support(a, d) - w0;
-                    for row in 0..3 {
-                        jac[row][c] = w[row];
-                    }
-                    c += 1;
-                }
-            }
+            let (f, jac) = linearised(&z);
             let Some(delta) = solve(jac, f, n) else {
                 return (Newton::Failed, steps);
             };
@@ -871,7 +907,7 @@ impl Convex {
                 z[i] -= delta[i];
             }
             last = delta[0].abs().max(delta[1].abs());
-            if last < 1e-15 {
+            if last <= NEWTON_CONVERGED {
                 break;
             }
         }
@@ -881,7 +917,7 @@ impl Convex {
             return (Newton::Failed, steps);
         }
         // Each hull's weights: the first atom's is what the others leave.
-        let d = normal(&z);
+        let d = normal_turns(m, u1, u2, &z).0;
         let mut k = 3;
         let mut next = Vec::with_capacity(act.len());
         let mut changed = false;
@@ -919,7 +955,7 @@ impl Convex {
             return (Newton::Change(next, d, z[2]), steps);
         }
         let dr = d.dot(r);
-        let f = residual(&z);
+        let f = linearised(&z).0;
         let off = f[..3].iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if dr >= 0.0 || dr.is_nan() || off.is_nan() || off > self.tol {
             return (Newton::Failed, steps);
@@ -932,6 +968,19 @@ impl Convex {
         (Newton::Plane((h - d.dot(s)) / dr, d), steps)
     }
 }
+
+/// The unit normal of [`Convex::newton`]'s unknowns z, the direction
+/// m + u1·z₀ + u2·z₁ normalised, and how it moves with z₀ and with z₁:
+/// (u − d(d·u))/|m + u1·z₀ + u2·z₁| for u = u1, u2.
+fn normal_turns(m: DVec3, u1: DVec3, u2: DVec3, z: &[f64; MAX_UNKNOWNS]) -> (DVec3, [DVec3; 2]) {
+    let q = m + u1 * z[0] + u2 * z[1];
+    let d = q.normalize();
+    let len = q.length();
+    (d, [u1, u2].map(|u| (u - d * d.dot(u)) / len))
+}
+
+/// A residual of [`Convex::newton`] and its Jacobian.
+type Linearised = ([f64; MAX_UNKNOWNS], [[f64; MAX_UNKNOWNS]; MAX_UNKNOWNS]);
 
 /// The active atoms of one hull.
 type Atoms = smallvec::SmallVec<[Atom; 3]>;
@@ -1207,6 +1256,108 @@ mod tests {
             }
         }
         assert!(through > 300, "{through} lines through an end");
+    }
+
+    /// Newton's Jacobian is the derivative of its residual: against
+    /// central differences of the residual (the normal turned by 10⁻⁶,
+    /// the weights and the line's parameter moved), on hulls of turned
+    /// and squashed balls, elliptic discs and a frustum, at random
+    /// normals, weights and parameters, each hull's active atoms as
+    /// Newton takes them.
+    #[test]
+    fn newtons_jacobian_is_its_residuals_derivative() {
+        let mut rnd = crate::plane::tests::uniform(29);
+        let turned = |mut p: ConvexPart, q: glam::DQuat, squash: DVec3| {
+            p.to_world = DAffine3::from_rotation_translation(q, DVec3::ZERO)
+                * DAffine3::from_scale(squash)
+                * p.to_world;
+            p
+        };
+        let q = glam::DQuat::from_euler(glam::EulerRot::XYZ, 0.3, -0.7, 1.1);
+        let mut frustum = disc(2.0, 1.0, 3.0, 1.0);
+        frustum.shape = Shape::Cone(crate::geometry::Cone {
+            r0: 1.5,
+            r1: 0.5,
+            centered: true,
+        });
+        let sets = [
+            vec![vec![
+                disc(29.0, 14.5, 0.01, 0.0),
+                disc(24.0, 13.2, 0.01, -15.0),
+            ]],
+            vec![vec![
+                turned(disc(5.0, 3.0, 1.0, 0.0), q, DVec3::new(1.0, 2.0, 0.5)),
+                turned(ball(DVec3::Z * 9.0, 2.5), q, DVec3::new(1.5, 1.0, 1.0)),
+            ]],
+            vec![
+                vec![ball(DVec3::X * 4.0, 1.0), ball(DVec3::ZERO, 2.0)],
+                vec![turned(frustum, q, DVec3::ONE)],
+            ],
+        ];
+        let mut checked = [0; 3];
+        for set in sets {
+            let c = Convex::new(set);
+            for _ in 0..400 {
+                let m = (DVec3::new(rnd(), rnd(), rnd()) - 0.5).normalize();
+                // Each hull's atoms along m and along up to two other
+                // directions, at most five unknowns in all.
+                let extra = (rnd() * 3.0) as usize;
+                let mut act: Vec<Atoms> = vec![Atoms::new(); c.hulls.len()];
+                let mut n = 3;
+                for (j, atoms) in act.iter_mut().enumerate() {
+                    atoms.extend(c.atom(j, m));
+                    for _ in 0..extra {
+                        let other = (DVec3::new(rnd(), rnd(), rnd()) - 0.5).normalize();
+                        match c.atom(j, other) {
+                            Some(a) if n < MAX_UNKNOWNS && !atoms.contains(&a) => {
+                                atoms.push(a);
+                                n += 1;
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                if act.iter().any(|a| a.is_empty()) {
+                    continue;
+                }
+                checked[n - 3] += 1;
+                let (u1, u2) = (
+                    m.any_orthonormal_vector(),
+                    m.cross(m.any_orthonormal_vector()),
+                );
+                let (s, r) = (
+                    DVec3::new(rnd(), rnd(), rnd()) * 9.0,
+                    DVec3::new(0.6, -0.64, 0.48),
+                );
+                let mut z = [0.0; MAX_UNKNOWNS];
+                for (i, v) in z.iter_mut().enumerate().take(n) {
+                    *v = if i < 2 { (rnd() - 0.5) * 0.2 } else { rnd() };
+                }
+                let at = |z: &[f64; MAX_UNKNOWNS]| {
+                    c.linearised(s, r, z, normal_turns(m, u1, u2, z), &act)
+                };
+                let (_, jac) = at(&z);
+                for col in 0..n {
+                    let h = 1e-6;
+                    let (mut hi, mut lo) = (z, z);
+                    hi[col] += h;
+                    lo[col] -= h;
+                    let (fh, fl) = (at(&hi).0, at(&lo).0);
+                    for row in 0..n {
+                        let want = (fh[row] - fl[row]) / (2.0 * h);
+                        assert!(
+                            (jac[row][col] - want).abs() <= 1e-5 * (1.0 + want.abs()),
+                            "∂f{row}/∂z{col}: {} against {want} ({act:?})",
+                            jac[row][col]
+                        );
+                    }
+                }
+            }
+        }
+        assert!(
+            checked.iter().all(|&k| k > 20),
+            "{checked:?} of 3, 4, 5 unknowns"
+        );
     }
 
     #[test]
