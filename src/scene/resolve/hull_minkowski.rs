@@ -23,6 +23,7 @@
 use super::Resolver;
 use crate::csg::{Mark, NodeKind};
 use crate::error::Result;
+use crate::geometry::ball_sum;
 use crate::geometry::convex::{Convex, ConvexPart};
 use crate::geometry::polytope::Polytope;
 use crate::geometry::solid::Solid;
@@ -162,6 +163,7 @@ impl Resolver<'_> {
         hulls: Sum,
         frame: DAffine3,
         mat: Material,
+        covered: &dyn Fn(&[DVec3]) -> bool,
     ) -> Result<Option<u32>> {
         // A hull or a sum of polytopes: the polytope, written out.
         if let Some(mesh) = crate::geometry::convex::polytope_sum(&hulls) {
@@ -178,10 +180,10 @@ impl Resolver<'_> {
             return self.rounded_leaf(s, pieces.parts, hulls, frame, mat);
         }
         // A polytope rounded by a ball: written out as exact primitives.
-        let rounded = crate::geometry::ball_sum::as_rounded(&hulls)
-            .and_then(|(pts, r)| crate::geometry::ball_sum::pieces(&pts, r))
-            .or_else(|| crate::geometry::ball_sum::as_ball_chain(&hulls))
-            .or_else(|| crate::geometry::ball_sum::as_cylinders(&hulls))
+        let rounded = ball_sum::as_rounded(&hulls)
+            .and_then(|(pts, r)| ball_sum::pieces_beside(&pts, r, covered))
+            .or_else(|| ball_sum::as_ball_chain(&hulls))
+            .or_else(|| ball_sum::as_cylinders(&hulls))
             .or_else(|| crate::geometry::disc_sum::as_disc_sum(&hulls))
             .or_else(|| crate::geometry::disc_hull::as_disc_hull(&hulls));
         if let Some(pieces) = rounded.filter(|_| !crate::mutant::active("hull_gjk_normals")) {
@@ -240,7 +242,7 @@ impl Resolver<'_> {
                 None => {}
             }
         }
-        self.convex_leaf(s, vec![parts], frame, mat)
+        self.convex_leaf(s, vec![parts], frame, mat, &|_| false)
     }
 
     /// 3-D `hull()` of its children.
@@ -307,8 +309,8 @@ impl Resolver<'_> {
         self.b.csg.rewind(mark);
         match read.map_err(|why| self.not_convex(s, &why))? {
             Summed::Mesh(mesh, to, r) => {
-                let pieces = crate::geometry::ball_sum::mesh_rounded(&mesh, to, r);
-                let limit = crate::geometry::ball_sum::MAX_ROUNDED_TRIANGLES;
+                let pieces = ball_sum::mesh_rounded(&mesh, to, r);
+                let limit = ball_sum::MAX_ROUNDED_TRIANGLES;
                 self.pieces_leaf(
                     s,
                     pieces,
@@ -318,17 +320,29 @@ impl Resolver<'_> {
                 )
             }
             Summed::MeshPlus(mesh, to, rest) => {
-                let pieces = crate::geometry::ball_sum::mesh_plus(&mesh, to, &rest);
-                let limit = crate::geometry::ball_sum::MAX_SUMMED_TRIANGLES;
+                let pieces = ball_sum::mesh_plus(&mesh, to, &rest);
+                let limit = ball_sum::MAX_SUMMED_TRIANGLES;
                 let what = format!(
                     "a mesh of more than {limit} triangles plus a convex solid other than a ball"
                 );
                 self.pieces_leaf(s, pieces, &what, xf, mat)
             }
             Summed::Convex(combos) => {
+                let combos: Vec<Sum> = combos.into_iter().filter(|c| !c.is_empty()).collect();
+                // Polytopes summed with one ball: the pieces of each sum
+                // that lie in an earlier one's are left out.
+                let rounded: Vec<_> = combos.iter().map(|c| ball_sum::as_rounded(c)).collect();
+                let radius = rounded.iter().flatten().map(|x| x.1).next();
+                let corners: Vec<Option<&[DVec3]>> = rounded
+                    .iter()
+                    .map(|x| x.as_ref().filter(|x| Some(x.1) == radius).map(|x| &x.0[..]))
+                    .collect();
+                let cells = ball_sum::Cells::new(&corners);
                 let mut leaves = Vec::new();
-                for sum in combos.into_iter().filter(|c| !c.is_empty()) {
-                    leaves.push(self.convex_leaf(s, sum, xf, mat)?);
+                for (k, sum) in combos.into_iter().enumerate() {
+                    let covered =
+                        |pts: &[DVec3]| corners[k].is_some() && cells.earlier_holds(k, pts);
+                    leaves.push(self.convex_leaf(s, sum, xf, mat, &covered)?);
                 }
                 Ok(self.op(Op::Union, leaves))
             }
@@ -340,7 +354,7 @@ impl Resolver<'_> {
     fn pieces_leaf(
         &mut self,
         s: &Statement,
-        pieces: Option<crate::geometry::ball_sum::Pieces>,
+        pieces: Option<ball_sum::Pieces>,
         what: &str,
         xf: DAffine3,
         mat: Material,
@@ -392,7 +406,7 @@ impl Resolver<'_> {
                 shape: prim.shape.clone(),
                 to_world: prim.xf.to_world,
             };
-            match (&part.shape, crate::geometry::ball_sum::ball(&part)) {
+            match (&part.shape, ball_sum::ball(&part)) {
                 (_, Some((c, radius))) if leaves.len() == 1 => {
                     ops.centre += c;
                     ops.r += radius;
