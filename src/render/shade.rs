@@ -177,7 +177,7 @@ impl<'a> Shader<'a> {
     /// `color` with an alpha), clamped to [0, 1]; the background where
     /// nothing lies beyond. The next boundary is `ahead`'s first beyond
     /// `after` while `ahead` holds one; otherwise one query finds the
-    /// line's boundaries beyond `after` ([`Shader::ahead`]), and the
+    /// line's boundaries beyond `after` ([`Shader::boundaries_beyond`]), and the
     /// surfaces seen through this one take theirs from the same list
     /// instead of casting a ray each.
     fn straight_on(
@@ -193,7 +193,7 @@ impl<'a> Shader<'a> {
         let list = match ahead {
             Some(a) if a.complete || a.list.last().is_some_and(|b| b.t > after) => a,
             _ => {
-                found = self.ahead(ray, after, st);
+                found = self.boundaries_beyond(ray, after, st);
                 &found
             }
         };
@@ -213,7 +213,7 @@ impl<'a> Shader<'a> {
     /// line on unbent (opaque, or of another index), from one query of
     /// the tree's list ([`Csg::spans_until`], which it is good up to);
     /// at most [`AHEAD`] of them.
-    fn ahead(&self, ray: &Ray, after: f64, st: &mut Stats) -> Ahead {
+    fn boundaries_beyond(&self, ray: &Ray, after: f64, st: &mut Stats) -> Ahead {
         let stops = |b: &Boundary| {
             let m = self.material(b.prim);
             m.kt <= 0.0 || m.ior != 1.0
@@ -279,7 +279,7 @@ impl<'a> Shader<'a> {
 }
 
 /// The boundaries a line crosses beyond a surface it passes unbent,
-/// found once for the surfaces after it ([`Shader::ahead`]); `complete`
+/// found once for the surfaces after it ([`Shader::boundaries_beyond`]); `complete`
 /// when they are all there are up to the first that stops the line (or
 /// to the scene's end), not cut at [`AHEAD`].
 struct Ahead {
@@ -287,7 +287,7 @@ struct Ahead {
     complete: bool,
 }
 
-/// The most boundaries [`Shader::ahead`] keeps: more than the default
+/// The most boundaries [`Shader::boundaries_beyond`] keeps: more than the default
 /// ray tree's depth passes through.
 const AHEAD: usize = 12;
 
