@@ -726,6 +726,8 @@ impl TwistPath {
         let w = self.phi[1] * turns;
         for (l0, h0) in reach_overlaps(reach) {
             let pieces = ((w * (h0 - l0)).abs().ceil() as usize).clamp(1, 1 << 16);
+            // G at the end of the last piece searched, the next one's start.
+            let mut known: Option<(f64, f64)> = None;
             for i in 0..pieces {
                 let l = l0 + (h0 - l0) * (i as f64 / pieces as f64);
                 let h = if i + 1 == pieces {
@@ -733,7 +735,8 @@ impl TwistPath {
                 } else {
                     l0 + (h0 - l0) * ((i + 1) as f64 / pieces as f64)
                 };
-                side.roots_where(l, h, may, out);
+                let gl = known.filter(|k| k.0 == l).map(|k| k.1);
+                known = side.roots_after(l, h, gl, may, out).map(|gh| (h, gh));
             }
         }
         if self.tc != 0.0 {

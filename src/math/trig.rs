@@ -279,12 +279,27 @@ impl Trig {
         may: &impl Fn(f64, f64) -> bool,
         out: &mut SmallVec<[f64; 8]>,
     ) {
+        self.roots_after(l, h, None, may, out);
+    }
+
+    /// [`Trig::roots_where`], G(l) given where it is known (`None`: found
+    /// here); G(h) where it was found (`None` where `may` refused the
+    /// interval), for the interval that begins at h.
+    pub fn roots_after(
+        &self,
+        l: f64,
+        h: f64,
+        gl: Option<f64>,
+        may: &impl Fn(f64, f64) -> bool,
+        out: &mut SmallVec<[f64; 8]>,
+    ) -> Option<f64> {
         if !may(l, h) {
-            return;
+            return None;
         }
-        let (gl, gh) = (self.g(l), self.g(h));
+        let (gl, gh) = (gl.unwrap_or_else(|| self.g(l)), self.g(h));
         let mut budget = ISOLATE_BUDGET;
         self.isolate(l, h, gl, gh, 0, &mut budget, may, out);
+        Some(gh)
     }
 
     #[allow(clippy::too_many_arguments)]
