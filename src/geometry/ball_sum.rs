@@ -18,7 +18,7 @@ use glam::{DAffine3, DMat3, DVec2, DVec3};
 
 use crate::geometry::convex::ConvexPart;
 use crate::geometry::mesh::{Mesh, MeshData};
-use crate::geometry::{Cone, Convex, Cuboid, Shape, Sphere};
+use crate::geometry::{Aabb, Cone, Convex, Cuboid, Shape, Sphere};
 
 use crate::plane::hull::{disc_hull, hull_indices_2d, MAX_HULL_POINTS};
 
@@ -475,44 +475,108 @@ impl Pieces {
 pub struct Cells {
     /// None for a cell that is not a solid polytope plus the ball.
     cells: Vec<Option<Cell>>,
+    /// The cells by where they lie: a grid of about one bucket a cell
+    /// over their box, each bucket the cells whose box (grown by its
+    /// planes' thickness) meets it, in order. A point is asked of its
+    /// bucket's cells alone: a cell that holds it meets that bucket, and a
+    /// piece kept because a cell was not asked is only a piece more.
+    grid: Grid,
 }
 
 /// A convex polytope's face planes (outward unit normal, offset) and
-/// their thickness.
+/// their thickness, and its box grown by that.
 struct Cell {
     planes: Vec<(DVec3, f64)>,
     tol: f64,
+    bounds: Aabb,
+}
+
+/// Buckets of cells over a box, `size` along each axis.
+struct Grid {
+    bounds: Aabb,
+    size: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl Grid {
+    /// The bucket's coordinates along each axis of a point (clamped).
+    fn at(&self, p: DVec3) -> [usize; 3] {
+        let span = (self.bounds.max - self.bounds.min).max(DVec3::splat(f64::MIN_POSITIVE));
+        let u = (p - self.bounds.min) / span * self.size as f64;
+        [u.x, u.y, u.z].map(|v| (v.max(0.0) as usize).min(self.size - 1))
+    }
+
+    fn index(&self, [x, y, z]: [usize; 3]) -> usize {
+        (z * self.size + y) * self.size + x
+    }
 }
 
 impl Cells {
     /// The cells of polytopes with these corners (`None`: not a
     /// polytope summed with the ball; it holds nothing).
     pub fn new(cells: &[Option<&[DVec3]>]) -> Cells {
-        let planes = |pts: &[DVec3]| {
+        let cell = |pts: &[DVec3]| {
             let tol = crate::geometry::polytope::points_tolerance(pts);
             if !matches!(span(pts, tol), Span::Solid) {
                 return None;
             }
             let faces = hull_faces(pts, tol);
+            let bounds = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
             Some(Cell {
                 planes: faces
                     .iter()
                     .map(|(n, ids)| (*n, n.dot(pts[ids[0]])))
                     .collect(),
                 tol,
+                bounds: Aabb {
+                    min: bounds.min - DVec3::splat(tol),
+                    max: bounds.max + DVec3::splat(tol),
+                },
             })
         };
-        Cells {
-            cells: cells.iter().map(|c| c.and_then(planes)).collect(),
+        let cells: Vec<Option<Cell>> = cells.iter().map(|c| c.and_then(cell)).collect();
+        let all = cells
+            .iter()
+            .flatten()
+            .fold(Aabb::EMPTY, |b, c| b.union(&c.bounds));
+        let size = (cells.len() as f64).cbrt().ceil().clamp(1.0, 64.0) as usize;
+        let mut grid = Grid {
+            bounds: all,
+            size,
+            buckets: vec![Vec::new(); size * size * size],
+        };
+        for (k, c) in cells.iter().enumerate() {
+            let Some(c) = c else { continue };
+            let (lo, hi) = (grid.at(c.bounds.min), grid.at(c.bounds.max));
+            for z in lo[2]..=hi[2] {
+                for y in lo[1]..=hi[1] {
+                    for x in lo[0]..=hi[0] {
+                        let i = grid.index([x, y, z]);
+                        grid.buckets[i].push(k as u32);
+                    }
+                }
+            }
         }
+        Cells { cells, grid }
     }
 
     /// Whether every point of `pts` lies in one cell before cell `k`.
     pub fn earlier_holds(&self, k: usize, pts: &[DVec3]) -> bool {
-        self.cells[..k].iter().flatten().any(|c| {
-            pts.iter()
-                .all(|p| c.planes.iter().all(|(n, h)| n.dot(*p) - h <= c.tol))
-        })
+        let Some(&first) = pts.first() else {
+            return false;
+        };
+        let bucket = &self.grid.buckets[self.grid.index(self.grid.at(first))];
+        bucket
+            .iter()
+            .take_while(|&&j| (j as usize) < k)
+            .filter_map(|&j| self.cells[j as usize].as_ref())
+            .any(|c| {
+                pts.iter().all(|p| {
+                    c.bounds.min.cmple(*p).all()
+                        && c.bounds.max.cmpge(*p).all()
+                        && c.planes.iter().all(|(n, h)| n.dot(*p) - h <= c.tol)
+                })
+            })
     }
 }
 
