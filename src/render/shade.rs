@@ -98,7 +98,7 @@ impl<'a> Shader<'a> {
         b: &Boundary,
         depth: u32,
         weight: f64,
-        ahead: Option<&Ahead>,
+        ahead: Option<Ahead>,
         st: &mut Stats,
     ) -> DVec3 {
         let hit = self.csg.surface(ray, b, st);
@@ -186,25 +186,28 @@ impl<'a> Shader<'a> {
         after: f64,
         depth: u32,
         weight: f64,
-        ahead: Option<&Ahead>,
+        ahead: Option<Ahead>,
         st: &mut Stats,
     ) -> DVec3 {
         let found;
-        let list = match ahead {
+        let a = match ahead {
             Some(a) if a.complete || a.list.last().is_some_and(|b| b.t > after) => a,
             _ => {
                 found = self.boundaries_beyond(ray, after, st);
-                &found
+                Ahead {
+                    list: &found.0,
+                    complete: found.1,
+                }
             }
         };
-        let Some(k) = list.list.iter().position(|b| b.t > after) else {
+        let Some(k) = a.list.iter().position(|b| b.t > after) else {
             return self.scene.background;
         };
         let rest = Ahead {
-            list: list.list[k + 1..].iter().copied().collect(),
-            complete: list.complete,
+            list: &a.list[k + 1..],
+            complete: a.complete,
         };
-        let c = self.shade(ray, &list.list[k], depth, weight, Some(&rest), st);
+        let c = self.shade(ray, &a.list[k], depth, weight, Some(rest), st);
         c.clamp(DVec3::ZERO, DVec3::ONE)
     }
 
@@ -212,32 +215,34 @@ impl<'a> Shader<'a> {
     /// up to and including the first whose material does not pass the
     /// line on unbent (opaque, or of another index), from one query of
     /// the tree's list ([`Csg::spans_until`], which it is good up to);
-    /// at most [`AHEAD`] of them.
-    fn boundaries_beyond(&self, ray: &Ray, after: f64, st: &mut Stats) -> Ahead {
+    /// at most [`AHEAD`] of them, and whether they are all there are up to
+    /// there (not cut at [`AHEAD`]).
+    fn boundaries_beyond(
+        &self,
+        ray: &Ray,
+        after: f64,
+        st: &mut Stats,
+    ) -> (SmallVec<[Boundary; AHEAD]>, bool) {
         let stops = |b: &Boundary| {
             let m = self.material(b.prim);
             m.kt <= 0.0 || m.ior != 1.0
         };
         self.csg
             .spans_until(ray, after, f64::INFINITY, st, stops, |spans| {
-                let mut out = Ahead {
-                    list: SmallVec::new(),
-                    complete: true,
-                };
+                let mut list = SmallVec::new();
                 for b in spans.iter().flat_map(|s| [s.enter, s.exit]) {
                     if b.t <= after || !b.is_surface() {
                         continue;
                     }
-                    if out.list.len() == AHEAD {
-                        out.complete = false;
-                        break;
+                    if list.len() == AHEAD {
+                        return (list, false);
                     }
-                    out.list.push(b);
+                    list.push(b);
                     if stops(&b) {
                         break;
                     }
                 }
-                out
+                (list, true)
             })
     }
 
@@ -278,12 +283,14 @@ impl<'a> Shader<'a> {
     }
 }
 
-/// The boundaries a line crosses beyond a surface it passes unbent,
-/// found once for the surfaces after it ([`Shader::boundaries_beyond`]); `complete`
-/// when they are all there are up to the first that stops the line (or
-/// to the scene's end), not cut at [`AHEAD`].
-struct Ahead {
-    list: SmallVec<[Boundary; AHEAD]>,
+/// The boundaries a line crosses beyond a surface it passes unbent, of
+/// the list found once for the surfaces after it
+/// ([`Shader::boundaries_beyond`]); `complete` when they are all there
+/// are up to the first that stops the line (or to the scene's end), not
+/// cut at [`AHEAD`].
+#[derive(Clone, Copy)]
+struct Ahead<'a> {
+    list: &'a [Boundary],
     complete: bool,
 }
 
