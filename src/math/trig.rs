@@ -148,7 +148,7 @@ impl Pol {
     }
 }
 
-/// The most intervals one `Trig::roots_where` call examines: a bound on its work
+/// The most intervals one `Trig::roots_after` call examines: a bound on its work
 /// whatever G is (the depth bound alone allows 2⁶⁰ of them), 46 times the
 /// most any call of the example scenes' twisted extrusions took (1,421, in
 /// tests/openscad/twisted_circles.csg at 320×240; most take under 100).
@@ -271,20 +271,9 @@ impl Trig {
     /// true` for all). An interval `may` refuses is dropped with what lies
     /// in it, before G is evaluated there; the others are halved and
     /// bisected as they would be without it, so every root found in them
-    /// has the same bits.
-    pub fn roots_where(
-        &self,
-        l: f64,
-        h: f64,
-        may: &impl Fn(f64, f64) -> bool,
-        out: &mut SmallVec<[f64; 8]>,
-    ) {
-        self.roots_after(l, h, None, may, out);
-    }
-
-    /// [`Trig::roots_where`], G(l) given where it is known (`None`: found
-    /// here); G(h) where it was found (`None` where `may` refused the
-    /// interval), for the interval that begins at h.
+    /// has the same bits. G(l) is `gl` where the caller knows it (`None`:
+    /// found here); G(h) is returned where it was found (`None` where
+    /// `may` refused the interval), for the interval that begins at h.
     pub fn roots_after(
         &self,
         l: f64,
@@ -424,7 +413,7 @@ mod tests {
         let mut out = SmallVec::new();
         let mut l = 0.0;
         while l < 4.0 {
-            g.roots_where(l, (l + 1.0 / 3.0).min(4.0), &|_, _| true, &mut out);
+            g.roots_after(l, (l + 1.0 / 3.0).min(4.0), None, &|_, _| true, &mut out);
             l += 1.0 / 3.0;
         }
         let a = 0.2f64.acos();
