@@ -714,14 +714,20 @@ impl Convex {
             Atom::Point(p) => p,
             Atom::Ball(j, i) => self.hulls[j][i].support(d),
             Atom::Rim(j, i, top) => {
-                let part = &self.hulls[j][i];
-                let Shape::Cone(c) = &part.shape else {
-                    unreachable!("a rim of a cone")
-                };
+                let (part, c) = self.rim_part(j, i);
                 let local = part.to_world.matrix3.transpose() * d;
                 part.to_world.transform_point3(rim(c, top, local))
             }
         }
+    }
+
+    /// The part of hull `j` a rim atom belongs to, and its cone.
+    fn rim_part(&self, j: usize, i: usize) -> (&ConvexPart, &super::Cone) {
+        let part = &self.hulls[j][i];
+        let Shape::Cone(c) = &part.shape else {
+            unreachable!("a rim of a cone")
+        };
+        (part, c)
     }
 
     /// How atom `a`'s support point along unit `d` moves as `d` turns by
@@ -735,10 +741,7 @@ impl Convex {
             Atom::Point(_) => return DVec3::ZERO,
             Atom::Ball(j, i) => (&self.hulls[j][i], 1.0, false),
             Atom::Rim(j, i, top) => {
-                let part = &self.hulls[j][i];
-                let Shape::Cone(c) = &part.shape else {
-                    unreachable!("a rim of a cone")
-                };
+                let (part, c) = self.rim_part(j, i);
                 (part, if top { c.r1 } else { c.r0 }, true)
             }
         };
