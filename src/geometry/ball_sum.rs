@@ -516,12 +516,13 @@ impl Cells {
     /// polytope summed with the ball; it holds nothing).
     pub fn new(cells: &[Option<&[DVec3]>]) -> Cells {
         let cell = |pts: &[DVec3]| {
-            let tol = crate::geometry::polytope::points_tolerance(pts);
+            let bounds = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
+            // `polytope::points_tolerance`, of the box found here once.
+            let tol = crate::geometry::polytope::plane_tolerance(&bounds);
             if !matches!(span(pts, tol), Span::Solid) {
                 return None;
             }
             let faces = hull_faces(pts, tol);
-            let bounds = pts.iter().fold(Aabb::EMPTY, |b, p| b.include(*p));
             Some(Cell {
                 planes: faces
                     .iter()
