@@ -247,7 +247,8 @@ impl Csg {
                     self.spans_with(node, &ray, 0.0, f64::INFINITY, &mut st, |list| {
                         for s in list {
                             for t in [s.enter.t, s.exit.t] {
-                                if t.is_finite() {
+                                // (Only the list's range is its solid's.)
+                                if t > 0.0 && t.is_finite() {
                                     found = found.include(o + dir * t);
                                 }
                             }
@@ -257,5 +258,42 @@ impl Csg {
                 found
             })
             .reduce(|| Aabb::EMPTY, |a, b| a.union(&b))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Csg, Primitive};
+    use crate::geometry::{Aabb, Cuboid, Shape, Transform};
+    use glam::{DAffine3, DVec3};
+
+    /// A list is its solid's only over the range asked, (0, ∞) for the
+    /// framing rays (a difference's later children are asked over its
+    /// first's spans only, a prism over that range only): the points a
+    /// ray finds before its start are not counted. A cube from −100 to 10
+    /// on each axis, sampled over the box [0, 10]³ by rays that begin 11
+    /// before it: each leaves by a face at 10, through the grid's centres
+    /// (within the box), and enters behind its start, at −100.
+    #[test]
+    fn framing_rays_count_only_what_lies_ahead_of_them() {
+        let mut csg = Csg::default();
+        let m = DAffine3::from_scale_rotation_translation(
+            DVec3::splat(110.0),
+            Default::default(),
+            DVec3::splat(-100.0),
+        );
+        let cube = csg.add_prim(Primitive::new(
+            Shape::Cuboid(Cuboid { centered: false }),
+            Transform::new(m).unwrap(),
+            0,
+        ));
+        csg.root = Some(cube);
+        let region = Aabb::new(DVec3::ZERO, DVec3::splat(10.0));
+        let b = csg.sampled_bounds(cube, &region, &[0, 1, 2]);
+        assert!(
+            (b.max - DVec3::splat(10.0)).abs().max_element() < 1e-9,
+            "{b:?}"
+        );
+        assert!(b.min.min_element() > 0.0, "{b:?}");
     }
 }

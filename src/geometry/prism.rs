@@ -193,11 +193,25 @@ impl Solid for Prism {
             return;
         }
         let slab = (z0, zp0, z1, zp1);
+        // Only the crossings in the slab and the range asked are found
+        // (the spans need only be right there): one before them pairs with
+        // the first found, its span entering by the cap (any place before
+        // the range would), and the same with one beyond them (the
+        // crossings are even in number, each outline being closed). None
+        // are sought where the slab and the range do not meet.
+        let window = (z0.max(q.tmin), z1.min(q.tmax));
+        if window.0 > window.1 {
+            return;
+        }
         // A line of a view's family: only the edges its piece lists.
-        let cuts = match self.views.iter().find_map(|p| p.edges(o2, d2)) {
-            Some(ids) => self.region.crossings_of(ids, o2, d2),
-            None => self.region.crossings(o2, d2),
-        };
+        let ids = self.views.iter().find_map(|p| p.edges(o2, d2));
+        let (mut cuts, odd_before) = self.region.crossings_between(ids, o2, d2, window);
+        if odd_before {
+            cuts.insert(0, (f64::NEG_INFINITY, 0));
+        }
+        if cuts.len() % 2 == 1 {
+            cuts.push((f64::INFINITY, 0));
+        }
         for pair in cuts.chunks_exact(2) {
             let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
             clip(slab, (s0, SIDE + e0, s1, SIDE + e1), emit);

@@ -440,11 +440,30 @@ impl Region {
         }
     }
 
-    /// [`Region::crossings`] over the edges `ids` only: the same, when every
-    /// edge left out has all its points strictly on one side of the line
-    /// (as a [`pencil::Pencil`]'s lists assure).
-    pub fn crossings_of(&self, ids: &[u32], o: DVec2, d: DVec2) -> Cuts {
-        sorted_crossings(ids.iter().map(|&k| self.edge(k)), o, d)
+    /// [`Region::crossings`] with `lo ≤ s ≤ hi` only, and whether those
+    /// before `lo` are odd in number ([`crossings_between`]): over the
+    /// edges `ids` where given, the same when every edge left out has all
+    /// its points strictly on one side of the line (as a
+    /// [`pencil::Pencil`]'s lists assure).
+    pub fn crossings_between(
+        &self,
+        ids: Option<&[u32]>,
+        o: DVec2,
+        d: DVec2,
+        (lo, hi): (f64, f64),
+    ) -> (Cuts, bool) {
+        let mut cuts = Cuts::new();
+        let mut add = |s, k| cuts.push((s, k));
+        let odd = match (ids, &self.tree) {
+            (Some(ids), _) => {
+                let edges = ids.iter().map(|&k| self.edge(k));
+                crossings_between(edges, o, d, lo, hi, &mut add)
+            }
+            (None, None) => crossings_between(self.all_edges(), o, d, lo, hi, &mut add),
+            (None, Some(_)) => crossings_between(self.edges_near(o, d), o, d, lo, hi, &mut add),
+        };
+        cuts.sort_by(by_place);
+        (cuts, odd)
     }
 
     /// Every edge in order, as [`Region::edges_meeting`] gives them: for a
@@ -641,8 +660,13 @@ fn sorted_crossings(
 ) -> Cuts {
     let mut cuts = Cuts::new();
     crossings(edges, o, d, |s, k| cuts.push((s, k)));
-    cuts.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+    cuts.sort_by(by_place);
     cuts
+}
+
+/// The order of crossings: by s, then edge.
+fn by_place(x: &(f64, u32), y: &(f64, u32)) -> std::cmp::Ordering {
+    x.0.total_cmp(&y.0).then(x.1.cmp(&y.1))
 }
 
 /// Each place `(s, edge index)` where the line `o + s·d` crosses `edges`.
@@ -657,15 +681,46 @@ pub fn crossings(
     edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
     o: DVec2,
     d: DVec2,
-    mut cut: impl FnMut(f64, u32),
+    cut: impl FnMut(f64, u32),
 ) {
+    crossings_between(edges, o, d, f64::NEG_INFINITY, f64::INFINITY, cut);
+}
+
+/// [`crossings`] with `lo ≤ s ≤ hi` only, the same places by the same
+/// arithmetic; of those with s < lo only whether their number is odd (the
+/// result), and those with s > hi left out. A curve whose points (ends
+/// and control points, whose hull holds it) all lie before `lo`, or all
+/// beyond `hi`, by more than the rounding of a crossing's parameter
+/// (1e-12 of the points' size, against a few ulps), has its roots left
+/// unfound: before `lo` its crossings are as many as its ends' sides say
+/// (odd when they differ), beyond `hi` they do not count.
+pub fn crossings_between(
+    edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
+    o: DVec2,
+    d: DVec2,
+    lo: f64,
+    hi: f64,
+    mut cut: impl FnMut(f64, u32),
+) -> bool {
     // A direction so short (or long) that d·d leaves the normal numbers is
     // scaled by a power of two to about unit length (exactly), and the
-    // parameters scaled back (to ±∞ where they overflow).
+    // parameters scaled back (to ±∞ where they overflow: monotone, so a
+    // bound scaled back still bounds).
     let (d, back) = unit_scale(d);
-    let mut cut = |s: f64, k: u32| cut(s / back.0 / back.1, k);
+    let scaled = |s: f64| s / back.0 / back.1;
+    let mut odd_before = false;
+    let mut at = |s: f64, k: u32| {
+        let s = scaled(s);
+        if s < lo {
+            odd_before = !odd_before;
+        } else if s <= hi || s.is_nan() {
+            cut(s, k);
+        }
+    };
     let n = d.perp();
     let dd = d.length_squared();
+    let windowed = lo > f64::NEG_INFINITY || hi < f64::INFINITY;
+    let mut odd_unplaced = false;
     for (k, a, c, b) in edges {
         let (sa, sb) = ((a - o).dot(n), (b - o).dot(n));
         if c == Ctrl::Line || crate::mutant::active("curves_as_chords") {
@@ -674,7 +729,7 @@ pub fn crossings(
             }
             // The crossing point of the edge, then its parameter on the line.
             let p = a + (b - a) * (sa / (sa - sb));
-            cut((p - o).dot(d) / dd, k);
+            at((p - o).dot(d) / dd, k);
             continue;
         }
         // A curve lies in the hull of its control points: all on one side,
@@ -684,6 +739,24 @@ pub fn crossings(
         if (sb > 0.0) == left && hull.all(|l| l == left) {
             continue;
         }
+        if windowed {
+            // The points' parameters along the line, widened by the margin.
+            let (mut s_lo, mut s_hi, mut size) = (f64::INFINITY, f64::NEG_INFINITY, 0.0f64);
+            for q in [a, b].into_iter().chain(c.points()) {
+                let s = (q - o).dot(d) / dd;
+                (s_lo, s_hi) = (s_lo.min(s), s_hi.max(s));
+                size = size.max((q - o).abs().max_element());
+            }
+            let margin = 1e-12 * size * (d.x.abs() + d.y.abs()) / dd;
+            if scaled(s_hi + margin) < lo {
+                // (Kept apart from the crossings placed, joined at the end.)
+                odd_unplaced ^= (sb > 0.0) != left;
+                continue;
+            }
+            if scaled(s_lo - margin) > hi {
+                continue;
+            }
+        }
         let curve = Curve::new(a, c, b, o);
         side_changes(sa, sb, &curve.along(n, 0.0), curve.degree, |u| {
             let p = match u {
@@ -691,9 +764,10 @@ pub fn crossings(
                 1.0 => b - o,
                 _ => curve.at(u),
             };
-            cut(p.dot(d) / dd, k);
+            at(p.dot(d) / dd, k);
         });
     }
+    odd_before != odd_unplaced
 }
 
 /// `d` scaled by a power of two to about unit length where its square is
@@ -859,6 +933,105 @@ pub(crate) mod tests {
         });
         assert!(r.tree.is_some());
         (outer, r)
+    }
+
+    /// A line's crossings found only in a window of its parameter are
+    /// those of the whole line in the window, to the bit, and the count
+    /// before it has the whole line's parity: on a flower of 48 curved
+    /// petals with a hole of cubic curves (an edge tree) and on the
+    /// wavy ring, for lines at random and through the points that define
+    /// the edges, windows at random and ending exactly on a crossing.
+    #[test]
+    fn crossings_in_a_window_are_the_whole_lines_there() {
+        let mut next = uniform(5);
+        let petals: Vec<DVec2> = (0..48)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::TAU / 48.0;
+                DVec2::new(a.cos(), a.sin()) * 40.0
+            })
+            .collect();
+        let tips: Vec<Ctrl> = (0..48)
+            .map(|i| {
+                let a = (i as f64 + 0.5) * std::f64::consts::TAU / 48.0;
+                Ctrl::Quad(DVec2::new(a.cos(), a.sin()) * (46.0 + 8.0 * (i % 3) as f64))
+            })
+            .collect();
+        let hole: Vec<DVec2> = (0..6)
+            .map(|i| {
+                let a = -(i as f64) * std::f64::consts::TAU / 6.0;
+                DVec2::new(a.cos(), a.sin()) * 10.0
+            })
+            .collect();
+        let bulges: Vec<Ctrl> = (0..6)
+            .map(|i| {
+                let a = -(i as f64 + 0.3) * std::f64::consts::TAU / 6.0;
+                let b = -(i as f64 + 0.7) * std::f64::consts::TAU / 6.0;
+                Ctrl::Cubic(
+                    DVec2::new(a.cos(), a.sin()) * 4.0,
+                    DVec2::new(b.cos(), b.sin()) * 16.0,
+                )
+            })
+            .collect();
+        let flower = Region::new(Outlines {
+            loops: vec![petals, hole],
+            ctrl: vec![tips, bulges],
+        });
+        assert!(flower.tree.is_some() && flower.curved());
+        let (_, ring) = wavy_ring();
+        let (mut windows, mut odd_seen) = (0, 0);
+        for r in [&flower, &ring] {
+            let pts: Vec<DVec2> = (r.edges.iter().zip(&r.ctrl))
+                .flat_map(|(&(a, _), c)| std::iter::once(a).chain(c.points()))
+                .collect();
+            let size = r.hi.max_element() - r.lo.min_element();
+            for i in 0..3000 {
+                let o =
+                    r.lo + (r.hi - r.lo) * DVec2::new(next(), next()) * 1.6 - (r.hi - r.lo) * 0.3;
+                let through = if i % 2 == 0 {
+                    pts[i % pts.len()]
+                } else {
+                    r.lo + (r.hi - r.lo) * DVec2::new(next(), next())
+                };
+                let d = (through - o) * (0.01 + 3.0 * next());
+                if d == DVec2::ZERO {
+                    continue;
+                }
+                let (all, _) = r.crossings_between(None, o, d, (f64::NEG_INFINITY, f64::INFINITY));
+                let reach = 2.0 * size / d.length();
+                let mut at = || (2.0 * next() - 1.0) * reach;
+                let (mut lo, mut hi) = (at(), at());
+                if i % 5 == 0 && !all.is_empty() {
+                    lo = all[(i / 5) % all.len()].0;
+                }
+                if i % 7 == 0 && !all.is_empty() {
+                    hi = all[(i / 7) % all.len()].0;
+                }
+                let (lo, hi) = (lo.min(hi), lo.max(hi));
+                let (cuts, odd) = r.crossings_between(None, o, d, (lo, hi));
+                let want: Vec<(f64, u32)> = all
+                    .iter()
+                    .copied()
+                    .filter(|c| lo <= c.0 && c.0 <= hi)
+                    .collect();
+                let before = all.iter().filter(|c| c.0 < lo).count();
+                assert_eq!(
+                    cuts.to_vec(),
+                    want,
+                    "line {i}: o {o:?} d {d:?} in [{lo}, {hi}]"
+                );
+                assert_eq!(
+                    odd,
+                    before % 2 == 1,
+                    "line {i}: o {o:?} d {d:?} in [{lo}, {hi}]"
+                );
+                windows += 1;
+                odd_seen += odd as usize;
+            }
+        }
+        assert!(
+            windows > 5000 && odd_seen > 500,
+            "{windows} windows, {odd_seen} odd"
+        );
     }
 
     #[test]

@@ -291,8 +291,13 @@ mod tests {
                     if let Some(ids) = got {
                         assert!(ids.len() < r.edges.len() || r.edges.len() < 8);
                         assert_eq!(
-                            r.crossings_of(ids, o, d),
-                            r.crossings(o, d),
+                            r.crossings_between(
+                                Some(ids),
+                                o,
+                                d,
+                                (f64::NEG_INFINITY, f64::INFINITY)
+                            ),
+                            (r.crossings(o, d), false),
                             "trial {trial}, line {i}: o {o:?} d {d:?}"
                         );
                     }
