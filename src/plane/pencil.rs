@@ -12,7 +12,7 @@
 //! edges a line in it may cross.
 //!
 //! A line of the family is then tested against its piece's edges only, by
-//! the same code as against every edge ([`super::Region::crossings_of`]):
+//! the same code as against every edge ([`super::Region::crossings_between`]):
 //! an edge left out has every point on one side of the line by a margin
 //! far above the rounding of the side test (1e-9 of the terms' size
 //! against their ~1e-16), so the whole-line test would have passed over it
