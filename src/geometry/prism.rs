@@ -18,7 +18,7 @@
 use super::solid::{Param, Probe, RawSpan, Solid};
 use super::{Aabb, Part, NO_PART};
 use crate::plane::pencil::Pencil;
-use crate::plane::{side_changes, Ctrl, Curve, Region};
+use crate::plane::{side_changes, Ctrl, Curve, Cuts, Region};
 use glam::{DVec2, DVec3};
 use std::sync::Arc;
 
@@ -205,16 +205,20 @@ impl Solid for Prism {
         }
         // A line of a view's family: only the edges its piece lists.
         let ids = self.views.iter().find_map(|p| p.edges(o2, d2));
-        let (mut cuts, odd_before) = self.region.crossings_between(ids, o2, d2, window);
-        if odd_before {
-            cuts.insert(0, (f64::NEG_INFINITY, 0));
+        let mut cuts = Cuts::new();
+        let odd_before = self
+            .region
+            .crossings_between(ids, o2, d2, window, &mut cuts);
+        // Paired in order, after the one before if there is one.
+        let mut open = odd_before.then_some((f64::NEG_INFINITY, 0));
+        for &(s1, e1) in &cuts {
+            match open.take() {
+                Some((s0, e0)) => clip(slab, (s0, SIDE + e0, s1, SIDE + e1), emit),
+                None => open = Some((s1, e1)),
+            }
         }
-        if cuts.len() % 2 == 1 {
-            cuts.push((f64::INFINITY, 0));
-        }
-        for pair in cuts.chunks_exact(2) {
-            let ((s0, e0), (s1, e1)) = (pair[0], pair[1]);
-            clip(slab, (s0, SIDE + e0, s1, SIDE + e1), emit);
+        if let Some((s0, e0)) = open {
+            clip(slab, (s0, SIDE + e0, f64::INFINITY, SIDE), emit);
         }
     }
 

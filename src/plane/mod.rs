@@ -440,8 +440,9 @@ impl Region {
         }
     }
 
-    /// [`Region::crossings`] with `lo ≤ s ≤ hi` only, and whether those
-    /// before `lo` are odd in number ([`crossings_between`]): over the
+    /// [`Region::crossings`] with `lo ≤ s ≤ hi` only, pushed onto `cuts`,
+    /// and whether those before `lo` are odd in number
+    /// ([`crossings_between`]): over the
     /// edges `ids` where given, the same when every edge left out has all
     /// its points strictly on one side of the line (as a
     /// [`pencil::Pencil`]'s lists assure).
@@ -451,8 +452,8 @@ impl Region {
         o: DVec2,
         d: DVec2,
         (lo, hi): (f64, f64),
-    ) -> (Cuts, bool) {
-        let mut cuts = Cuts::new();
+        cuts: &mut Cuts,
+    ) -> bool {
         let mut add = |s, k| cuts.push((s, k));
         let odd = match (ids, &self.tree) {
             (Some(ids), _) => {
@@ -463,7 +464,7 @@ impl Region {
             (None, Some(_)) => crossings_between(self.edges_near(o, d), o, d, lo, hi, &mut add),
         };
         cuts.sort_by(by_place);
-        (cuts, odd)
+        odd
     }
 
     /// Every edge in order, as [`Region::edges_meeting`] gives them: for a
@@ -996,7 +997,8 @@ pub(crate) mod tests {
                 if d == DVec2::ZERO {
                     continue;
                 }
-                let (all, _) = r.crossings_between(None, o, d, (f64::NEG_INFINITY, f64::INFINITY));
+                let mut all = Cuts::new();
+                r.crossings_between(None, o, d, (f64::NEG_INFINITY, f64::INFINITY), &mut all);
                 let reach = 2.0 * size / d.length();
                 let mut at = || (2.0 * next() - 1.0) * reach;
                 let (mut lo, mut hi) = (at(), at());
@@ -1007,7 +1009,8 @@ pub(crate) mod tests {
                     hi = all[(i / 7) % all.len()].0;
                 }
                 let (lo, hi) = (lo.min(hi), lo.max(hi));
-                let (cuts, odd) = r.crossings_between(None, o, d, (lo, hi));
+                let mut cuts = Cuts::new();
+                let odd = r.crossings_between(None, o, d, (lo, hi), &mut cuts);
                 let want: Vec<(f64, u32)> = all
                     .iter()
                     .copied()

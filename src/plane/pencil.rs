@@ -290,13 +290,11 @@ mod tests {
                     }
                     if let Some(ids) = got {
                         assert!(ids.len() < r.edges.len() || r.edges.len() < 8);
+                        let mut got = crate::plane::Cuts::new();
+                        let whole = (f64::NEG_INFINITY, f64::INFINITY);
+                        let odd = r.crossings_between(Some(ids), o, d, whole, &mut got);
                         assert_eq!(
-                            r.crossings_between(
-                                Some(ids),
-                                o,
-                                d,
-                                (f64::NEG_INFINITY, f64::INFINITY)
-                            ),
+                            (got, odd),
                             (r.crossings(o, d), false),
                             "trial {trial}, line {i}: o {o:?} d {d:?}"
                         );
