@@ -17,7 +17,9 @@ It reads only what tools/bench/bench_scenes.py writes for text: top-level
 statements `translate([x, y, z]) linear_extrude(height = h) text("...",
 size = s);`, besides any other solids (not text). Anything else that makes
 prisms stops it with a message, as does a glyph count that does not match
-the export's prisms.
+the export's prisms. A glyph that is one rectangle on the axes ("l", "-",
+"I" in Liberation Sans) csgrt extrudes as a box, and POV-Ray's `box` of
+the export stands for it.
 
 Usage: pov_text.py SCENE.csg EXPORT.pov OUT.pov
 """
@@ -40,6 +42,22 @@ class _Reader:
 
     def err(self, s, msg):
         return SystemExit(f"pov_text: {msg}")
+
+
+def axis_rectangle(tt, name):
+    """Whether the glyph's outline is one contour of four points on the
+    curve, its sides along the axes (csgrt's `Outlines::axis_rectangle`:
+    the layout only scales and moves it)."""
+    g = tt["glyf"][name]
+    if g.numberOfContours != 1:
+        return False
+    coords, ends, flags = g.getCoordinates(tt["glyf"])
+    pts = list(coords)
+    if len(pts) != 4 or not all(f & 1 for f in flags):
+        return False
+    sides = all((pts[i][0] == pts[(i + 1) % 4][0]) != (pts[i][1] == pts[(i + 1) % 4][1]) for i in range(4))
+    xs, ys = {p[0] for p in pts}, {p[1] for p in pts}
+    return sides and len(xs) == 2 and len(ys) == 2
 
 
 def glyph_objects(csg_text):
@@ -65,6 +83,10 @@ def glyph_objects(csg_text):
         placed = []
         scene.text_2d(_Reader(), None, {"text": string, "size": size}, lambda pts: pts, placed)
         for name, k, shift in placed:
+            if axis_rectangle(tt, name):
+                # csgrt extrudes a glyph that is one rectangle on the axes
+                # as a box, exported as POV-Ray's `box`: it stands as it is.
+                continue
             if name not in cmap:
                 raise SystemExit(f"pov_text: glyph {name} (a ligature?) has no character of its own")
             ch = chr(cmap[name]).replace("\\", "\\\\").replace('"', '\\"')
