@@ -442,10 +442,9 @@ impl Region {
 
     /// [`Region::crossings`] with `lo ≤ s ≤ hi` only, pushed onto `cuts`,
     /// and whether those before `lo` are odd in number
-    /// ([`crossings_between`]): over the
-    /// edges `ids` where given, the same when every edge left out has all
-    /// its points strictly on one side of the line (as a
-    /// [`pencil::Pencil`]'s lists assure).
+    /// ([`window_crossings`]): over the edges `ids` where given, the same
+    /// when every edge left out has all its points strictly on one side of
+    /// the line (as a [`pencil::Pencil`]'s lists assure).
     pub fn crossings_between(
         &self,
         ids: Option<&[u32]>,
@@ -458,10 +457,10 @@ impl Region {
         let odd = match (ids, &self.tree) {
             (Some(ids), _) => {
                 let edges = ids.iter().map(|&k| self.edge(k));
-                crossings_between(edges, o, d, lo, hi, &mut add)
+                window_crossings(edges, o, d, lo, hi, &mut add)
             }
-            (None, None) => crossings_between(self.all_edges(), o, d, lo, hi, &mut add),
-            (None, Some(_)) => crossings_between(self.edges_near(o, d), o, d, lo, hi, &mut add),
+            (None, None) => window_crossings(self.all_edges(), o, d, lo, hi, &mut add),
+            (None, Some(_)) => window_crossings(self.edges_near(o, d), o, d, lo, hi, &mut add),
         };
         cuts.sort_by(by_place);
         odd
@@ -684,7 +683,7 @@ pub fn crossings(
     d: DVec2,
     cut: impl FnMut(f64, u32),
 ) {
-    crossings_between(edges, o, d, f64::NEG_INFINITY, f64::INFINITY, cut);
+    window_crossings(edges, o, d, f64::NEG_INFINITY, f64::INFINITY, cut);
 }
 
 /// [`crossings`] with `lo ≤ s ≤ hi` only, the same places by the same
@@ -695,7 +694,7 @@ pub fn crossings(
 /// (1e-12 of the points' size, against a few ulps), has its roots left
 /// unfound: before `lo` its crossings are as many as its ends' sides say
 /// (odd when they differ), beyond `hi` they do not count.
-pub fn crossings_between(
+pub fn window_crossings(
     edges: impl Iterator<Item = (u32, DVec2, Ctrl, DVec2)>,
     o: DVec2,
     d: DVec2,
