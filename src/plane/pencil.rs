@@ -177,7 +177,10 @@ impl Pencil {
                     return None;
                 }
                 let ahead = d.dot(r);
-                if ahead.abs() < AHEAD * d.length() {
+                // (Squared: no square root. Where the two forms round
+                // apart the line is at the margin, and either answer
+                // gives the same crossings.)
+                if ahead * ahead < AHEAD * AHEAD * d.length_squared() {
                     return None;
                 }
                 let s = d.dot(r.perp()) / ahead;
