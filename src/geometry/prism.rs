@@ -142,15 +142,15 @@ impl Prism {
 
 /// Where the line o + t·d is inside the slab 0 ≤ z ≤ 1 (a prism's, in
 /// object space): entering and leaving by the bottom (part 0) or top (1)
-/// cap, or unbounded along a horizontal line strictly inside; `None` when
-/// it misses.
+/// cap, or unbounded along a horizontal line strictly inside (its open
+/// ends ±∞ with [`NO_PART`], as a span's are); `None` when it misses.
 #[inline]
 pub(super) fn slab(o: DVec3, d: DVec3) -> Option<RawSpan> {
     if d.z == 0.0 {
         if o.z <= 0.0 || o.z >= 1.0 {
             return None;
         }
-        return Some((f64::NEG_INFINITY, BOTTOM, f64::INFINITY, TOP));
+        return Some((f64::NEG_INFINITY, NO_PART, f64::INFINITY, NO_PART));
     }
     let (tb, tt) = (-o.z / d.z, (1.0 - o.z) / d.z);
     Some(if tb < tt {
@@ -336,5 +336,52 @@ impl Solid for Prism {
             pts.len(),
             pts.join(", ")
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Need;
+    use crate::plane::Outlines;
+    use crate::stats::Stats;
+
+    /// A line along the slab, inside it, asked over a range that begins
+    /// inside the region: its span begins before the range, and its open
+    /// end is −∞ with no part, as a span's unbounded ends are (not a
+    /// cap's part, which would read as a surface at infinity). Asked over
+    /// the whole line, it has the region's two sides.
+    #[test]
+    fn a_horizontal_line_asked_from_inside_has_an_open_start() {
+        let square = Outlines::polygons(vec![vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(0.0, 1.0),
+        ]]);
+        let prism = Prism::new(Arc::new(Region::new(square)), 1.0, false);
+        let spans = |tmin: f64, tmax: f64| {
+            let mut st = Stats::default();
+            let mut q = Probe {
+                o: DVec3::new(-5.0, 0.5, 0.5),
+                d: DVec3::X,
+                tmin,
+                tmax,
+                st: &mut st,
+                need: Need::Spans,
+            };
+            let mut out = Vec::new();
+            prism.spans(&mut q, &mut |s| out.push(s));
+            out
+        };
+        assert_eq!(spans(f64::NEG_INFINITY, f64::INFINITY).len(), 1);
+        let whole = spans(f64::NEG_INFINITY, f64::INFINITY)[0];
+        assert_eq!((whole.0, whole.2), (5.0, 6.0));
+        assert!(whole.1 >= SIDE && whole.3 >= SIDE, "{whole:?}");
+        let from_inside = spans(5.5, 10.0);
+        assert_eq!(from_inside.len(), 1, "{from_inside:?}");
+        let s = from_inside[0];
+        assert_eq!((s.0, s.1), (f64::NEG_INFINITY, NO_PART), "{s:?}");
+        assert_eq!(s.2, 6.0);
     }
 }
