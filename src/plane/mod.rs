@@ -434,10 +434,10 @@ impl Region {
     /// Where the line `o + s·d` crosses edges, sorted: `(s, edge)`, by the
     /// rule of [`Outlines::spans`].
     pub fn crossings(&self, o: DVec2, d: DVec2) -> Cuts {
-        match self.tree {
-            None => sorted_crossings(self.all_edges(), o, d),
-            Some(_) => sorted_crossings(self.edges_near(o, d), o, d),
-        }
+        let mut cuts = Cuts::new();
+        let whole = (f64::NEG_INFINITY, f64::INFINITY);
+        self.crossings_between(None, o, d, whole, &mut cuts);
+        cuts
     }
 
     /// [`Region::crossings`] with `lo ≤ s ≤ hi` only, pushed onto `cuts`,
@@ -996,8 +996,7 @@ pub(crate) mod tests {
                 if d == DVec2::ZERO {
                     continue;
                 }
-                let mut all = Cuts::new();
-                r.crossings_between(None, o, d, (f64::NEG_INFINITY, f64::INFINITY), &mut all);
+                let all = r.crossings(o, d);
                 let reach = 2.0 * size / d.length();
                 let mut at = || (2.0 * next() - 1.0) * reach;
                 let (mut lo, mut hi) = (at(), at());
