@@ -16,7 +16,12 @@ a pixel, --size, default 320x240), and its instructions are split two ways:
   `pow`, …) and the rest (camera, pixels, start-up).
 
 The counts do not drift with the machine's load, unlike times. Needs valgrind
-(`apt-get install -y valgrind`); the renderer is target/release/csgrt.
+(`apt-get install -y valgrind`); the renderer is target/release/csgrt unless
+--csgrt names another. Debian's valgrind (3.19) does not decode every AVX
+instruction of the default build, which is compiled for this machine's
+processor (.cargo/config.toml): count a portable build instead,
+`RUSTFLAGS="-C target-cpu=x86-64" cargo build --release --target-dir
+target/portable` and `--csgrt target/portable/release/csgrt`.
 
 Usage: profile.py [--csgrt BIN] [--size WxH] [--out FILE.md] [SCENE...]
 """
