@@ -453,6 +453,7 @@ impl Region {
         (lo, hi): (f64, f64),
         cuts: &mut Cuts,
     ) -> bool {
+        let start = cuts.len();
         let mut add = |s, k| cuts.push((s, k));
         let odd = match (ids, &self.tree) {
             (Some(ids), _) => {
@@ -462,7 +463,7 @@ impl Region {
             (None, None) => window_crossings(self.all_edges(), o, d, lo, hi, &mut add),
             (None, Some(_)) => window_crossings(self.edges_near(o, d), o, d, lo, hi, &mut add),
         };
-        cuts.sort_by(by_place);
+        cuts[start..].sort_by(by_place);
         odd
     }
 
