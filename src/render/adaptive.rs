@@ -5,6 +5,7 @@ use crate::geometry::coherence::coherent;
 use crate::stats::Stats;
 use glam::DVec3;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// Adaptive anti-aliasing, after POV-Ray's `+AM1` and `+AM2` with
 /// `+A0.3`: every pixel gets one sample at its centre. A pixel whose
@@ -41,14 +42,13 @@ pub const ADAPTIVE_SPP: u32 = 13;
 /// samples. `progress` hears of the corners as [`super::render`]'s passes
 /// tell theirs. Only the corners asked for are stored.
 pub fn crossed(
-    lin: &[f32],
-    w: usize,
-    h: usize,
+    first: &FirstPass,
     threshold: f64,
     corner: impl Fn(u32, u32, &mut Stats) -> Option<[f64; 3]> + Sync,
     progress: &(dyn Fn(super::Progress) + Sync),
 ) -> (Vec<Vec<u32>>, Stats) {
-    let near = edges(lin, w, h, threshold);
+    let (w, h) = (first.w, first.h);
+    let near = edges(first, threshold);
     let near_at = |x: usize, y: usize| x < w && y < h && near[y * w + x];
     // Each row of corners: the columns of the corners of pixels near an
     // edge (a corner is pixel (x, y)'s top left), each sampled once.
@@ -112,7 +112,7 @@ pub fn crossed(
                     if !near[y * w + x] {
                         return false;
                     }
-                    let mut seen = [shown_at(lin, 3 * (y * w + x)); 5];
+                    let mut seen = [shown_of(first.at(x, y)); 5];
                     let four = [at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)];
                     for (k, c) in four.into_iter().enumerate() {
                         let Some(c) = c else { return true };
@@ -130,41 +130,76 @@ pub fn crossed(
     (again, stats)
 }
 
+/// The first pass's radiance, where it was cast: three `f32` a pixel of
+/// `lin` (`w`×`h`, row-major), read only in each row's `cast` columns;
+/// every other pixel is the `background`'s, which its row was given
+/// without a ray (and whose place in `lin` is not read, so that its pages
+/// are never touched).
+pub struct FirstPass<'a> {
+    pub lin: &'a [f32],
+    pub w: usize,
+    pub h: usize,
+    pub cast: &'a [Range<u32>],
+    pub background: [f32; 3],
+}
+
+impl FirstPass<'_> {
+    /// Pixel (x, y)'s radiance.
+    fn at(&self, x: usize, y: usize) -> [f32; 3] {
+        if self.cast[y].contains(&(x as u32)) {
+            let i = 3 * (y * self.w + x);
+            [self.lin[i], self.lin[i + 1], self.lin[i + 2]]
+        } else {
+            self.background
+        }
+    }
+}
+
 /// The pixels near an edge: those whose colour (clamped to [0, 1], as it
 /// is shown) differs from an 8-neighbour's by more than `threshold`,
 /// summed over red, green and blue. A pixel whose 3×3 block holds one
 /// radiance, bit for bit (most of a picture: its background, a flat
 /// face), differs from no neighbour and is not measured; the rest are
-/// measured as the rule says.
-fn edges(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
+/// measured as the rule says. Only the columns within one pixel of a
+/// cast column of the row or of the rows above and below are looked at:
+/// every other pixel's block is the background's alone.
+fn edges(first: &FirstPass, threshold: f64) -> Vec<bool> {
+    let (w, h) = (first.w, first.h);
     let mut near = vec![false; w * h];
     if w == 0 {
         return near;
     }
-    let row = |y: usize| &lin[3 * w * y..][..3 * w];
+    let same = |a: &[f32; 3], b: &[f32; 3]| (0..3).all(|k| a[k].to_bits() == b[k].to_bits());
     near.par_chunks_mut(w).enumerate().for_each(|(y, out)| {
-        let (up, mid, down) = (row(y.saturating_sub(1)), row(y), row((y + 1).min(h - 1)));
-        let same = |a: &[f32], b: &[f32]| a.iter().zip(b).all(|(p, q)| p.to_bits() == q.to_bits());
-        // Three rows of one radiance (a band of background): no pixel in
-        // the middle one is near an edge.
-        if same(up, mid) && same(down, mid) && mid.chunks_exact(3).all(|p| same(p, &mid[..3])) {
+        let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
+        let (lo, hi) = rows
+            .iter()
+            .map(|&r| &first.cast[r])
+            .filter(|c| !c.is_empty())
+            .fold((usize::MAX, 0), |(lo, hi), c| {
+                (lo.min(c.start as usize), hi.max(c.end as usize))
+            });
+        if lo >= hi {
             return;
         }
+        // The columns looked at, and one more on each side (as read).
+        let (lo, hi) = (lo.saturating_sub(1), (hi + 1).min(w));
+        let (a, b) = (lo.saturating_sub(1), (hi + 1).min(w));
+        let band = rows.map(|r| (a..b).map(|x| first.at(x, r)).collect::<Vec<_>>());
+        let [up, mid, down] = &band;
         // Whether the column's pixels in rows y − 1, y, y + 1 are one.
-        let column: Vec<bool> = (0..w)
-            .map(|x| {
-                let k = 3 * x..3 * x + 3;
-                same(&up[k.clone()], &mid[k.clone()]) && same(&down[k.clone()], &mid[k])
-            })
+        let column: Vec<bool> = (0..b - a)
+            .map(|i| same(&up[i], &mid[i]) && same(&down[i], &mid[i]))
             .collect();
-        for (x, o) in out.iter_mut().enumerate() {
-            let (l, r) = (x.saturating_sub(1), (x + 1).min(w - 1));
+        for (x, o) in out.iter_mut().enumerate().take(hi).skip(lo) {
+            let i = x - a;
+            let (l, r) = (x.saturating_sub(1) - a, (x + 1).min(w - 1) - a);
             let flat = column[l]
-                && column[x]
+                && column[i]
                 && column[r]
-                && same(&mid[3 * l..3 * l + 3], &mid[3 * x..3 * x + 3])
-                && same(&mid[3 * r..3 * r + 3], &mid[3 * x..3 * x + 3]);
-            *o = !flat && differs_around(lin, w, h, x, y, threshold);
+                && same(&mid[l], &mid[i])
+                && same(&mid[r], &mid[i]);
+            *o = !flat && differs_around(first, x, y, threshold);
         }
     });
     near
@@ -172,11 +207,12 @@ fn edges(lin: &[f32], w: usize, h: usize, threshold: f64) -> Vec<bool> {
 
 /// Whether pixel (x, y)'s shown colour differs from an 8-neighbour's by
 /// more than `threshold`.
-fn differs_around(lin: &[f32], w: usize, h: usize, x: usize, y: usize, threshold: f64) -> bool {
-    let c = shown_at(lin, 3 * (y * w + x));
+fn differs_around(first: &FirstPass, x: usize, y: usize, threshold: f64) -> bool {
+    let (w, h) = (first.w, first.h);
+    let c = shown_of(first.at(x, y));
     (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
         (x.saturating_sub(1)..(x + 2).min(w))
-            .any(|nx| differ(&c, &shown_at(lin, 3 * (ny * w + nx))) > threshold)
+            .any(|nx| differ(&c, &shown_of(first.at(nx, ny))) > threshold)
     })
 }
 
@@ -185,9 +221,9 @@ pub fn shown(c: DVec3) -> [f64; 3] {
     c.to_array().map(|v| v.clamp(0.0, 1.0))
 }
 
-/// The shown colour of the radiance at `lin[i..i + 3]`.
-fn shown_at(lin: &[f32], i: usize) -> [f64; 3] {
-    [lin[i], lin[i + 1], lin[i + 2]].map(|v| (v as f64).clamp(0.0, 1.0))
+/// The shown colour of a pixel's radiance.
+fn shown_of(r: [f32; 3]) -> [f64; 3] {
+    r.map(|v| (v as f64).clamp(0.0, 1.0))
 }
 
 /// How far two shown colours differ: the sum of the absolute differences
@@ -203,7 +239,10 @@ mod tests {
     /// [`edges`] against the rule read directly — each pixel measured
     /// against each of its eight neighbours that exist — on random
     /// pictures of a few colours (runs of one radiance, as pictures have)
-    /// with values past 0 and 1, −0, NaN and near-misses of the threshold.
+    /// with values past 0 and 1, −0, NaN and near-misses of the threshold,
+    /// each row cast in a random range of columns (or none, or all) and
+    /// the background's elsewhere; what `lin` holds outside the cast
+    /// columns is a colour of its own, which must never be read.
     #[test]
     fn edges_are_the_rule() {
         let mut rnd = crate::plane::tests::uniform(7);
@@ -220,26 +259,54 @@ mod tests {
             0.1,
             0.4,
         ];
-        for case in 0..60 {
+        for case in 0..200 {
             let (w, h) = (1 + (rnd() * 23.0) as usize, 1 + (rnd() * 17.0) as usize);
             let colours: Vec<[f32; 3]> = (0..4)
                 .map(|_| [0; 3].map(|_| palette[(rnd() * palette.len() as f64) as usize]))
                 .collect();
+            let background = colours[(rnd() * 4.0) as usize];
+            let cast: Vec<Range<u32>> = (0..h)
+                .map(|_| match (rnd() * 4.0) as usize {
+                    0 => 0..0,
+                    1 => 0..w as u32,
+                    _ => {
+                        let (a, b) = ((rnd() * w as f64) as u32, (rnd() * w as f64) as u32);
+                        a.min(b)..a.max(b) + 1
+                    }
+                })
+                .collect();
+            let cast_at = |x: usize, y: usize| cast[y].contains(&(x as u32));
+            let shown: Vec<[f32; 3]> = (0..w * h)
+                .map(|i| match cast_at(i % w, i / w) {
+                    true => colours[(rnd() * rnd() * 4.0) as usize],
+                    false => background,
+                })
+                .collect();
             let lin: Vec<f32> = (0..w * h)
-                .flat_map(|_| colours[(rnd() * rnd() * 4.0) as usize])
+                .flat_map(|i| match cast_at(i % w, i / w) {
+                    true => shown[i],
+                    false => [0.77, 2.0, f32::NAN],
+                })
                 .collect();
             let threshold = [0.3, 0.05, 0.0][case % 3];
             let rule: Vec<bool> = (0..w * h)
                 .map(|i| {
                     let (x, y) = (i % w, i / w);
-                    let c = shown_at(&lin, 3 * i);
+                    let c = shown_of(shown[i]);
                     (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
                         (x.saturating_sub(1)..(x + 2).min(w))
-                            .any(|nx| differ(&c, &shown_at(&lin, 3 * (ny * w + nx))) > threshold)
+                            .any(|nx| differ(&c, &shown_of(shown[ny * w + nx])) > threshold)
                     })
                 })
                 .collect();
-            assert_eq!(edges(&lin, w, h, threshold), rule, "case {case}: {w}x{h}");
+            let first = FirstPass {
+                lin: &lin,
+                w,
+                h,
+                cast: &cast,
+                background,
+            };
+            assert_eq!(edges(&first, threshold), rule, "case {case}: {w}x{h}");
         }
     }
 }

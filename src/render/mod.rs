@@ -183,23 +183,29 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
     );
     // Each row is written in place by whichever thread takes it; the
     // counters are sums and maxima, the same in any order.
+    // Each row's columns cast: every sample of a pixel lies in its square,
+    // which `Footprint::columns` grows by its margin.
+    let cast: Vec<std::ops::Range<u32>> = (0..s.height)
+        .map(|y| seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width)))
+        .collect();
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
         let mut st = Stats::default();
         if stop() {
             return st;
         }
-        // Every sample of a pixel lies in its square, which
-        // `Footprint::columns` grows by its margin.
-        let cast = seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width));
+        let cast = cast[y as usize].clone();
         for x in cast.clone() {
             let c = pixel(x, y, first, &mut st, true);
             put(row, lrow, x as usize, c);
         }
-        // The pixels no ray is cast for: the background's pixel, copied.
+        // The pixels no ray is cast for: the background's pixel, copied
+        // (their radiance only where it is kept for the file: adaptive
+        // anti-aliasing knows them by their columns and never reads it,
+        // so that its pages are never touched).
         for x in (0..cast.start).chain(cast.end..s.width) {
             let k = 3 * x as usize..3 * x as usize + 3;
             row[k.clone()].copy_from_slice(&culled_rgb);
-            if !lrow.is_empty() {
+            if s.radiance {
                 lrow[k].copy_from_slice(&culled_lin);
             }
         }
@@ -220,7 +226,14 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
         let corner = |x: u32, y: u32, st: &mut Stats| {
             sample(x as f64, y as f64, st, true).map(|(c, _)| adaptive::shown(c))
         };
-        let (again, st) = adaptive::crossed(&lin, w, h, a.threshold, corner, progress);
+        let centres = adaptive::FirstPass {
+            lin: &lin,
+            w,
+            h,
+            cast: &cast,
+            background: culled_lin,
+        };
+        let (again, st) = adaptive::crossed(&centres, a.threshold, corner, progress);
         stats.add(&st);
         refined = again.iter().map(Vec::len).sum::<usize>() as u64;
         if refined > 0 {
