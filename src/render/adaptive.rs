@@ -47,28 +47,21 @@ pub fn crossed(
     corner: impl Fn(u32, u32, &mut Stats) -> Option<[f64; 3]> + Sync,
     progress: &(dyn Fn(super::Progress) + Sync),
 ) -> (Vec<Vec<u32>>, Stats) {
-    let (w, h) = (first.w, first.h);
+    let h = first.h;
     let near = edges(first, threshold);
-    let near_at = |x: usize, y: usize| x < w && y < h && near[y * w + x];
     // Each row of corners: the columns of the corners of pixels near an
     // edge (a corner is pixel (x, y)'s top left), each sampled once.
     let columns: Vec<Vec<u32>> = (0..=h)
         .into_par_iter()
         .map(|y| {
-            let rows = [y.wrapping_sub(1), y];
-            if !rows
+            let mut xs: Vec<u32> = [y.wrapping_sub(1), y]
                 .iter()
-                .any(|&r| r < h && near[r * w..][..w].contains(&true))
-            {
-                return Vec::new();
-            }
-            (0..=w)
-                .filter(|&x| {
-                    rows.iter()
-                        .any(|&r| near_at(x, r) || near_at(x.wrapping_sub(1), r))
-                })
-                .map(|x| x as u32)
-                .collect()
+                .filter(|&&r| r < h)
+                .flat_map(|&r| near[r].iter().flat_map(|&x| [x, x + 1]))
+                .collect();
+            xs.sort_unstable();
+            xs.dedup();
+            xs
         })
         .collect();
     let count = columns.iter().map(Vec::len).sum::<usize>() as u64;
@@ -107,11 +100,11 @@ pub fn crossed(
     let again = (0..h)
         .into_par_iter()
         .map(|y| {
-            (0..w)
+            near[y]
+                .iter()
+                .copied()
                 .filter(|&x| {
-                    if !near[y * w + x] {
-                        return false;
-                    }
+                    let x = x as usize;
                     let mut seen = [shown_of(first.at(x, y)); 5];
                     let four = [at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)];
                     for (k, c) in four.into_iter().enumerate() {
@@ -123,7 +116,6 @@ pub fn crossed(
                     }
                     false
                 })
-                .map(|x| x as u32)
                 .collect()
         })
         .collect();
@@ -144,6 +136,20 @@ pub struct FirstPass<'a> {
 }
 
 impl FirstPass<'_> {
+    /// The shown colours of row `y`'s pixels in `xs`.
+    fn shown_row(&self, y: usize, xs: Range<usize>) -> Vec<[f64; 3]> {
+        let c = &self.cast[y];
+        let from = (c.start as usize).clamp(xs.start, xs.end);
+        let to = (c.end as usize).clamp(from, xs.end);
+        let bg = shown_of(self.background);
+        let lin = &self.lin[3 * (y * self.w + from)..3 * (y * self.w + to)];
+        let mut row = Vec::with_capacity(xs.len());
+        row.resize(from - xs.start, bg);
+        row.extend(lin.chunks_exact(3).map(|p| shown_of([p[0], p[1], p[2]])));
+        row.resize(xs.len(), bg);
+        row
+    }
+
     /// Pixel (x, y)'s radiance.
     fn at(&self, x: usize, y: usize) -> [f32; 3] {
         if self.cast[y].contains(&(x as u32)) {
@@ -155,65 +161,49 @@ impl FirstPass<'_> {
     }
 }
 
-/// The pixels near an edge: those whose colour (clamped to [0, 1], as it
-/// is shown) differs from an 8-neighbour's by more than `threshold`,
-/// summed over red, green and blue. A pixel whose 3×3 block holds one
-/// radiance, bit for bit (most of a picture: its background, a flat
-/// face), differs from no neighbour and is not measured; the rest are
-/// measured as the rule says. Only the columns within one pixel of a
-/// cast column of the row or of the rows above and below are looked at:
-/// every other pixel's block is the background's alone.
-fn edges(first: &FirstPass, threshold: f64) -> Vec<bool> {
+/// The pixels near an edge, as each row's columns in ascending order:
+/// those whose colour (clamped to [0, 1], as it is shown) differs from an
+/// 8-neighbour's by more than `threshold`, summed over red, green and
+/// blue. Only the columns within one pixel of a cast column of the row or
+/// of the rows above and below are measured: every other pixel's 3×3
+/// block is the background's alone, one radiance bit for bit, which
+/// differs from no neighbour.
+fn edges(first: &FirstPass, threshold: f64) -> Vec<Vec<u32>> {
     let (w, h) = (first.w, first.h);
-    let mut near = vec![false; w * h];
-    if w == 0 {
-        return near;
-    }
-    let same = |a: &[f32; 3], b: &[f32; 3]| (0..3).all(|k| a[k].to_bits() == b[k].to_bits());
-    near.par_chunks_mut(w).enumerate().for_each(|(y, out)| {
-        let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
-        let (lo, hi) = rows
-            .iter()
-            .map(|&r| &first.cast[r])
-            .filter(|c| !c.is_empty())
-            .fold((usize::MAX, 0), |(lo, hi), c| {
-                (lo.min(c.start as usize), hi.max(c.end as usize))
-            });
-        if lo >= hi {
-            return;
-        }
-        // The columns looked at, and one more on each side (as read).
-        let (lo, hi) = (lo.saturating_sub(1), (hi + 1).min(w));
-        let (a, b) = (lo.saturating_sub(1), (hi + 1).min(w));
-        let band = rows.map(|r| (a..b).map(|x| first.at(x, r)).collect::<Vec<_>>());
-        let [up, mid, down] = &band;
-        // Whether the column's pixels in rows y − 1, y, y + 1 are one.
-        let column: Vec<bool> = (0..b - a)
-            .map(|i| same(&up[i], &mid[i]) && same(&down[i], &mid[i]))
-            .collect();
-        for (x, o) in out.iter_mut().enumerate().take(hi).skip(lo) {
-            let i = x - a;
-            let (l, r) = (x.saturating_sub(1) - a, (x + 1).min(w - 1) - a);
-            let flat = column[l]
-                && column[i]
-                && column[r]
-                && same(&mid[l], &mid[i])
-                && same(&mid[r], &mid[i]);
-            *o = !flat && differs_around(first, x, y, threshold);
-        }
-    });
-    near
-}
-
-/// Whether pixel (x, y)'s shown colour differs from an 8-neighbour's by
-/// more than `threshold`.
-fn differs_around(first: &FirstPass, x: usize, y: usize, threshold: f64) -> bool {
-    let (w, h) = (first.w, first.h);
-    let c = shown_of(first.at(x, y));
-    (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
-        (x.saturating_sub(1)..(x + 2).min(w))
-            .any(|nx| differ(&c, &shown_of(first.at(nx, ny))) > threshold)
-    })
+    (0..h)
+        .into_par_iter()
+        .map(|y| {
+            // An edge row's missing neighbour row stands in for by its
+            // own, as a missing column by its own pixel: the pixel is
+            // measured against itself or its row's again, which adds no
+            // difference.
+            let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
+            let (lo, hi) = rows
+                .iter()
+                .map(|&r| &first.cast[r])
+                .filter(|c| !c.is_empty())
+                .fold((usize::MAX, 0), |(lo, hi), c| {
+                    (lo.min(c.start as usize), hi.max(c.end as usize))
+                });
+            if lo >= hi {
+                return Vec::new();
+            }
+            // The columns measured, and one more on each side (as read).
+            let (lo, hi) = (lo.saturating_sub(1), (hi + 1).min(w));
+            let (a, b) = (lo.saturating_sub(1), (hi + 1).min(w));
+            let band = rows.map(|r| first.shown_row(r, a..b));
+            (lo..hi)
+                .filter(|&x| {
+                    let i = x - a;
+                    let (l, r) = (x.saturating_sub(1) - a, (x + 1).min(w - 1) - a);
+                    let c = &band[1][i];
+                    band.iter()
+                        .any(|row| [l, i, r].iter().any(|&j| differ(c, &row[j]) > threshold))
+                })
+                .map(|x| x as u32)
+                .collect()
+        })
+        .collect()
 }
 
 /// A colour as it is shown: each value clamped to [0, 1].
@@ -306,7 +296,12 @@ mod tests {
                 cast: &cast,
                 background,
             };
-            assert_eq!(edges(&first, threshold), rule, "case {case}: {w}x{h}");
+            let got = edges(&first, threshold);
+            assert!(got.iter().all(|xs| xs.windows(2).all(|p| p[0] < p[1])));
+            let near: Vec<bool> = (0..w * h)
+                .map(|i| got[i / w].contains(&((i % w) as u32)))
+                .collect();
+            assert_eq!(near, rule, "case {case}: {w}x{h}");
         }
     }
 }
