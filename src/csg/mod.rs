@@ -38,17 +38,29 @@ pub struct Primitive {
     /// surface is then met along the ray projected into that section's
     /// plane (and so on outwards).
     pub section: Option<u32>,
+    /// A box's or half-space's unit world normals, one for each of its
+    /// parts (the six faces; a half-space's one plane repeated), found
+    /// once as [`Csg::surface`] would find them at each hit.
+    faces: Option<[DVec3; 6]>,
 }
 
 impl Primitive {
     pub fn new(shape: Shape, xf: Transform, material: u32) -> Primitive {
         let bounds = shape.world_bounds(&xf.to_world);
+        let flat = |part: u32| match &shape {
+            Shape::Cuboid(_) => Some(crate::geometry::cuboid::normal(part)),
+            Shape::Halfspace(_) => Some(DVec3::Z),
+            _ => None,
+        };
+        let faces =
+            flat(0).map(|_| [0, 1, 2, 3, 4, 5].map(|k| xf.normal_to_world(flat(k).unwrap())));
         Primitive {
             shape,
             xf,
             material,
             bounds,
             section: None,
+            faces,
         }
     }
 }
@@ -957,6 +969,25 @@ impl Csg {
     pub fn surface(&self, ray: &Ray, b: &Boundary, st: &mut Stats) -> SurfaceHit {
         st.normals_computed += 1;
         let p = &self.prims[b.prim as usize];
+        let n = match (p.section, &p.faces) {
+            (None, Some(faces)) => faces[b.part() as usize],
+            _ => self.normal_along(p, ray, b),
+        };
+        SurfaceHit {
+            t: b.t,
+            point: ray.at(b.t),
+            normal: if b.flip() && !crate::mutant::active("difference_unflipped") {
+                -n
+            } else {
+                n
+            },
+            prim: b.prim,
+        }
+    }
+
+    /// The unit world normal of primitive `p` where `ray` meets it at
+    /// boundary `b`, found along the ray in object space.
+    fn normal_along(&self, p: &Primitive, ray: &Ray, b: &Boundary) -> DVec3 {
         // A primitive in sections is met along the ray's foot in each,
         // the outermost first; its normal flattened from the innermost out.
         let mut chain: SmallVec<[u32; 4]> = SmallVec::new();
@@ -977,16 +1008,7 @@ impl Csg {
         for &k in &chain {
             n = self.sections[k as usize].normal(n);
         }
-        SurfaceHit {
-            t: b.t,
-            point: ray.at(b.t),
-            normal: if b.flip() && !crate::mutant::active("difference_unflipped") {
-                -n
-            } else {
-                n
-            },
-            prim: b.prim,
-        }
+        n
     }
 
     /// Whether a world point is inside the solid (boundaries count as in).
