@@ -620,13 +620,23 @@ impl Csg {
                 // are still to be tested.
                 let (ch, untested): (&[u32], bool) = match &n.index {
                     Some(ix) => {
-                        hit.extend_from_slice(&ix.unbounded);
+                        // The unbounded children first, their boxes
+                        // tested; then those the hierarchy finds, each by a
+                        // box of its own within its node's box (cut to
+                        // where the union matters, or a piece of that), so
+                        // that the node's box, the same slab test on wider
+                        // sides, passes too and is not tested again.
+                        for &c in &ix.unbounded {
+                            let top = q.sc.stack.len();
+                            self.push_spans(c, q);
+                            q.sc.merge(Op::Union, base, top, q.ray);
+                        }
                         ix.bvh.visit(q.ray, q.tmin, q.tmax, q.st, |c| {
                             if !ix.split || !hit.contains(&c) {
                                 hit.push(c)
                             }
                         });
-                        (&hit, true)
+                        (&hit, false)
                     }
                     None if !n.lanes.is_empty() => {
                         // The children's boxes four at once (cut to where

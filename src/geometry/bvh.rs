@@ -197,8 +197,10 @@ impl Bvh {
         self.split(left + 1, b);
     }
 
-    /// Calls `visit` for every child whose leaf box the ray meets in
-    /// [tmin, tmax], in a fixed order (so results do not depend on threads).
+    /// Calls `visit` for every item whose own box the ray meets in
+    /// [tmin, tmax], in the hierarchy's leaf order (so results do not
+    /// depend on threads): the wide nodes' four boxes at once, depth first,
+    /// each node's lanes in order.
     pub fn visit(
         &self,
         ray: &Ray,
@@ -207,24 +209,28 @@ impl Bvh {
         st: &mut Stats,
         mut visit: impl FnMut(u32),
     ) {
-        let mut stack = [0u32; 64];
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let n = &self.nodes[stack[top] as usize];
-            st.bound_tests += 1;
-            if !n.bounds.hit(ray, tmin, tmax) {
-                st.bound_culled += 1;
+        st.bound_tests += 1;
+        if !self.nodes[0].bounds.hit(ray, tmin, tmax) {
+            st.bound_culled += 1;
+            return;
+        }
+        // Wide nodes and items still to open, the next on top.
+        let mut stack: SmallVec<[u32; 64]> = SmallVec::new();
+        stack.push(0);
+        while let Some(c) = stack.pop() {
+            if c & ITEM != 0 {
+                visit(self.items[(c & !ITEM) as usize]);
                 continue;
             }
-            if n.count > 0 {
-                for &id in &self.items[n.start as usize..(n.start + n.count) as usize] {
-                    visit(id);
+            let n = &self.wide[c as usize];
+            let (met, _) = n.boxes.entries_met_any(ray, tmin, tmax);
+            let lanes = n.lanes as usize;
+            st.bound_tests += lanes as u64;
+            st.bound_culled += (lanes as u32 - (met & ((1 << lanes) - 1)).count_ones()) as u64;
+            for k in (0..lanes).rev() {
+                if met >> k & 1 != 0 {
+                    stack.push(n.child[k]);
                 }
-            } else {
-                stack[top] = n.start + 1;
-                stack[top + 1] = n.start;
-                top += 2;
             }
         }
     }
@@ -377,7 +383,7 @@ mod tests {
     use glam::DVec3;
 
     #[test]
-    fn visits_every_child_whose_box_the_ray_meets_and_few_others() {
+    fn visits_exactly_the_children_whose_boxes_the_ray_meets() {
         // A 10 × 10 grid of unit boxes; a ray along row 3.
         let kids: Vec<(u32, Aabb)> = (0..100)
             .map(|i| {
@@ -390,14 +396,19 @@ mod tests {
         let mut seen = Vec::new();
         let mut st = Stats::default();
         bvh.visit(&ray, 0.0, f64::INFINITY, &mut st, |id| seen.push(id));
-        // Every child the ray meets is visited; a leaf holds two, so a few
-        // neighbours come along (their own boxes are tested after).
-        for want in 30..40 {
-            assert!(seen.contains(&want), "child {want} missed: {seen:?}");
-        }
-        assert!(seen.len() <= 20, "{} visited", seen.len());
-        // Far fewer box tests than children.
-        assert!(st.bound_tests < 60, "{} box tests", st.bound_tests);
+        // Exactly the children whose own boxes the ray meets (each lane of
+        // a wide node is a child's box), each once.
+        seen.sort_unstable();
+        let met: Vec<u32> = kids
+            .iter()
+            .filter(|(_, b)| b.hit(&ray, 0.0, f64::INFINITY))
+            .map(|&(id, _)| id)
+            .collect();
+        assert_eq!(seen, met);
+        assert_eq!(met, (30..40).collect::<Vec<u32>>());
+        // Fewer boxes tested (four lanes a wide node, each counted) than
+        // the hundred a scan of the children would test.
+        assert!(st.bound_tests < 70, "{} box tests", st.bound_tests);
     }
 
     #[test]
