@@ -47,13 +47,14 @@ pub struct Primitive {
 impl Primitive {
     pub fn new(shape: Shape, xf: Transform, material: u32) -> Primitive {
         let bounds = shape.world_bounds(&xf.to_world);
-        let flat = |part: u32| match &shape {
-            Shape::Cuboid(_) => Some(crate::geometry::cuboid::normal(part)),
-            Shape::Halfspace(_) => Some(DVec3::Z),
+        // The object normals their `normal_on` gives, whatever the point.
+        let faces = match &shape {
+            Shape::Cuboid(_) => Some(
+                [0, 1, 2, 3, 4, 5].map(|k| xf.normal_to_world(crate::geometry::cuboid::normal(k))),
+            ),
+            Shape::Halfspace(_) => Some([xf.normal_to_world(DVec3::Z); 6]),
             _ => None,
         };
-        let faces =
-            flat(0).map(|_| [0, 1, 2, 3, 4, 5].map(|k| xf.normal_to_world(flat(k).unwrap())));
         Primitive {
             shape,
             xf,

@@ -181,13 +181,13 @@ pub fn render_with(scene: &Scene, s: &Settings, hooks: &Hooks) -> Option<Rendere
         0,
         pixel(0, 0, first, &mut culled_st, false),
     );
-    // Each row is written in place by whichever thread takes it; the
-    // counters are sums and maxima, the same in any order.
     // Each row's columns cast: every sample of a pixel lies in its square,
     // which `Footprint::columns` grows by its margin.
     let cast: Vec<std::ops::Range<u32>> = (0..s.height)
         .map(|y| seen.as_ref().map_or(0..s.width, |f| f.columns(y, s.width)))
         .collect();
+    // Each row is written in place by whichever thread takes it; the
+    // counters are sums and maxima, the same in any order.
     let mut stats = rows(&mut rgb, &mut lin, w, |y, row, lrow| {
         let mut st = Stats::default();
         if stop() {
