@@ -38,23 +38,20 @@ pub struct Primitive {
     /// surface is then met along the ray projected into that section's
     /// plane (and so on outwards).
     pub section: Option<u32>,
-    /// A box's or half-space's unit world normals, one for each of its
-    /// parts (the six faces; a half-space's one plane repeated), found
-    /// once as [`Csg::surface`] would find them at each hit.
+    /// The unit world normals of a solid whose parts 0 to 5 are each flat
+    /// ([`Shape::flat_normal`]: a box's six faces, a half-space's one
+    /// plane), found once as [`Csg::surface`] would find them at each hit.
     faces: Option<[DVec3; 6]>,
 }
 
 impl Primitive {
     pub fn new(shape: Shape, xf: Transform, material: u32) -> Primitive {
         let bounds = shape.world_bounds(&xf.to_world);
-        // The object normals their `normal_on` gives, whatever the point.
-        let faces = match &shape {
-            Shape::Cuboid(_) => Some(
-                [0, 1, 2, 3, 4, 5].map(|k| xf.normal_to_world(crate::geometry::cuboid::normal(k))),
-            ),
-            Shape::Halfspace(_) => Some([xf.normal_to_world(DVec3::Z); 6]),
-            _ => None,
-        };
+        let flat = [0, 1, 2, 3, 4, 5].map(|k| shape.flat_normal(k));
+        let faces = flat
+            .iter()
+            .all(Option::is_some)
+            .then(|| flat.map(|n| xf.normal_to_world(n.expect("every part is flat"))));
         Primitive {
             shape,
             xf,
@@ -617,27 +614,23 @@ impl Csg {
             },
             NodeKind::Op(Op::Union, ch) => {
                 let mut hit: SmallVec<[u32; 32]> = SmallVec::new();
-                // The children the ray may meet, and whether their boxes
-                // are still to be tested.
-                let (ch, untested): (&[u32], bool) = match &n.index {
+                // The children the ray may meet, and how many of them, at
+                // the front, still have their boxes to be tested.
+                let (ch, untested): (&[u32], usize) = match &n.index {
                     Some(ix) => {
-                        // The unbounded children first, their boxes
-                        // tested; then those the hierarchy finds, each by a
-                        // box of its own within its node's box (cut to
-                        // where the union matters, or a piece of that), so
-                        // that the node's box, the same slab test on wider
-                        // sides, passes too and is not tested again.
-                        for &c in &ix.unbounded {
-                            let top = q.sc.stack.len();
-                            self.push_spans(c, q);
-                            q.sc.merge(Op::Union, base, top, q.ray);
-                        }
+                        // The unbounded children, their boxes tested; then
+                        // those the hierarchy finds, each by a box of its
+                        // own within its node's box (cut to where the union
+                        // matters, or a piece of that), so that the node's
+                        // box, the same slab test on wider sides, passes
+                        // too and is not tested again.
+                        hit.extend_from_slice(&ix.unbounded);
                         ix.bvh.visit(q.ray, q.tmin, q.tmax, q.st, |c| {
                             if !ix.split || !hit.contains(&c) {
                                 hit.push(c)
                             }
                         });
-                        (&hit, false)
+                        (&hit, ix.unbounded.len())
                     }
                     None if !n.lanes.is_empty() => {
                         // The children's boxes four at once (cut to where
@@ -648,13 +641,13 @@ impl Csg {
                         });
                         q.st.bound_tests += n.lane_ids.len() as u64;
                         q.st.bound_culled += (n.lane_ids.len() - hit.len()) as u64;
-                        (&hit, false)
+                        (&hit, 0)
                     }
-                    None => (ch, true),
+                    None => (ch, ch.len()),
                 };
-                for &c in ch {
+                for (k, &c) in ch.iter().enumerate() {
                     let top = q.sc.stack.len();
-                    if untested {
+                    if k < untested {
                         self.push_spans(c, q);
                     } else {
                         self.push_spans_within(c, q);

@@ -33,6 +33,11 @@ impl Solid for Cuboid {
         normal(part)
     }
 
+    /// Every face is flat: its normal does not depend on the point.
+    fn flat_normal(&self, part: Part) -> Option<DVec3> {
+        Some(self.normal(DVec3::ZERO, part))
+    }
+
     fn contains(&self, p: DVec3) -> bool {
         let lo = low(self.centered);
         p.min_element() >= lo && p.max_element() <= 1.0

@@ -22,6 +22,11 @@ impl Solid for Halfspace {
         DVec3::Z
     }
 
+    /// Its plane is flat: the normal does not depend on the point.
+    fn flat_normal(&self, part: Part) -> Option<DVec3> {
+        Some(self.normal(DVec3::ZERO, part))
+    }
+
     fn contains(&self, p: DVec3) -> bool {
         p.z <= 0.0
     }

@@ -70,6 +70,11 @@ impl Shape {
         each!(self, s => s.normal(p, part))
     }
 
+    /// See [`Solid::flat_normal`].
+    pub fn flat_normal(&self, part: Part) -> Option<DVec3> {
+        each!(self, s => s.flat_normal(part))
+    }
+
     /// See [`Solid::normal_on`].
     pub fn normal_on(&self, o: DVec3, d: DVec3, t: f64, part: Part) -> DVec3 {
         each!(self, s => s.normal_on(o, d, t, part))

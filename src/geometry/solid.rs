@@ -92,6 +92,14 @@ pub trait Solid {
     /// The outward (not unit) normal at object-space point `p` on `part`.
     fn normal(&self, p: DVec3, part: Part) -> DVec3;
 
+    /// The outward normal [`Solid::normal_on`] gives on `part` wherever it
+    /// is met, if `part` is flat (a box's face, a half-space's plane):
+    /// what a hit there may look up instead of computing. `None` by
+    /// default.
+    fn flat_normal(&self, _part: Part) -> Option<DVec3> {
+        None
+    }
+
     /// The outward normal where the line o + t·d crosses `part` at t: the
     /// normal at the point, for every solid that knows it from the point
     /// alone (a convex set known by its support does not).
