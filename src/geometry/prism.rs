@@ -203,12 +203,19 @@ impl Solid for Prism {
         if window.0 > window.1 {
             return;
         }
-        // A line of a view's family: only the edges its piece lists.
-        let ids = self.views.iter().find_map(|p| p.edges(o2, d2));
+        // A short piece: its cells' edges; else, a line of a view's family:
+        // only the edges its piece lists.
         let mut cuts = Cuts::new();
-        let odd_before = self
-            .region
-            .crossings_between(ids, o2, d2, window, &mut cuts);
+        let region = &*self.region;
+        let short = region.cells.get(region);
+        let odd_before =
+            match short.and_then(|c| c.crossings_between(region, o2, d2, window, &mut cuts)) {
+                Some(inside) => inside,
+                None => {
+                    let ids = self.views.iter().find_map(|p| p.edges(o2, d2));
+                    region.crossings_between(ids, o2, d2, window, &mut cuts)
+                }
+            };
         // Paired in order, after the one before if there is one.
         let mut open = odd_before.then_some((f64::NEG_INFINITY, 0));
         for &(s1, e1) in &cuts {

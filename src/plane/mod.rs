@@ -11,6 +11,7 @@
 //! crossings of its edges ([`Outlines::spans`]) — what a prism's spans are
 //! made of once the slab is clipped.
 
+pub mod cells;
 pub mod figure;
 pub mod flat;
 pub mod hull;
@@ -306,6 +307,8 @@ pub struct Region {
     /// to cross it), and the least and the greatest of them.
     pub chord_reach: Vec<(f64, f64)>,
     pub chord_range: (f64, f64),
+    /// Its cells, for short pieces of lines ([`cells::Cells`]).
+    pub cells: cells::CellCache,
 }
 
 /// The distance from the origin to the segment a–b.
@@ -354,6 +357,7 @@ impl Region {
             tree,
             chord_reach,
             chord_range,
+            cells: cells::CellCache::default(),
         };
         // Each edge's side by the region's own inside test, through its
         // tree where it has one (the same answers as every edge's, without
@@ -936,15 +940,9 @@ pub(crate) mod tests {
         (outer, r)
     }
 
-    /// A line's crossings found only in a window of its parameter are
-    /// those of the whole line in the window, to the bit, and the count
-    /// before it has the whole line's parity: on a flower of 48 curved
-    /// petals with a hole of cubic curves (an edge tree) and on the
-    /// wavy ring, for lines at random and through the points that define
-    /// the edges, windows at random and ending exactly on a crossing.
-    #[test]
-    fn crossings_in_a_window_are_the_whole_lines_there() {
-        let mut next = uniform(5);
+    /// A flower of 48 curved petals (quadratic tips) with a hole of six
+    /// cubic bulges: 54 edges, so an edge tree.
+    pub(crate) fn flower() -> Region {
         let petals: Vec<DVec2> = (0..48)
             .map(|i| {
                 let a = i as f64 * std::f64::consts::TAU / 48.0;
@@ -973,10 +971,22 @@ pub(crate) mod tests {
                 )
             })
             .collect();
-        let flower = Region::new(Outlines {
+        Region::new(Outlines {
             loops: vec![petals, hole],
             ctrl: vec![tips, bulges],
-        });
+        })
+    }
+
+    /// A line's crossings found only in a window of its parameter are
+    /// those of the whole line in the window, to the bit, and the count
+    /// before it has the whole line's parity: on a flower of 48 curved
+    /// petals with a hole of cubic curves (an edge tree) and on the
+    /// wavy ring, for lines at random and through the points that define
+    /// the edges, windows at random and ending exactly on a crossing.
+    #[test]
+    fn crossings_in_a_window_are_the_whole_lines_there() {
+        let mut next = uniform(5);
+        let flower = flower();
         assert!(flower.tree.is_some() && flower.curved());
         let (_, ring) = wavy_ring();
         let (mut windows, mut odd_seen) = (0, 0);
