@@ -161,49 +161,92 @@ impl FirstPass<'_> {
     }
 }
 
+/// Rows measured together, by one task: each row's colours are read once
+/// for it and the rows beside it, and each pair of neighbours is measured
+/// once (four pairs a pixel instead of eight neighbours).
+const EDGE_ROWS: usize = 16;
+
 /// The pixels near an edge, as each row's columns in ascending order:
 /// those whose colour (clamped to [0, 1], as it is shown) differs from an
 /// 8-neighbour's by more than `threshold`, summed over red, green and
-/// blue. Only the columns within one pixel of a cast column of the row or
-/// of the rows above and below are measured: every other pixel's 3×3
-/// block is the background's alone, one radiance bit for bit, which
-/// differs from no neighbour.
+/// blue (the same both ways: a − b is −(b − a) to the bit). Only the
+/// columns within one pixel of a cast column of the row or of the rows
+/// above and below are measured: every other pixel's 3×3 block is the
+/// background's alone, one radiance bit for bit, which differs from no
+/// neighbour. A pixel at the picture's side has no neighbour there.
 fn edges(first: &FirstPass, threshold: f64) -> Vec<Vec<u32>> {
     let (w, h) = (first.w, first.h);
-    (0..h)
+    // Row y's measured columns.
+    let measured = |y: usize| {
+        let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
+        let (lo, hi) = rows
+            .iter()
+            .map(|&r| &first.cast[r])
+            .filter(|c| !c.is_empty())
+            .fold((usize::MAX, 0), |(lo, hi), c| {
+                (lo.min(c.start as usize), hi.max(c.end as usize))
+            });
+        if lo >= hi {
+            return 0..0;
+        }
+        lo.saturating_sub(1)..(hi + 1).min(w)
+    };
+    let tasks: Vec<Vec<Vec<u32>>> = (0..h.div_ceil(EDGE_ROWS))
         .into_par_iter()
-        .map(|y| {
-            // An edge row's missing neighbour row stands in for by its
-            // own, as a missing column by its own pixel: the pixel is
-            // measured against itself or its row's again, which adds no
-            // difference.
-            let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
-            let (lo, hi) = rows
+        .map(|k| {
+            let (y0, y1) = (k * EDGE_ROWS, ((k + 1) * EDGE_ROWS).min(h));
+            let ranges: Vec<Range<usize>> = (y0..y1).map(measured).collect();
+            let (lo, hi) = ranges
                 .iter()
-                .map(|&r| &first.cast[r])
-                .filter(|c| !c.is_empty())
-                .fold((usize::MAX, 0), |(lo, hi), c| {
-                    (lo.min(c.start as usize), hi.max(c.end as usize))
+                .filter(|r| !r.is_empty())
+                .fold((usize::MAX, 0), |(lo, hi), r| {
+                    (lo.min(r.start), hi.max(r.end))
                 });
             if lo >= hi {
-                return Vec::new();
+                return vec![Vec::new(); y1 - y0];
             }
-            // The columns measured, and one more on each side (as read).
-            let (lo, hi) = (lo.saturating_sub(1), (hi + 1).min(w));
+            // The columns measured, one more on each side, of these rows
+            // and the two beside them.
             let (a, b) = (lo.saturating_sub(1), (hi + 1).min(w));
-            let band = rows.map(|r| first.shown_row(r, a..b));
-            (lo..hi)
-                .filter(|&x| {
-                    let i = x - a;
-                    let (l, r) = (x.saturating_sub(1) - a, (x + 1).min(w - 1) - a);
-                    let c = &band[1][i];
-                    band.iter()
-                        .any(|row| [l, i, r].iter().any(|&j| differ(c, &row[j]) > threshold))
+            let n = b - a;
+            let (r0, r1) = (y0.saturating_sub(1), (y1 + 1).min(h));
+            let shown: Vec<Vec<[f64; 3]>> = (r0..r1).map(|r| first.shown_row(r, a..b)).collect();
+            let mut near = vec![false; (y1 - y0) * n];
+            let mut pair = |(y, j): (usize, usize), (v, i): (usize, usize)| {
+                if differ(&shown[y - r0][j], &shown[v - r0][i]) > threshold {
+                    for (y, j) in [(y, j), (v, i)] {
+                        if (y0..y1).contains(&y) {
+                            near[(y - y0) * n + j] = true;
+                        }
+                    }
+                }
+            };
+            for y in r0..r1 {
+                for j in 0..n {
+                    // Right (within the task's rows), and the three below.
+                    if j + 1 < n && (y0..y1).contains(&y) {
+                        pair((y, j), (y, j + 1));
+                    }
+                    if y + 1 < r1 {
+                        pair((y, j), (y + 1, j));
+                        if j + 1 < n {
+                            pair((y, j), (y + 1, j + 1));
+                            pair((y, j + 1), (y + 1, j));
+                        }
+                    }
+                }
+            }
+            (y0..y1)
+                .zip(ranges)
+                .map(|(y, r)| {
+                    r.filter(|&x| near[(y - y0) * n + x - a])
+                        .map(|x| x as u32)
+                        .collect()
                 })
-                .map(|x| x as u32)
                 .collect()
         })
-        .collect()
+        .collect();
+    tasks.into_iter().flatten().collect()
 }
 
 /// A colour as it is shown: each value clamped to [0, 1].
