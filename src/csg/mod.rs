@@ -748,7 +748,12 @@ impl Csg {
         self.prim_spans(id, ray, tmin, tmax, need, st, |s| {
             count += 1;
             if first.is_none() {
-                first = first_surface(std::slice::from_ref(&s), tmin);
+                // first_surface's rule on the span's two boundaries, taken
+                // by value (by reference, the chosen one was read back
+                // from memory as one 16-byte load of two 8-byte stores).
+                first = [s.enter, s.exit]
+                    .into_iter()
+                    .find(|b| b.t > tmin && b.is_surface());
             }
         });
         // The leaf's list, counted as if held.
