@@ -748,12 +748,12 @@ impl Csg {
         self.prim_spans(id, ray, tmin, tmax, need, st, |s| {
             count += 1;
             if first.is_none() {
-                // first_surface's rule on the span's two boundaries, taken
+                // The rule of first_surface on the span's two boundaries, taken
                 // by value (by reference, the chosen one was read back
                 // from memory as one 16-byte load of two 8-byte stores).
                 first = [s.enter, s.exit]
                     .into_iter()
-                    .find(|b| b.t > tmin && b.is_surface());
+                    .find(|b| surface_after(b, tmin));
             }
         });
         // The leaf's list, counted as if held.
@@ -853,7 +853,7 @@ impl Csg {
         let first = |acc: &[Span]| {
             acc.iter()
                 .map(|s| s.enter)
-                .find(|b| b.t > tmin && b.is_surface() && stops(b))
+                .find(|b| surface_after(b, tmin) && stops(b))
         };
         if !self.root_box(root, ray, tmin, tmax, st) {
             return f(&[]);
@@ -1216,6 +1216,13 @@ fn by_entry(a: &(f64, u32), b: &(f64, u32)) -> std::cmp::Ordering {
     }
 }
 
+/// Whether `b` is a real surface crossing after `tmin`: what a first hit
+/// looks for.
+#[inline(always)]
+fn surface_after(b: &Boundary, tmin: f64) -> bool {
+    b.t > tmin && b.is_surface()
+}
+
 /// The first real surface crossing after `tmin` in a list.
 fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
     // A plain loop, not a flat_map over each span's two boundaries (with
@@ -1223,7 +1230,7 @@ fn first_surface(list: &[Span], tmin: f64) -> Option<Boundary> {
     // primitives model).
     for s in list {
         for b in [&s.enter, &s.exit] {
-            if b.t > tmin && b.is_surface() {
+            if surface_after(b, tmin) {
                 return Some(*b);
             }
         }

@@ -25,7 +25,7 @@
 //! from its edges has none, and a piece beginning there, or longer than a
 //! few cells, is left to the whole line.
 
-use super::{segment_distance, window_crossings, Ctrl, Cuts, Region};
+use super::{edge_boxes, segment_distance, window_crossings, Ctrl, Cuts, Region};
 use glam::DVec2;
 
 /// The cells a region has about this many of per edge.
@@ -70,9 +70,7 @@ impl Cells {
             return None;
         }
         // The box of every edge's control points, which holds the region.
-        let boxes: Vec<(DVec2, DVec2)> = (region.edges.iter().zip(&region.ctrl))
-            .map(|(&(a, b), c)| c.bounds(a, b))
-            .collect();
+        let boxes = edge_boxes(&region.edges, &region.ctrl);
         let (lo, hi) = boxes.iter().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
             |(l, h), &(a, b)| (l.min(a), h.max(b)),
@@ -222,10 +220,7 @@ impl Cells {
         if (i1 - i0 + 1) * (j1 - j0 + 1) > MOST_COVERED {
             return None;
         }
-        let edge = |k: &u32| {
-            let (a, b) = region.edges[*k as usize];
-            (*k, a, region.ctrl[*k as usize], b)
-        };
+        let edge = |k: &u32| region.edge(*k);
         // Whether P is inside: beyond the box by more than the margin, not;
         // else its cell's answer, changed by each crossing of R–P.
         let grid_hi = self.lo + self.size * DVec2::new(self.nx as f64, self.ny as f64);
@@ -280,7 +275,7 @@ impl PartialEq for CellCache {
 
 impl CellCache {
     /// The cells of `region` (whose cache this is): made the first time,
-    /// for a region of more than [`super::SCAN_EDGES`] edges.
+    /// for a region of more than [`MOST_SCANNED`] edges.
     pub fn get(&self, region: &Region) -> Option<&Cells> {
         self.0
             .get_or_init(|| {

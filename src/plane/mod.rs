@@ -311,6 +311,13 @@ pub struct Region {
     pub cells: cells::CellCache,
 }
 
+/// Each edge's box: that of its ends and control points, which holds it.
+fn edge_boxes(edges: &[(DVec2, DVec2)], ctrl: &[Ctrl]) -> Vec<(DVec2, DVec2)> {
+    (edges.iter().zip(ctrl))
+        .map(|(&(a, b), c)| c.bounds(a, b))
+        .collect()
+}
+
 /// The distance from the origin to the segment a–b.
 pub fn segment_distance(a: DVec2, b: DVec2) -> f64 {
     let e = b - a;
@@ -330,14 +337,7 @@ impl Region {
         let ((x0, x1), (y0, y1)) = (outlines.extent(DVec2::X), outlines.extent(DVec2::Y));
         let (lo, hi) = (DVec2::new(x0, y0), DVec2::new(x1, y1));
         let size = lo.abs().max(hi.abs()).max_element().max(1e-300);
-        let tree = (edges.len() > SCAN_EDGES).then(|| {
-            let boxes: Vec<(DVec2, DVec2)> = edges
-                .iter()
-                .zip(&ctrl)
-                .map(|(&(a, b), c)| c.bounds(a, b))
-                .collect();
-            EdgeTree::new(&boxes)
-        });
+        let tree = (edges.len() > SCAN_EDGES).then(|| EdgeTree::new(&edge_boxes(&edges, &ctrl)));
         let chord_reach: Vec<(f64, f64)> = edges
             .iter()
             .map(|&(a, b)| (segment_distance(a, b), a.length().max(b.length())))

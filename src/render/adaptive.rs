@@ -179,29 +179,19 @@ fn edges(first: &FirstPass, threshold: f64) -> Vec<Vec<u32>> {
     // Row y's measured columns.
     let measured = |y: usize| {
         let rows = [y.saturating_sub(1), y, (y + 1).min(h - 1)];
-        let (lo, hi) = rows
-            .iter()
-            .map(|&r| &first.cast[r])
-            .filter(|c| !c.is_empty())
-            .fold((usize::MAX, 0), |(lo, hi), c| {
-                (lo.min(c.start as usize), hi.max(c.end as usize))
-            });
-        if lo >= hi {
+        let cast = rows.map(|r| &first.cast[r]);
+        let r = hull(cast.iter().map(|c| c.start as usize..c.end as usize));
+        if r.is_empty() {
             return 0..0;
         }
-        lo.saturating_sub(1)..(hi + 1).min(w)
+        r.start.saturating_sub(1)..(r.end + 1).min(w)
     };
     let tasks: Vec<Vec<Vec<u32>>> = (0..h.div_ceil(EDGE_ROWS))
         .into_par_iter()
         .map(|k| {
             let (y0, y1) = (k * EDGE_ROWS, ((k + 1) * EDGE_ROWS).min(h));
             let ranges: Vec<Range<usize>> = (y0..y1).map(measured).collect();
-            let (lo, hi) = ranges
-                .iter()
-                .filter(|r| !r.is_empty())
-                .fold((usize::MAX, 0), |(lo, hi), r| {
-                    (lo.min(r.start), hi.max(r.end))
-                });
+            let Range { start: lo, end: hi } = hull(ranges.iter().cloned());
             if lo >= hi {
                 return vec![Vec::new(); y1 - y0];
             }
@@ -247,6 +237,17 @@ fn edges(first: &FirstPass, threshold: f64) -> Vec<Vec<u32>> {
         })
         .collect();
     tasks.into_iter().flatten().collect()
+}
+
+/// The least range holding every non-empty one of `ranges` (empty if
+/// none is).
+fn hull(ranges: impl Iterator<Item = Range<usize>>) -> Range<usize> {
+    let (lo, hi) = ranges
+        .filter(|r| !r.is_empty())
+        .fold((usize::MAX, 0), |(lo, hi), r| {
+            (lo.min(r.start), hi.max(r.end))
+        });
+    lo..hi
 }
 
 /// A colour as it is shown: each value clamped to [0, 1].
