@@ -59,21 +59,31 @@ def csgrt_time(csgrt, model, work, limit):
     return builds_times([csgrt], model, work, limit)[0]
 
 
-def builds_times(builds, model, work, limit):
+def builds_times(builds, model, work, limit, lead=0):
     """Each build's (t, why) for `csgrt -q -o x.png model`: one run, and
     where it took under a second the median of 3, a failed rerun counting
     as the first. A build is a path, or a list: the path and arguments
     added to its command line. Several builds' runs alternate — this
     machine's speed drifts by tens of percent over minutes, so builds
-    timed in runs apart cannot be compared."""
+    timed in runs apart cannot be compared — and which runs first turns
+    with each round, starting from build `lead`: a run right after another
+    build's is not the same as one after its own (the same binary against
+    itself read 0.969 when the first always led), so a caller passes a
+    different `lead` model by model and neither build leads more often."""
     png = os.path.join(work, "c.png")
     cmds = [([b] if isinstance(b, str) else list(b)) + ["-q", "-o", png, model] for b in builds]
-    first = [timed(c, limit) for c in cmds]
+    n = len(cmds)
+    first = [None] * n
+    for k in range(n):
+        i = (lead + k) % n
+        first[i] = timed(cmds[i], limit)
     runs = [[t] for t, _ in first]
-    for _ in range(2):
-        for c, (t, _), got in zip(cmds, first, runs):
+    for r in range(1, 3):
+        for k in range(n):
+            i = (lead + r + k) % n
+            t = first[i][0]
             if t is not None and t < 1.0:
-                got.append(timed(c, limit)[0] or t)
+                runs[i].append(timed(cmds[i], limit)[0] or t)
     return [(statistics.median(got), None) if t is not None else (None, why) for (t, why), got in zip(first, runs)]
 
 
@@ -189,7 +199,7 @@ def main():
         with open(a.reuse) as f:
             earlier = {r["model"]: r for r in json.load(f)}
     rows = []
-    for model in files:
+    for index, model in enumerate(files):
         model = os.path.abspath(model)
         name = os.path.relpath(model, os.path.join(ROOT, "bench/people"))
         old = earlier.get(name, {})
@@ -200,7 +210,7 @@ def main():
         with tempfile.TemporaryDirectory(prefix="people") as work:
             before = (None, "not asked")
             if a.against:
-                c, before = builds_times([csgrt, os.path.abspath(a.against)], model, work, a.limit)
+                c, before = builds_times([csgrt, os.path.abspath(a.against)], model, work, a.limit, lead=index)
             else:
                 c = kept("csgrt") if "csgrt" in skip else csgrt_time(csgrt, model, work, a.limit)
             o = kept("openscad") if "openscad" in skip else openscad_time(model, work, a.limit)
