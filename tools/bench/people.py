@@ -73,17 +73,15 @@ def builds_times(builds, model, work, limit, lead=0):
     png = os.path.join(work, "c.png")
     cmds = [([b] if isinstance(b, str) else list(b)) + ["-q", "-o", png, model] for b in builds]
     n = len(cmds)
-    first = [None] * n
-    for k in range(n):
-        i = (lead + k) % n
-        first[i] = timed(cmds[i], limit)
-    runs = [[t] for t, _ in first]
-    for r in range(1, 3):
+    first, runs = [None] * n, [[] for _ in cmds]
+    for r in range(3):
         for k in range(n):
             i = (lead + r + k) % n
-            t = first[i][0]
-            if t is not None and t < 1.0:
-                runs[i].append(timed(cmds[i], limit)[0] or t)
+            if r == 0:
+                first[i] = timed(cmds[i], limit)
+                runs[i].append(first[i][0])
+            elif first[i][0] is not None and first[i][0] < 1.0:
+                runs[i].append(timed(cmds[i], limit)[0] or first[i][0])
     return [(statistics.median(got), None) if t is not None else (None, why) for (t, why), got in zip(first, runs)]
 
 
